@@ -1,0 +1,64 @@
+// reamsim-cli: the headless face of ReamSim. Every command is a thin adapter over modules/*.
+#include <cstdio>
+#include <exception>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "CliArgs.h"
+#include "Commands.h"
+#include "reamsim/mesh/MeshError.h"
+
+namespace {
+
+const char* kUsageText =
+    "usage: reamsim-cli COMMAND [options]\n"
+    "\n"
+    "commands:\n"
+    "  info MESH [--units m|mm|auto] [--json] [--no-self-intersections]\n"
+    "      validation report: counts, closed, boundary/non-manifold edges, orientation,\n"
+    "      self-intersections, degenerate faces, volume, bounds\n"
+    "  repair MESH --out FILE [--units ...] [--voxel MM] [--target-faces N] [--json]\n"
+    "      repair on import (merge, clean, orient, close holes; volumetric remesh when needed)\n"
+    "  export MESH|default --out FILE [--units ...] [--repair] [--ascii]\n"
+    "      convert between STL, OBJ, PLY, OFF and VTP (the format follows the extension)\n"
+    "  ream --bone MESH|default --reamer PRESET|MESH --plan PLAN.json|default --out DIR [--json]\n"
+    "      run a reaming plan; prints one row per step and writes DIR/log.csv, DIR/log.json and\n"
+    "      the final bone mesh\n"
+    "\n"
+    "  glenoid MESH [--units ...] [--out FILE.json]\n"
+    "      find the glenoid (centre, outward axis, best-fit sphere) of a scapula in the OpenSim frame\n"
+    "\n"
+    "exit codes: 0 ok, 1 operation failed, 2 usage error, 3 bad input file, 4 output not written\n"
+    "see docs/CLI.md\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace reamsim::cli;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::fputs(kUsageText, args.empty() ? stderr : stdout);
+    return args.empty() ? kUsage : kOk;
+  }
+  const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
+      {"info", runInfo}, {"repair", runRepair}, {"export", runExport}, {"ream", runReam}, {"glenoid", runGlenoid}};
+  const auto it = commands.find(args[0]);
+  if (it == commands.end()) {
+    std::fprintf(stderr, "reamsim-cli: unknown command '%s'\n\n%s", args[0].c_str(), kUsageText);
+    return kUsage;
+  }
+  try {
+    return it->second(std::vector<std::string>(args.begin() + 1, args.end()));
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "reamsim-cli %s: %s\n", args[0].c_str(), e.what());
+    return kUsage;
+  } catch (const reamsim::InputError& e) {
+    std::fprintf(stderr, "reamsim-cli %s: error: %s\n", args[0].c_str(), e.what());
+    return kBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "reamsim-cli %s: error: %s\n", args[0].c_str(), e.what());
+    return kFailed;
+  }
+}

@@ -1,0 +1,26 @@
+#pragma once
+// One row of the cut log: what happened at one simulation step.
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+
+#include "reamsim/core/Pose.h"
+#include "reamsim/mesh/Vec3.h"
+
+namespace reamsim {
+
+struct CutLogEntry {
+  std::size_t stepIndex = 0;
+  Pose pose;
+  bool boxesOverlap = false;
+  bool contact = false;
+  double minDistanceMm = 0;       // reamer-bone distance before the cut (0 at contact)
+  double removedMm3 = 0;          // bone removed by this step
+  double cumulativeMm3 = 0;       // bone removed since the start of the session
+  double cutMs = 0;               // wall time of the Boolean
+  std::size_t faces = 0;          // live triangles of the bone after the step
+  std::optional<Vec3> contactPoint;  // set when contact
+  std::uint64_t boneStateId = 0;  // BoneHistory revision committed by this step (0: none)
+};
+
+}  // namespace reamsim

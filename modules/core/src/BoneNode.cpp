@@ -1,0 +1,38 @@
+#include "reamsim/core/BoneNode.h"
+
+namespace reamsim {
+
+void BoneNode::resetHistory(BoneState initial, std::string label) {
+  history_.reset(std::move(initial), std::move(label));
+  markModified();
+}
+
+std::uint64_t BoneNode::commit(BoneState state, std::string label) {
+  const std::uint64_t revision = history_.commit(std::move(state), std::move(label));
+  markModified();
+  return revision;
+}
+
+bool BoneNode::undo() {
+  if (!history_.undo()) return false;
+  markModified();
+  return true;
+}
+
+bool BoneNode::redo() {
+  if (!history_.redo()) return false;
+  markModified();
+  return true;
+}
+
+void BoneNode::setOriginalMesh(std::shared_ptr<const TriangleMesh> mesh) {
+  originalMesh_ = std::move(mesh);
+  markModified();
+}
+
+void BoneNode::setImportReport(std::string text) {
+  importReport_ = std::move(text);
+  markModified();
+}
+
+}  // namespace reamsim

@@ -1,0 +1,52 @@
+#pragma once
+// Volumetric remesh of an arbitrary triangle soup into a closed, consistently outward-oriented,
+// self-intersection-free surface.
+//  - inside/outside from the generalized winding number (robust to holes, flipped and overlapping
+//    faces), distance from an AABB tree; both sampled on a regular grid of `voxelMm`, only in a
+//    narrow band around the input (the rest is labelled by connected components);
+//  - marching tetrahedra on the Kuhn (6-tetrahedra) subdivision of the grid: the zero set of a
+//    piecewise-linear field with no zero at the grid points is a closed 2-manifold whose triangles lie
+//    in disjoint tetrahedra, so it cannot self-intersect; crossing points are kept at least 0.1 % of an
+//    edge away from grid points so that rounding cannot fold them;
+//  - optional decimation to a target face count (Garland–Heckbert), accepted only if the result
+//    still has no self-intersection (otherwise a milder target is tried).
+#include <cstddef>
+
+#include "reamsim/mesh/TriangleMesh.h"
+
+namespace reamsim {
+
+struct RemeshOptions {
+  double voxelMm = 0.5;             // grid spacing: the resolution of the rebuilt surface
+  std::size_t targetTriangles = 0;  // 0 = keep the marching-tetrahedra output
+  std::size_t maxGridPoints = 200'000'000;  // refuse larger grids with a clear message
+};
+
+struct RemeshStats {
+  double voxelMm = 0;
+  int grid[3] = {0, 0, 0};
+  std::size_t bandPoints = 0;
+  std::size_t trianglesBeforeDecimation = 0;
+  std::size_t trianglesAfter = 0;
+  // Fidelity, measured both ways (vertices of one surface against the other surface):
+  double maxOutputToInputMm = 0, meanOutputToInputMm = 0;
+  double maxInputToOutputMm = 0, meanInputToOutputMm = 0;
+  double milliseconds = 0;
+};
+
+struct RemeshResult {
+  TriangleMesh mesh;
+  RemeshStats stats;
+};
+
+// Throws std::invalid_argument for empty input, non-finite coordinates or a grid over the limit.
+RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& options = {});
+
+// Decimation that keeps the surface closed and free of self-intersections; returns false (and leaves
+// `mesh` unchanged) if no acceptable decimation was found. Used by volumetricRemesh.
+bool decimateWithoutSelfIntersections(TriangleMesh& mesh, std::size_t targetTriangles);
+
+// Distance from each vertex of `from` to the surface `to` (CGAL AABB tree): max and mean.
+void surfaceDistance(const TriangleMesh& from, const TriangleMesh& to, double& maxMm, double& meanMm);
+
+}  // namespace reamsim

@@ -1,0 +1,70 @@
+#include "FileBytes.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <system_error>
+
+#include "reamsim/mesh/MeshError.h"
+
+namespace reamsim::io {
+namespace {
+
+struct FileCloser {
+  void operator()(std::FILE* f) const {
+    if (f) std::fclose(f);
+  }
+};
+
+std::string errnoText(int err) { return err ? std::string(std::strerror(err)) : std::string("unknown error"); }
+
+}  // namespace
+
+std::string readFileBytes(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec || !fs::exists(st)) throw InputError(path, "file not found");
+  if (fs::is_directory(st)) throw InputError(path, "is a directory, not a mesh file");
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) throw InputError(path, "cannot determine the file size: " + ec.message());
+  if (size > kMaxMeshFileBytes)
+    throw InputError(path, "file is too large (" + std::to_string(size) + " bytes; the limit is 2 GiB)");
+
+  errno = 0;
+  std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
+  if (!f) throw InputError(path, "cannot open the file for reading: " + errnoText(errno));
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  const std::size_t got = size ? std::fread(bytes.data(), 1, bytes.size(), f.get()) : 0;
+  if (got != bytes.size()) throw InputError(path, "read error (file changed or unreadable while reading)");
+  if (bytes.empty()) throw InputError(path, "file is empty");
+  return bytes;
+}
+
+void writeFileBytes(const std::string& path, const std::string& bytes) {
+  errno = 0;
+  std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "wb"));
+  if (!f) throw InputError(path, "cannot open the file for writing: " + errnoText(errno));
+  if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), f.get()) != bytes.size())
+    throw InputError(path, "write error: " + errnoText(errno));
+  std::FILE* raw = f.release();
+  if (std::fclose(raw) != 0) throw InputError(path, "write error on close: " + errnoText(errno));
+}
+
+void appendDouble(std::string& out, double value) {
+  char buf[40];
+  const int n = std::snprintf(buf, sizeof buf, "%.17g", value);
+  out.append(buf, n > 0 ? static_cast<std::size_t>(n) : 0);
+}
+
+void appendTriple(std::string& out, double a, double b, double c) {
+  appendDouble(out, a);
+  out += ' ';
+  appendDouble(out, b);
+  out += ' ';
+  appendDouble(out, c);
+}
+
+}  // namespace reamsim::io

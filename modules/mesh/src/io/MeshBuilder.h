@@ -1,0 +1,60 @@
+#pragma once
+// Collects vertices and polygons from any reader and applies the shared policy: coordinates must be
+// finite, indices must be in range, polygons with > 3 vertices are fan-triangulated (and counted for a
+// note), polygons with < 3 vertices are an error, and a file without triangles is an error.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "reamsim/mesh/TriangleMesh.h"
+
+namespace reamsim::io {
+
+class MeshBuilder {
+ public:
+  // indexBase: how the format numbers vertices and faces in messages (OBJ: 1, others: 0).
+  MeshBuilder(std::string file, int indexBase = 0) : file_(std::move(file)), base_(indexBase) {}
+
+  // Reserve only counts already checked against the file size.
+  void reserve(std::size_t vertices, std::size_t triangles);
+
+  std::size_t vertexCount() const { return mesh_.vertices.size(); }
+  std::size_t triangleCount() const { return mesh_.triangles.size(); }
+
+  // Appends a vertex (throws if a coordinate is NaN/Inf). line: 0 for binary data.
+  std::uint32_t addVertex(const Vec3& p, long line);
+  // For soup formats (STL): reuses an earlier vertex with identical coordinates. `where()` names the
+  // corner for messages (e.g. "triangle 5 corner 1"); it is called only when there is a problem.
+  template <class WhereFn>
+  std::uint32_t addWeldedVertex(const Vec3& p, long line, WhereFn&& where) {
+    if (!isFinite(p)) checkFinite(p, line, where());
+    return weld(p, line);
+  }
+
+  // Adds a polygon by indices as written in the file, already converted to 0-based, each checked
+  // against `indexLimit` (the number of vertices the file has). `faceNumber` is 0-based.
+  void addPolygon(const std::vector<std::int64_t>& indices, std::uint64_t indexLimit, long line,
+                  std::size_t faceNumber);
+  void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) { mesh_.triangles.push_back({a, b, c}); }
+
+  // Checks the result has triangles, adds the triangulation note; leaves the builder empty.
+  TriangleMesh finish(std::vector<std::string>& notes);
+
+ private:
+  [[noreturn]] void fail(long line, const std::string& problem) const;
+  void checkFinite(const Vec3& p, long line, const std::string& what) const;
+  std::uint32_t weld(const Vec3& p, long line);
+
+  struct KeyHash {
+    std::size_t operator()(const Vec3& v) const;
+  };
+  std::string file_;
+  int base_;
+  TriangleMesh mesh_;
+  std::size_t polygonsTriangulated_ = 0;
+  std::unordered_map<Vec3, std::uint32_t, KeyHash> weld_;
+};
+
+}  // namespace reamsim::io

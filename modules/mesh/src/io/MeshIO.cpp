@@ -1,0 +1,97 @@
+// Public entry points: choose the format by extension, apply the unit policy, write by extension.
+#include "reamsim/mesh/MeshIO.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "FileBytes.h"
+#include "Formats.h"
+#include "reamsim/mesh/MeshError.h"
+
+namespace reamsim {
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::string extensionOf(const std::string& path) { return lower(std::filesystem::path(path).extension().string()); }
+
+std::string supportedList() {
+  std::string all;
+  for (const std::string& e : supportedMeshExtensions()) all += (all.empty() ? "" : " ") + e;
+  return all;
+}
+
+// Below this bounding-box diagonal (in file units) Units::Auto takes the data for metres.
+constexpr double kMetreDiagonalThreshold = 2.0;
+
+}  // namespace
+
+std::vector<std::string> supportedMeshExtensions() { return {".stl", ".obj", ".ply", ".off", ".vtp"}; }
+
+Units parseUnits(const std::string& text) {
+  const std::string t = lower(text);
+  if (t == "auto") return Units::Auto;
+  if (t == "mm" || t == "millimetre" || t == "millimetres" || t == "millimeter" || t == "millimeters")
+    return Units::Millimetres;
+  if (t == "m" || t == "metre" || t == "metres" || t == "meter" || t == "meters") return Units::Metres;
+  throw std::invalid_argument("unknown units '" + text + "' (expected m, mm or auto)");
+}
+
+LoadedMesh readMesh(const std::string& path, const ReadOptions& options) {
+  const std::string ext = extensionOf(path);
+  io::RawMesh (*reader)(const std::string&, std::string_view) = nullptr;
+  if (ext == ".stl") reader = io::readStl;
+  else if (ext == ".obj") reader = io::readObj;
+  else if (ext == ".ply") reader = io::readPly;
+  else if (ext == ".off") reader = io::readOff;
+  else if (ext == ".vtp") reader = io::readVtp;
+  else
+    throw InputError(path, "unknown mesh file extension '" + ext + "' (supported: " + supportedList() + ")");
+
+  const std::string bytes = io::readFileBytes(path);
+  io::RawMesh raw = reader(path, bytes);
+
+  LoadedMesh out;
+  out.mesh = std::move(raw.mesh);
+  out.format = std::move(raw.format);
+  out.notes = std::move(raw.notes);
+  double scale = 1.0;
+  if (options.units == Units::Metres) {
+    scale = 1000.0;
+  } else if (options.units == Units::Auto) {
+    const double diagonal = computeBounds(out.mesh).diagonal();
+    if (diagonal < kMetreDiagonalThreshold) {
+      scale = 1000.0;
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.4g", diagonal);
+      out.notes.push_back(std::string("coordinates look like metres (bounding box diagonal ") + buf +
+                          " m); scaled \u00d71000 to mm; pass --units mm to keep them");
+    }
+  }
+  if (scale != 1.0) scaleInPlace(out.mesh, scale);
+  out.scaleToMillimetres = scale;
+  return out;
+}
+
+void writeMesh(const TriangleMesh& mesh, const std::string& path, const WriteOptions& options) {
+  const std::string ext = extensionOf(path);
+  for (const Triangle& t : mesh.triangles)
+    for (std::uint32_t i : t)
+      if (i >= mesh.vertices.size())
+        throw InputError(path, "cannot write: a triangle refers to vertex " + std::to_string(i) + " but the mesh has " +
+                                   std::to_string(mesh.vertices.size()) + " vertices");
+  if (ext == ".stl") io::writeFileBytes(path, io::writeStl(mesh, path, options.binary));
+  else if (ext == ".ply") io::writeFileBytes(path, io::writePly(mesh, path, options.binary));
+  else if (ext == ".obj") io::writeFileBytes(path, io::writeObj(mesh));
+  else if (ext == ".off") io::writeFileBytes(path, io::writeOff(mesh));
+  else if (ext == ".vtp") io::writeVtp(mesh, path);
+  else throw InputError(path, "unknown mesh file extension '" + ext + "' for writing (supported: " + supportedList() + ")");
+}
+
+}  // namespace reamsim

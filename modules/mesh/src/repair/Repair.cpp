@@ -1,0 +1,122 @@
+#include "reamsim/mesh/Repair.h"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "ReportJson.h"
+#include "SoupRepair.h"
+
+namespace reamsim {
+namespace {
+std::string format(const char* fmt, double a, double b = 0, double c = 0, double d = 0) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, fmt, a, b, c, d);
+  return buf;
+}
+}  // namespace
+
+RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options) {
+  RepairResult result;
+  RepairReport& rep = result.report;
+  rep.before = validateMesh(input);
+  if (rep.before.isCleanSolid()) {
+    result.mesh = input;
+    rep.after = rep.before;
+    rep.actions.push_back("none needed: the mesh is a closed, outward-oriented solid without self-intersections");
+    return result;
+  }
+
+  SoupRepairResult soup = repairSoupTopology(input, options.maxHoleBoundaryEdges);
+  rep.mergedVertices = soup.verticesRemoved;
+  rep.removedFaces = soup.facesRemoved;
+  rep.orientableWithoutSplitting = soup.orientableWithoutSplitting;
+  rep.holesClosed = soup.holesClosed;
+  rep.holesLeftOpen = soup.holesLeftOpen;
+  rep.flippedToOutward = soup.flippedToOutward;
+  if (soup.verticesRemoved)
+    rep.actions.push_back(std::to_string(soup.verticesRemoved) + " duplicate or unused vertices merged/removed");
+  if (soup.facesRemoved)
+    rep.actions.push_back(std::to_string(soup.facesRemoved) + " degenerate or duplicate faces removed");
+  rep.actions.push_back(soup.orientableWithoutSplitting
+                            ? "faces oriented consistently"
+                            : "faces oriented as far as possible; the surface is not consistently orientable "
+                              "(non-manifold or Möbius-like parts): vertices were split");
+  if (soup.holesClosed)
+    rep.actions.push_back(std::to_string(soup.holesClosed) + " holes with at most " +
+                          std::to_string(options.maxHoleBoundaryEdges) + " boundary edges triangulated");
+  if (soup.holesLeftOpen) rep.actions.push_back(std::to_string(soup.holesLeftOpen) + " larger holes left open");
+  if (soup.flippedToOutward) rep.actions.push_back("all faces flipped so that normals point outward");
+
+  result.mesh = std::move(soup.mesh);
+  rep.after = validateMesh(result.mesh);
+  if (rep.after.isCleanSolid() || !options.allowRemesh) {
+    if (!rep.after.isCleanSolid())
+      rep.actions.push_back("still not a clean solid, and volumetric remeshing was not allowed");
+    return result;
+  }
+
+  std::string why;
+  if (!rep.after.closed) why += " open or non-manifold;";
+  if (!rep.after.consistentlyOriented) why += " not consistently oriented;";
+  if (rep.after.selfIntersectingPairs.value_or(0) > 0)
+    why += " " + std::to_string(*rep.after.selfIntersectingPairs) + " self-intersecting face pairs;";
+  RemeshResult remesh = volumetricRemesh(soup.orientedSoup, options.remesh);
+  rep.remeshed = true;
+  rep.remesh = remesh.stats;
+  const RemeshStats& s = remesh.stats;
+  rep.actions.push_back("after topological repair the surface was still" + why.substr(0, why.size() - 1) +
+                        format(": rebuilt by volumetric remesh (winding-number sign, %.3g mm grid, marching "
+                               "tetrahedra)", s.voxelMm));
+  if (s.trianglesAfter != s.trianglesBeforeDecimation)
+    rep.actions.push_back("remeshed surface decimated from " + std::to_string(s.trianglesBeforeDecimation) + " to " +
+                          std::to_string(s.trianglesAfter) + " triangles (checked free of self-intersections)");
+  rep.actions.push_back(format("distance from the result to the input: max %.3f mm, mean %.3f mm; from the input "
+                               "to the result: max %.3f mm, mean %.3f mm",
+                               s.maxOutputToInputMm, s.meanOutputToInputMm, s.maxInputToOutputMm, s.meanInputToOutputMm));
+  result.mesh = std::move(remesh.mesh);
+  rep.after = validateMesh(result.mesh);
+  return result;
+}
+
+std::string toText(const RepairReport& r) {
+  std::ostringstream out;
+  out << "== before repair ==\n" << toText(r.before) << "== repair ==\n";
+  for (const std::string& a : r.actions) out << "- " << a << "\n";
+  out << "== after repair ==\n" << toText(r.after);
+  out << "result: " << (r.success() ? "closed, outward-oriented solid without self-intersections"
+                                    : "NOT a clean solid (see above)")
+      << "\n";
+  return out.str();
+}
+
+std::string toJson(const RepairReport& r, int indent) {
+  nlohmann::json j;
+  j["before"] = toJsonValue(r.before);
+  j["after"] = toJsonValue(r.after);
+  j["actions"] = r.actions;
+  j["merged_vertices"] = r.mergedVertices;
+  j["removed_faces"] = r.removedFaces;
+  j["orientable_without_splitting"] = r.orientableWithoutSplitting;
+  j["holes_closed"] = r.holesClosed;
+  j["holes_left_open"] = r.holesLeftOpen;
+  j["flipped_to_outward"] = r.flippedToOutward;
+  j["remeshed"] = r.remeshed;
+  if (r.remesh) {
+    const RemeshStats& s = *r.remesh;
+    j["remesh"] = {{"voxel_mm", s.voxelMm},
+                   {"grid", {s.grid[0], s.grid[1], s.grid[2]}},
+                   {"band_points", s.bandPoints},
+                   {"triangles_before_decimation", s.trianglesBeforeDecimation},
+                   {"triangles_after", s.trianglesAfter},
+                   {"max_result_to_input_mm", s.maxOutputToInputMm},
+                   {"mean_result_to_input_mm", s.meanOutputToInputMm},
+                   {"max_input_to_result_mm", s.maxInputToOutputMm},
+                   {"mean_input_to_result_mm", s.meanInputToOutputMm},
+                   {"ms", s.milliseconds}};
+  }
+  j["success"] = r.success();
+  return j.dump(indent);
+}
+
+}  // namespace reamsim

@@ -1,0 +1,131 @@
+#include "reamsim/mesh/VolumetricRemesh.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <stdexcept>
+
+#include "DistanceOracle.h"
+#include "MarchingTetrahedra.h"
+#include "ScalarGrid.h"
+#include "WindingNumber.h"
+
+namespace reamsim {
+namespace {
+
+enum : std::uint8_t { kFar = 0, kBand = 1 };
+
+ScalarGrid makeGrid(const TriangleMesh& soup, const RemeshOptions& options) {
+  if (!(options.voxelMm > 0) || !std::isfinite(options.voxelMm))
+    throw std::invalid_argument("remesh voxel size must be a positive number of mm");
+  const Bounds bounds = computeBounds(soup);
+  ScalarGrid grid;
+  grid.h = options.voxelMm;
+  const double pad = 3 * grid.h;  // room for the band and an all-outside border
+  grid.origin = bounds.min - Vec3{pad, pad, pad};
+  double points = 1;
+  for (int a = 0; a < 3; ++a) {
+    grid.n[a] = int(std::ceil((bounds.max[a] - bounds.min[a] + 2 * pad) / grid.h)) + 1;
+    points *= grid.n[a];
+  }
+  if (points > double(options.maxGridPoints))
+    throw std::invalid_argument("remesh grid of " + std::to_string(grid.n[0]) + "x" + std::to_string(grid.n[1]) + "x" +
+                                std::to_string(grid.n[2]) + " points exceeds the limit; use a larger voxel size");
+  grid.value.assign(grid.size(), 0.0);
+  return grid;
+}
+
+// Marks the grid points whose box around a triangle could lie within `width` of it.
+std::vector<std::uint8_t> candidateBand(const TriangleMesh& soup, const ScalarGrid& grid, double width) {
+  std::vector<std::uint8_t> mark(grid.size(), kFar);
+  for (const Triangle& t : soup.triangles) {
+    Bounds b;
+    for (std::uint32_t v : t) b.add(soup.vertices[v]);
+    b = b.expanded(width);
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::max(0, int(std::floor((b.min[a] - grid.origin[a]) / grid.h)));
+      hi[a] = std::min(grid.n[a] - 1, int(std::ceil((b.max[a] - grid.origin[a]) / grid.h)));
+    }
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i) mark[grid.index(i, j, k)] = kBand;
+  }
+  return mark;
+}
+
+// Labels each 6-connected region of far points with the winding number at its first point.
+void signFarRegions(const TriangleMesh& soup, ScalarGrid& grid, const std::vector<std::uint8_t>& mark, double farValue) {
+  std::vector<std::uint8_t> seen(grid.size(), 0);
+  std::deque<std::size_t> queue;
+  const std::size_t stride[3] = {1, std::size_t(grid.n[0]), std::size_t(grid.n[0]) * grid.n[1]};
+  for (std::size_t seed = 0; seed < grid.size(); ++seed) {
+    if (mark[seed] != kFar || seen[seed]) continue;
+    const double value = windingNumber(soup, grid.point(seed)) >= 0.5 ? -farValue : farValue;
+    seen[seed] = 1;
+    queue.push_back(seed);
+    while (!queue.empty()) {
+      const std::size_t p = queue.front();
+      queue.pop_front();
+      grid.value[p] = value;
+      const int c[3] = {int(p % grid.n[0]), int((p / grid.n[0]) % grid.n[1]), int(p / stride[2])};
+      for (int a = 0; a < 3; ++a)
+        for (int dir = -1; dir <= 1; dir += 2) {
+          const int q = c[a] + dir;
+          if (q < 0 || q >= grid.n[a]) continue;
+          const std::size_t nb = dir < 0 ? p - stride[a] : p + stride[a];
+          if (mark[nb] == kFar && !seen[nb]) { seen[nb] = 1; queue.push_back(nb); }
+        }
+    }
+  }
+}
+
+}  // namespace
+
+RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  if (soup.empty()) throw std::invalid_argument("cannot remesh an empty mesh");
+  for (const Vec3& p : soup.vertices)
+    if (!isFinite(p)) throw std::invalid_argument("cannot remesh a mesh with non-finite coordinates");
+
+  ScalarGrid grid = makeGrid(soup, options);
+  // Every grid edge (up to a cell diagonal, h√3) that the surface crosses has both ends in the band.
+  const double bandWidth = grid.h * 1.75;
+  std::vector<std::uint8_t> mark = candidateBand(soup, grid, bandWidth);
+  std::vector<std::size_t> band;
+  for (std::size_t i = 0; i < mark.size(); ++i)
+    if (mark[i] == kBand) band.push_back(i);
+
+  DistanceOracle oracle(soup);
+  tbb::parallel_for(std::size_t(0), band.size(), [&](std::size_t b) {
+    const std::size_t idx = band[b];
+    const Vec3 p = grid.point(idx);
+    const double d = oracle.distance(p);
+    if (d > bandWidth) { mark[idx] = kFar; return; }  // the box test was conservative
+    const bool inside = windingNumber(soup, p) >= 0.5;
+    // Never exactly zero: the zero set must not pass through grid points.
+    const double magnitude = std::max(d, 1e-9 * grid.h);
+    grid.value[idx] = inside ? -magnitude : magnitude;
+  });
+  signFarRegions(soup, grid, mark, 2 * bandWidth);
+
+  RemeshResult result;
+  result.mesh = marchingTetrahedra(grid);
+  RemeshStats& s = result.stats;
+  s.voxelMm = grid.h;
+  for (int a = 0; a < 3; ++a) s.grid[a] = grid.n[a];
+  s.bandPoints = 0;
+  for (std::uint8_t m : mark) s.bandPoints += m == kBand;
+  s.trianglesBeforeDecimation = result.mesh.triangles.size();
+  if (options.targetTriangles > 0 && options.targetTriangles < result.mesh.triangles.size())
+    decimateWithoutSelfIntersections(result.mesh, options.targetTriangles);
+  s.trianglesAfter = result.mesh.triangles.size();
+  surfaceDistance(result.mesh, soup, s.maxOutputToInputMm, s.meanOutputToInputMm);
+  surfaceDistance(soup, result.mesh, s.maxInputToOutputMm, s.meanInputToOutputMm);
+  s.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace reamsim

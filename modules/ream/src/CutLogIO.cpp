@@ -1,0 +1,68 @@
+#include "reamsim/ream/CutLogIO.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "reamsim/mesh/MeshError.h"
+
+namespace reamsim {
+namespace {
+std::string num(double v, const char* fmt = "%.6f") {
+  if (!std::isfinite(v)) return v > 0 ? "inf" : "nan";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+}  // namespace
+
+std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
+  std::string out =
+      "step,tip_x,tip_y,tip_z,axis_x,axis_y,axis_z,boxes_overlap,contact,min_distance_mm,removed_mm3,"
+      "cumulative_mm3,cut_ms,faces,contact_x,contact_y,contact_z,bone_state\n";
+  for (const CutLogEntry& e : entries) {
+    out += std::to_string(e.stepIndex);
+    for (double v : {e.pose.tip.x, e.pose.tip.y, e.pose.tip.z, e.pose.axis.x, e.pose.axis.y, e.pose.axis.z})
+      out += "," + num(v);
+    out += std::string(",") + (e.boxesOverlap ? "1" : "0") + "," + (e.contact ? "1" : "0");
+    out += "," + num(e.minDistanceMm) + "," + num(e.removedMm3, "%.9g") + "," + num(e.cumulativeMm3, "%.9g") + "," +
+           num(e.cutMs, "%.3f") + "," + std::to_string(e.faces);
+    if (e.contactPoint) out += "," + num(e.contactPoint->x) + "," + num(e.contactPoint->y) + "," + num(e.contactPoint->z);
+    else out += ",,,";
+    out += "," + std::to_string(e.boneStateId) + "\n";
+  }
+  return out;
+}
+
+std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::string& summaryJson) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const CutLogEntry& e : entries) {
+    nlohmann::json r = {{"step", e.stepIndex},
+                        {"tip", {e.pose.tip.x, e.pose.tip.y, e.pose.tip.z}},
+                        {"axis", {e.pose.axis.x, e.pose.axis.y, e.pose.axis.z}},
+                        {"boxes_overlap", e.boxesOverlap},
+                        {"contact", e.contact},
+                        {"min_distance_mm", finiteOrNull(e.minDistanceMm)},
+                        {"removed_mm3", e.removedMm3},
+                        {"cumulative_mm3", e.cumulativeMm3},
+                        {"cut_ms", e.cutMs},
+                        {"faces", e.faces},
+                        {"bone_state", e.boneStateId}};
+    r["contact_point"] = e.contactPoint ? nlohmann::json{e.contactPoint->x, e.contactPoint->y, e.contactPoint->z}
+                                        : nlohmann::json(nullptr);
+    rows.push_back(r);
+  }
+  nlohmann::json j = {{"summary", nlohmann::json::parse(summaryJson)}, {"steps", rows}};
+  return j.dump(2);
+}
+
+void writeTextFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw InputError(path, "cannot open for writing");
+  out << text;
+  if (!out) throw InputError(path, "write failed");
+}
+
+}  // namespace reamsim

@@ -1,0 +1,123 @@
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "reamsim/mesh/MeshError.h"
+#include "reamsim/ream/Plan.h"
+
+namespace reamsim {
+namespace {
+using nlohmann::json;
+
+Vec3 readVec3(const json& j, const std::string& where, const std::string& source) {
+  if (!j.is_array() || j.size() != 3) throw InputError(source, where + " must be an array of 3 numbers");
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    if (!j[i].is_number()) throw InputError(source, where + " must be an array of 3 numbers");
+    v[i] = j[i].get<double>();
+    if (!std::isfinite(v[i])) throw InputError(source, where + " has a non-finite value");
+  }
+  return v;
+}
+
+Pose readPose(const json& j, const std::string& where, const std::string& source) {
+  if (!j.is_object()) throw InputError(source, where + " must be an object with \"tip\" and \"axis\"");
+  for (const char* key : {"tip", "axis"})
+    if (!j.contains(key)) throw InputError(source, where + " lacks \"" + key + "\"");
+  Pose p;
+  p.tip = readVec3(j["tip"], where + ".tip", source);
+  const Vec3 axis = readVec3(j["axis"], where + ".axis", source);
+  if (norm(axis) < 1e-9) throw InputError(source, where + ".axis must not be zero");
+  p.axis = normalized(axis);
+  if (j.contains("roll_deg")) {
+    if (!j["roll_deg"].is_number()) throw InputError(source, where + ".roll_deg must be a number");
+    p.rollDeg = j["roll_deg"].get<double>();
+  }
+  return p;
+}
+
+json poseJson(const Pose& p) {
+  return {{"tip", {p.tip.x, p.tip.y, p.tip.z}}, {"axis", {p.axis.x, p.axis.y, p.axis.z}}, {"roll_deg", p.rollDeg}};
+}
+}  // namespace
+
+std::vector<Pose> ReamPlan::expandedPoses() const {
+  std::vector<Pose> out;
+  if (feed)
+    for (int i = 1; i <= feed->count; ++i) out.push_back(advancedAlongAxis(feed->start, i * feed->stepMm));
+  out.insert(out.end(), poses.begin(), poses.end());
+  return out;
+}
+
+double ReamPlan::maxStepMm() const {
+  const std::vector<Pose> all = expandedPoses();
+  double step = 0;
+  Vec3 previous = feed ? feed->start.tip : (all.empty() ? Vec3{} : all.front().tip);
+  for (const Pose& p : all) {
+    step = std::max(step, norm(p.tip - previous));
+    previous = p.tip;
+  }
+  return step;
+}
+
+ReamPlan parsePlan(const std::string& text, const std::string& source) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw InputError(source, std::string("not valid JSON: ") + e.what());
+  }
+  if (!j.is_object()) throw InputError(source, "a plan must be a JSON object");
+  ReamPlan plan;
+  if (j.contains("reamer")) {
+    if (!j["reamer"].is_string()) throw InputError(source, "\"reamer\" must be a preset name or a mesh path");
+    plan.reamer = j["reamer"].get<std::string>();
+  }
+  if (j.contains("description") && j["description"].is_string()) plan.description = j["description"];
+  if (j.contains("feed")) {
+    const json& f = j["feed"];
+    if (!f.is_object()) throw InputError(source, "\"feed\" must be an object");
+    for (const char* key : {"start", "step_mm", "count"})
+      if (!f.contains(key)) throw InputError(source, std::string("feed lacks \"") + key + "\"");
+    FeedSpec feed;
+    feed.start = readPose(f["start"], "feed.start", source);
+    if (!f["step_mm"].is_number() || !(f["step_mm"].get<double>() > 0) || !std::isfinite(f["step_mm"].get<double>()))
+      throw InputError(source, "feed.step_mm must be a positive number");
+    feed.stepMm = f["step_mm"];
+    if (!f["count"].is_number_integer() || f["count"].get<long>() < 1 || f["count"].get<long>() > 1000000)
+      throw InputError(source, "feed.count must be an integer from 1 to 1000000");
+    feed.count = f["count"].get<int>();
+    plan.feed = feed;
+  }
+  if (j.contains("poses")) {
+    if (!j["poses"].is_array()) throw InputError(source, "\"poses\" must be an array");
+    for (std::size_t i = 0; i < j["poses"].size(); ++i)
+      plan.poses.push_back(readPose(j["poses"][i], "poses[" + std::to_string(i) + "]", source));
+  }
+  if (!plan.feed && plan.poses.empty()) throw InputError(source, "the plan has neither \"feed\" nor \"poses\"");
+  return plan;
+}
+
+ReamPlan loadPlan(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open the plan file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parsePlan(text.str(), path);
+}
+
+std::string planToJson(const ReamPlan& plan) {
+  json j;
+  if (!plan.reamer.empty()) j["reamer"] = plan.reamer;
+  if (!plan.description.empty()) j["description"] = plan.description;
+  if (plan.feed)
+    j["feed"] = {{"start", poseJson(plan.feed->start)}, {"step_mm", plan.feed->stepMm}, {"count", plan.feed->count}};
+  if (!plan.poses.empty()) {
+    j["poses"] = json::array();
+    for (const Pose& p : plan.poses) j["poses"].push_back(poseJson(p));
+  }
+  return j.dump(2);
+}
+
+}  // namespace reamsim

@@ -1,0 +1,128 @@
+// reamsim-cli as a user runs it: exit codes, messages naming the file, outputs written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace {
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exitCode = -1;
+  std::string out;  // stdout and stderr together
+};
+
+CliRun run(const std::string& args) {
+  CliRun r;
+  const std::string command = std::string(REAMSIM_CLI) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path scratch(const std::string& name) {
+  fs::path p = fs::temp_directory_path() / ("reamsim_cli_test_" + std::to_string(::getpid())) / name;
+  fs::create_directories(p.parent_path());
+  return p;
+}
+
+const std::string kData = REAMSIM_TEST_DATA_DIR;
+const std::string kResources = REAMSIM_RESOURCE_DIR;
+
+TEST(Cli, UsageErrors) {
+  EXPECT_EQ(run("").exitCode, 2);
+  EXPECT_EQ(run("frobnicate").exitCode, 2);
+  const CliRun r = run("info --bogus x");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.out.find("unknown option --bogus"), std::string::npos) << r.out;
+  EXPECT_EQ(run("--help").exitCode, 0);
+}
+
+TEST(Cli, InfoReportsTheBundledScapula) {
+  const CliRun r = run("info " + kResources + "/bones/scapula_R_opensim.vtp --json");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["vertices"], 770);
+  EXPECT_EQ(j["triangles"], 1543);
+  EXPECT_EQ(j["closed"], false);
+  EXPECT_GT(j["self_intersecting_pairs"].get<int>(), 0);
+}
+
+TEST(Cli, MalformedFilesExitWithCodeThreeAndNameTheFile) {
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(kData + "/malformed")) {
+    if (entry.path().extension() == ".tsv" || entry.path().extension() == ".md") continue;
+    const CliRun r = run("info '" + entry.path().string() + "'");
+    EXPECT_EQ(r.exitCode, 3) << entry.path() << "\n" << r.out;
+    EXPECT_NE(r.out.find(entry.path().filename().string()), std::string::npos) << r.out;
+    ++checked;
+  }
+  EXPECT_GE(checked, 15);
+}
+
+TEST(Cli, ExportConvertsBetweenFormats) {
+  const fs::path out = scratch("scapula.stl");
+  const CliRun r = run("export default --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const CliRun info = run("info " + out.string() + " --json --units mm");
+  ASSERT_EQ(info.exitCode, 0) << info.out;
+  const auto j = nlohmann::json::parse(info.out);
+  EXPECT_EQ(j["closed"], true);
+  EXPECT_EQ(run("export default --out /nonexistent-dir/x.stl").exitCode, 4);
+}
+
+TEST(Cli, ReamWritesLogsAndMesh) {
+  const fs::path plan = scratch("plan.json");
+  {
+    // Three steps of the default feed, taken from the default plan's start (found by the glenoid).
+    std::ifstream in(kResources + "/plans/default_plan.json");
+    nlohmann::json p = nlohmann::json::parse(in);
+    p["feed"]["count"] = 10;
+    p["feed"]["step_mm"] = 0.25;
+    std::ofstream(plan) << p.dump();
+  }
+  const fs::path dir = scratch("ream-out");
+  const CliRun r = run("ream --bone default --reamer glenoid-36-R30 --plan " + plan.string() + " --out " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  EXPECT_NE(r.out.find("removed_mm3"), std::string::npos);
+  ASSERT_TRUE(fs::exists(dir / "log.csv"));
+  ASSERT_TRUE(fs::exists(dir / "log.json"));
+  ASSERT_TRUE(fs::exists(dir / "bone_final.ply"));
+  std::ifstream csv(dir / "log.csv");
+  std::string line;
+  int rows = -1;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 10);
+  std::ifstream js(dir / "log.json");
+  const auto j = nlohmann::json::parse(js);
+  EXPECT_EQ(j["steps"].size(), 10u);
+  EXPECT_GT(j["summary"]["removed_total_mm3"].get<double>(), 0.0);
+  EXPECT_LT(j["summary"]["max_volume_bookkeeping_error_rel"].get<double>(), 1e-6);
+}
+
+TEST(Cli, ReamRejectsBadInputsClearly) {
+  const CliRun badPreset = run("ream --bone default --reamer no-such-reamer --out " + scratch("x").string());
+  EXPECT_NE(badPreset.exitCode, 0);
+  EXPECT_NE(badPreset.out.find("no-such-reamer"), std::string::npos) << badPreset.out;
+  const fs::path badPlan = scratch("bad.json");
+  std::ofstream(badPlan) << "{\"feed\": 3}";
+  const CliRun r = run("ream --bone default --plan " + badPlan.string() + " --out " + scratch("y").string());
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_NE(r.out.find("bad.json"), std::string::npos) << r.out;
+  const CliRun badBone = run("ream --bone " + kData + "/malformed/" +
+                          fs::directory_iterator(kData + "/malformed")->path().filename().string() + " --out " +
+                          scratch("z").string());
+  EXPECT_NE(badBone.exitCode, 0);
+  EXPECT_EQ(run("ream --out").exitCode, 2);
+}
+
+}  // namespace

@@ -1,0 +1,90 @@
+#include <gtest/gtest.h>
+
+#include "TestMeshes.h"
+#include "reamsim/core/AlertNode.h"
+#include "reamsim/core/BoneNode.h"
+#include "reamsim/core/Document.h"
+#include "reamsim/core/LogNode.h"
+#include "reamsim/core/PlanNode.h"
+#include "reamsim/core/ReamerNode.h"
+
+using namespace reamsim;
+
+TEST(Nodes, ReamerSpecChangeDropsCachedCuttingVolume) {
+  Document doc;
+  ReamerNode& r = doc.create<ReamerNode>();
+  r.setCuttingVolume(std::make_shared<TriangleMesh>(test::box(1, 1, 1)));
+  ASSERT_TRUE(r.cuttingVolume());
+  r.setPose(Pose{{1, 2, 3}, {0, 1, 0}, 0});
+  EXPECT_TRUE(r.cuttingVolume());  // the volume is in reamer-local coordinates: pose does not matter
+  ReamerSpec spec;
+  spec.diameterMm = 50;
+  r.setSpec(spec);
+  EXPECT_FALSE(r.cuttingVolume());
+  EXPECT_EQ(r.spec().diameterMm, 50);
+  EXPECT_EQ(r.modifiedCount(), 3u);
+}
+
+TEST(Nodes, BoneNodeCommitsUndoesAndNotifies) {
+  Document doc;
+  BoneNode& bone = doc.create<BoneNode>("scapula", BoneState::fromMesh(test::box(2, 2, 2)));
+  int changes = 0;
+  Subscription s = doc.observeNode(bone.id(), [&] { ++changes; });
+  EXPECT_NEAR(bone.current().volume(), 8, 1e-12);
+  const std::uint64_t rev = bone.commit(BoneState::fromMesh(test::box(1, 1, 1)), "cut 1");
+  EXPECT_EQ(bone.currentRevision(), rev);
+  EXPECT_NEAR(bone.current().volume(), 1, 1e-12);
+  EXPECT_TRUE(bone.undo());
+  EXPECT_NEAR(bone.current().volume(), 8, 1e-12);
+  EXPECT_FALSE(bone.undo());  // nothing to undo: no notification
+  EXPECT_TRUE(bone.redo());
+  bone.setImportReport("3 holes filled");
+  bone.setOriginalMesh(std::make_shared<TriangleMesh>(test::box(2, 2, 2)));
+  EXPECT_EQ(changes, 5);
+  EXPECT_EQ(bone.importReport(), "3 holes filled");
+}
+
+TEST(Nodes, PlanAndLog) {
+  Document doc;
+  PlanNode& plan = doc.create<PlanNode>();
+  plan.setReamerSpecName("44 mm spherical");
+  plan.addPose(Pose{});
+  plan.addPose(advancedAlongAxis(Pose{}, 1));
+  plan.setFeedDescription("1 mm steps");
+  EXPECT_EQ(plan.poses().size(), 2u);
+  EXPECT_EQ(*plan.feedDescription(), "1 mm steps");
+
+  LogNode& log = doc.create<LogNode>();
+  EXPECT_EQ(log.cumulativeMm3(), 0);
+  CutLogEntry e;
+  e.stepIndex = 0;
+  e.contact = true;
+  e.removedMm3 = 12.5;
+  e.cumulativeMm3 = 12.5;
+  e.contactPoint = Vec3{1, 2, 3};
+  e.boneStateId = 2;
+  log.append(e);
+  e.stepIndex = 1;
+  e.cumulativeMm3 = 20;
+  log.append(e);
+  EXPECT_EQ(log.size(), 2u);
+  EXPECT_EQ(log.last().stepIndex, 1u);
+  EXPECT_EQ(log.cumulativeMm3(), 20);
+}
+
+TEST(Nodes, AlertsReportOnlyRealChanges) {
+  Document doc;
+  AlertNode& alerts = doc.create<AlertNode>();
+  const NodeId r = NodeId::make(NodeKind::Reamer, 1), b = NodeId::make(NodeKind::Bone, 1);
+  const std::vector<Alert> overlap{{AlertKind::BoundsOverlap, r, b, 1.25}};
+  alerts.setAlerts(overlap);
+  alerts.setAlerts(overlap);  // unchanged: no modification
+  EXPECT_EQ(alerts.modifiedCount(), 1u);
+  EXPECT_TRUE(alerts.has(AlertKind::BoundsOverlap));
+  EXPECT_FALSE(alerts.has(AlertKind::Contact));
+  EXPECT_EQ(describe(overlap[0]), "Reamer1 / Bone1: bounding boxes overlap (distance 1.25 mm)");
+  EXPECT_EQ(describe(Alert{AlertKind::Contact, r, b, 0}), "Reamer1 / Bone1: contact");
+  alerts.clear();
+  EXPECT_TRUE(alerts.alerts().empty());
+  EXPECT_EQ(alerts.modifiedCount(), 2u);
+}

@@ -1,0 +1,321 @@
+// Round trips through every writable format, unit handling, small valid files and API edge cases.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "reamsim/mesh/MeshError.h"
+#include "reamsim/mesh/MeshIO.h"
+
+namespace fs = std::filesystem;
+using namespace reamsim;
+
+namespace {
+
+// Closed octahedron; `scale` and `offset` let tests choose exactly representable or awkward values.
+TriangleMesh octahedron(double scale, Vec3 offset) {
+  TriangleMesh m;
+  m.vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (Vec3& p : m.vertices) p = p * scale + offset;
+  m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  return m;
+}
+
+class TempDir : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    dir_ = fs::temp_directory_path() / ("reamsim_io_" + std::to_string(::getpid()) + "_" + name);
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  std::string path(const std::string& file) const { return (dir_ / file).string(); }
+  std::string writeText(const std::string& file, const std::string& text) const {
+    std::ofstream(path(file), std::ios::binary) << text;
+    return path(file);
+  }
+  fs::path dir_;
+};
+
+struct RoundTripCase {
+  const char* ext;
+  bool binary;
+  const char* format;  // expected LoadedMesh::format
+  bool indexed;        // keeps vertex order and triangles exactly (all but STL)
+  bool floatPrecision; // binary STL stores float
+};
+
+void PrintTo(const RoundTripCase& c, std::ostream* os) { *os << c.format; }
+
+class io_RoundTrip : public TempDir, public ::testing::WithParamInterface<RoundTripCase> {};
+
+TEST_P(io_RoundTrip, WriteThenReadGivesTheSameMesh) {
+  const RoundTripCase c = GetParam();
+  // Binary STL stores float32: use exactly representable values there; elsewhere values like 0.1 + 1/3
+  // check that %.17g text and double binary output round-trip bit-exactly.
+  const TriangleMesh mesh = c.floatPrecision ? octahedron(12.5, {100.25, -40.5, 7.75})
+                                             : octahedron(10.0 / 3.0, {0.1 + 1.0 / 3.0, -123.456789012345678, 1e-3});
+  const std::string file = path(std::string("mesh") + c.ext);
+  WriteOptions wo;
+  wo.binary = c.binary;
+  writeMesh(mesh, file, wo);
+
+  ReadOptions ro;
+  ro.units = Units::Millimetres;
+  const LoadedMesh loaded = readMesh(file, ro);
+  EXPECT_EQ(loaded.format, c.format);
+  EXPECT_EQ(loaded.scaleToMillimetres, 1.0);
+  EXPECT_TRUE(loaded.notes.empty()) << loaded.notes.front();
+  ASSERT_EQ(loaded.mesh.vertexCount(), mesh.vertexCount());
+  ASSERT_EQ(loaded.mesh.triangleCount(), mesh.triangleCount());
+  if (c.indexed) {
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) EXPECT_EQ(loaded.mesh.vertices[i], mesh.vertices[i]) << i;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) EXPECT_EQ(loaded.mesh.triangles[t], mesh.triangles[t]) << t;
+  } else {
+    // STL is a triangle soup: compare every triangle's corners by position.
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+        EXPECT_EQ(loaded.mesh.vertices[loaded.mesh.triangles[t][k]], mesh.vertices[mesh.triangles[t][k]]) << t;
+  }
+  EXPECT_NEAR(signedVolume(loaded.mesh), signedVolume(mesh), 1e-9 * std::abs(signedVolume(mesh)));
+}
+
+INSTANTIATE_TEST_SUITE_P(AllFormats, io_RoundTrip,
+                         ::testing::Values(RoundTripCase{".stl", true, "stl-binary", false, true},
+                                           RoundTripCase{".stl", false, "stl-ascii", false, false},
+                                           RoundTripCase{".ply", true, "ply-binary", true, false},
+                                           RoundTripCase{".ply", false, "ply-ascii", true, false},
+                                           RoundTripCase{".obj", false, "obj", true, false},
+                                           RoundTripCase{".off", false, "off", true, false},
+                                           RoundTripCase{".vtp", true, "vtp", true, false}),
+                         [](const auto& info) {
+                           return std::string(info.param.ext + 1) + (info.param.binary ? "_binary" : "_ascii");
+                         });
+
+class io_MeshIO : public TempDir {};
+
+TEST_F(io_MeshIO, UppercaseExtensionIsAccepted) {
+  const std::string file = path("MESH.STL");
+  writeMesh(octahedron(10, {}), file);
+  EXPECT_EQ(readMesh(file).format, "stl-binary");
+}
+
+TEST_F(io_MeshIO, BinaryStlWhoseHeaderStartsWithSolidIsReadAsBinary) {
+  const std::string file = path("solid.stl");
+  writeMesh(octahedron(10, {}), file);
+  {
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.write("solid trap", 10);
+  }
+  const LoadedMesh m = readMesh(file);
+  EXPECT_EQ(m.format, "stl-binary");
+  EXPECT_EQ(m.mesh.triangleCount(), 8u);
+}
+
+TEST_F(io_MeshIO, UnitsAutoScalesMetreSizedData) {
+  const std::string file = path("small.ply");
+  writeMesh(octahedron(0.05, {0.1, 0.2, 0.3}), file);  // diagonal 0.173: metres
+  const LoadedMesh m = readMesh(file);
+  EXPECT_EQ(m.scaleToMillimetres, 1000.0);
+  ASSERT_EQ(m.notes.size(), 1u);
+  EXPECT_NE(m.notes[0].find("coordinates look like metres (bounding box diagonal 0.1732 m)"), std::string::npos)
+      << m.notes[0];
+  EXPECT_NE(m.notes[0].find("pass --units mm"), std::string::npos);
+  EXPECT_DOUBLE_EQ(m.mesh.vertices[0].x, 150.0);
+  EXPECT_NEAR(computeBounds(m.mesh).diagonal(), 173.21, 0.01);
+}
+
+TEST_F(io_MeshIO, UnitsAutoKeepsMillimetreData) {
+  const std::string file = path("big.ply");
+  writeMesh(octahedron(20, {}), file);
+  const LoadedMesh m = readMesh(file);
+  EXPECT_EQ(m.scaleToMillimetres, 1.0);
+  EXPECT_TRUE(m.notes.empty());
+  EXPECT_EQ(m.mesh.vertices[0].x, 20.0);
+}
+
+TEST_F(io_MeshIO, UnitsAutoThresholdIsTwoFileUnits) {
+  const std::string below = path("below.off"), above = path("above.off");
+  writeMesh(octahedron(0.57, {}), below);  // diagonal 1.975
+  writeMesh(octahedron(0.58, {}), above);  // diagonal 2.009
+  EXPECT_EQ(readMesh(below).scaleToMillimetres, 1000.0);
+  EXPECT_EQ(readMesh(above).scaleToMillimetres, 1.0);
+}
+
+TEST_F(io_MeshIO, UnitsMetresAlwaysScales) {
+  const std::string file = path("m.obj");
+  writeMesh(octahedron(20, {}), file);
+  ReadOptions ro;
+  ro.units = Units::Metres;
+  const LoadedMesh m = readMesh(file, ro);
+  EXPECT_EQ(m.scaleToMillimetres, 1000.0);
+  EXPECT_EQ(m.mesh.vertices[0].x, 20000.0);
+  EXPECT_TRUE(m.notes.empty());
+}
+
+TEST_F(io_MeshIO, UnitsMillimetresNeverScales) {
+  const std::string file = path("mm.obj");
+  writeMesh(octahedron(0.05, {}), file);
+  ReadOptions ro;
+  ro.units = Units::Millimetres;
+  const LoadedMesh m = readMesh(file, ro);
+  EXPECT_EQ(m.scaleToMillimetres, 1.0);
+  EXPECT_EQ(m.mesh.vertices[0].x, 0.05);
+  EXPECT_TRUE(m.notes.empty());
+}
+
+TEST(io_ParseUnits, AcceptsKnownSpellings) {
+  EXPECT_EQ(parseUnits("auto"), Units::Auto);
+  EXPECT_EQ(parseUnits("mm"), Units::Millimetres);
+  EXPECT_EQ(parseUnits("MM"), Units::Millimetres);
+  EXPECT_EQ(parseUnits("millimetres"), Units::Millimetres);
+  EXPECT_EQ(parseUnits("m"), Units::Metres);
+  EXPECT_EQ(parseUnits("meters"), Units::Metres);
+  EXPECT_THROW(parseUnits("cm"), std::invalid_argument);
+  EXPECT_THROW(parseUnits(""), std::invalid_argument);
+}
+
+TEST(io_SupportedExtensions, ListsEveryFormat) {
+  EXPECT_EQ(supportedMeshExtensions(), (std::vector<std::string>{".stl", ".obj", ".ply", ".off", ".vtp"}));
+}
+
+TEST_F(io_MeshIO, MissingFileIsAnInputError) {
+  const std::string file = path("does_not_exist.stl");
+  try {
+    readMesh(file);
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), file);
+    EXPECT_NE(std::string(e.what()).find("file not found"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(io_MeshIO, DirectoryIsAnInputError) {
+  fs::create_directories(path("dir.obj"));
+  EXPECT_THROW(readMesh(path("dir.obj")), InputError);
+}
+
+TEST_F(io_MeshIO, WritingIntoAMissingDirectoryNamesTheFile) {
+  for (const char* ext : {".stl", ".ply", ".obj", ".off", ".vtp"}) {
+    const std::string file = path(std::string("missing_dir/out") + ext);
+    try {
+      writeMesh(octahedron(10, {}), file);
+      ADD_FAILURE() << "no exception for " << ext;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), file);
+      EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST_F(io_MeshIO, WritingAnUnknownExtensionFails) {
+  EXPECT_THROW(writeMesh(octahedron(10, {}), path("out.xyz")), InputError);
+}
+
+TEST_F(io_MeshIO, WritingAMeshWithBadIndicesFails) {
+  TriangleMesh m = octahedron(10, {});
+  m.triangles.push_back({0, 1, 99});
+  EXPECT_THROW(writeMesh(m, path("bad.obj")), InputError);
+}
+
+// ---- small valid files with the less common syntax -----------------------------------------------------
+
+std::string good(const std::string& name) { return std::string(REAMSIM_IO_DATA_DIR) + "/good/" + name; }
+
+TEST(io_GoodFiles, ObjAllFaceFormsNegativeIndicesAndQuads) {
+  const LoadedMesh m = readMesh(good("cube_mixed_faces.obj"));
+  EXPECT_EQ(m.format, "obj");
+  EXPECT_EQ(m.mesh.vertexCount(), 8u);
+  EXPECT_EQ(m.mesh.triangleCount(), 12u);
+  ASSERT_FALSE(m.notes.empty());
+  EXPECT_EQ(m.notes[0], "4 polygons with >3 vertices were triangulated");
+  EXPECT_NEAR(signedVolume(m.mesh), 1000.0, 1e-9);
+}
+
+TEST(io_GoodFiles, OffWithCommentsAndCountsOnTheKeywordLine) {
+  const LoadedMesh m = readMesh(good("cube_quads_comments.off"));
+  EXPECT_EQ(m.format, "off");
+  EXPECT_EQ(m.mesh.vertexCount(), 8u);
+  EXPECT_EQ(m.mesh.triangleCount(), 12u);
+  EXPECT_EQ(m.notes.at(0), "6 polygons with >3 vertices were triangulated");
+  EXPECT_NEAR(signedVolume(m.mesh), 1000.0, 1e-9);
+}
+
+TEST(io_GoodFiles, CoffWithVertexAndFaceColours) {
+  const LoadedMesh m = readMesh(good("tetra_colours.coff.off"));
+  EXPECT_EQ(m.mesh.vertexCount(), 4u);
+  EXPECT_EQ(m.mesh.triangleCount(), 4u);
+}
+
+TEST(io_GoodFiles, NoffWithNormals) {
+  const LoadedMesh m = readMesh(good("tetra_normals.noff.off"));
+  EXPECT_EQ(m.mesh.triangleCount(), 4u);
+}
+
+TEST(io_GoodFiles, AsciiStlWithNamesCrlfAndExponents) {
+  const LoadedMesh m = readMesh(good("tetra_named_crlf.stl"));
+  EXPECT_EQ(m.format, "stl-ascii");
+  EXPECT_EQ(m.mesh.vertexCount(), 4u);
+  EXPECT_EQ(m.mesh.triangleCount(), 4u);
+}
+
+TEST(io_GoodFiles, AsciiPlyWithExtraElementsAndProperties) {
+  const LoadedMesh m = readMesh(good("pyramid_extra_props_ascii.ply"));
+  EXPECT_EQ(m.format, "ply-ascii");
+  EXPECT_EQ(m.mesh.vertexCount(), 5u);
+  EXPECT_EQ(m.mesh.triangleCount(), 6u);  // one quad base and four triangles
+  EXPECT_EQ(m.mesh.vertices[4], (Vec3{5, 5, 10}));
+  EXPECT_EQ(m.notes.at(0), "1 polygons with >3 vertices were triangulated");
+  EXPECT_NEAR(signedVolume(m.mesh), 1000.0 / 3.0, 1e-9);
+}
+
+TEST(io_GoodFiles, BigEndianPlyWithOddTypes) {
+  const LoadedMesh m = readMesh(good("tetra_be_types.ply"));
+  EXPECT_EQ(m.format, "ply-binary");
+  EXPECT_EQ(m.mesh.vertexCount(), 4u);
+  EXPECT_EQ(m.mesh.triangleCount(), 4u);
+  EXPECT_EQ(m.mesh.vertices[1], (Vec3{10, 0, 0}));
+  EXPECT_EQ(m.mesh.triangles[3], (Triangle{1, 2, 3}));
+}
+
+TEST(io_GoodFiles, LittleEndianPlyWithVertexIndexAndSkippedLists) {
+  const LoadedMesh m = readMesh(good("tetra_le_vertex_index.ply"));
+  EXPECT_EQ(m.mesh.vertexCount(), 4u);
+  EXPECT_EQ(m.mesh.triangleCount(), 4u);
+  EXPECT_EQ(m.mesh.vertices[2], (Vec3{0, 10, 0}));
+}
+
+TEST(io_GoodFiles, VtpWithTriangleStripAndQuad) {
+  const LoadedMesh m = readMesh(good("strip_and_quad.vtp"));
+  EXPECT_EQ(m.format, "vtp");
+  EXPECT_EQ(m.mesh.vertexCount(), 6u);
+  EXPECT_EQ(m.mesh.triangleCount(), 6u);  // strip of 6 points -> 4 triangles, quad -> 2
+  bool stripNote = false, quadNote = false;
+  for (const std::string& n : m.notes) {
+    stripNote |= n == "1 triangle strips were converted to 4 triangles";
+    quadNote |= n == "1 polygons with >3 vertices were triangulated";
+  }
+  EXPECT_TRUE(stripNote);
+  EXPECT_TRUE(quadNote);
+  // Strip winding alternates so all strip triangles face +z like the first one.
+  for (std::size_t t = 0; t < 4; ++t) {
+    const auto& v = m.mesh.vertices;
+    const Triangle& tri = m.mesh.triangles[2 + t];
+    EXPECT_GT(cross(v[tri[1]] - v[tri[0]], v[tri[2]] - v[tri[0]]).z, 0) << t;
+  }
+}
+
+}  // namespace

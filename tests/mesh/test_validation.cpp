@@ -1,0 +1,80 @@
+#include <gtest/gtest.h>
+
+#include "RepairTestMeshes.h"
+#include "reamsim/mesh/Validation.h"
+
+namespace reamsim {
+namespace {
+
+TEST(Validation, CleanBoxIsASolid) {
+  const ValidationReport r = validateMesh(test::unitBox(10, 3));
+  EXPECT_TRUE(r.closed);
+  EXPECT_TRUE(r.consistentlyOriented);
+  EXPECT_TRUE(r.outwardOriented);
+  EXPECT_EQ(r.selfIntersectingPairs.value(), 0u);
+  EXPECT_EQ(r.topology.degenerateFaces, 0u);
+  EXPECT_EQ(r.topology.connectedComponents, 1u);
+  ASSERT_TRUE(r.volumeMm3.has_value());
+  EXPECT_NEAR(*r.volumeMm3, 1000.0, 1e-9);
+  EXPECT_NEAR(r.areaMm2, 600.0, 1e-9);
+  EXPECT_TRUE(r.isCleanSolid());
+}
+
+TEST(Validation, OpenMeshHasBoundaryAndNoVolume) {
+  TriangleMesh m = test::unitBox(10, 2);
+  m.triangles.pop_back();
+  const ValidationReport r = validateMesh(m);
+  EXPECT_FALSE(r.closed);
+  EXPECT_EQ(r.topology.boundaryEdges, 3u);
+  EXPECT_FALSE(r.volumeMm3.has_value());
+  EXPECT_FALSE(r.isCleanSolid());
+}
+
+TEST(Validation, FlippedFaceIsInconsistent) {
+  TriangleMesh m = test::unitBox(10, 2);
+  std::swap(m.triangles[0][1], m.triangles[0][2]);
+  const ValidationReport r = validateMesh(m);
+  EXPECT_TRUE(r.closed);
+  EXPECT_FALSE(r.consistentlyOriented);
+  EXPECT_EQ(r.topology.inconsistentEdges, 3u);
+}
+
+TEST(Validation, InwardBoxIsNotOutward) {
+  TriangleMesh m = test::unitBox(10, 1);
+  for (Triangle& t : m.triangles) std::swap(t[1], t[2]);
+  const ValidationReport r = validateMesh(m);
+  EXPECT_TRUE(r.consistentlyOriented);
+  EXPECT_FALSE(r.outwardOriented);
+}
+
+TEST(Validation, OverlappingBoxesSelfIntersect) {
+  const TriangleMesh a = test::unitBox(10, 1);
+  const TriangleMesh m = test::merged(a, test::translated(a, {5, 5, 5}));
+  const ValidationReport r = validateMesh(m);
+  EXPECT_TRUE(r.closed);
+  EXPECT_GT(r.selfIntersectingPairs.value(), 0u);
+  EXPECT_EQ(r.topology.connectedComponents, 2u);
+}
+
+TEST(Validation, NonManifoldEdgeAndDegenerateFace) {
+  TriangleMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {2, 0, 0}};
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}, {0, 1, 5}};  // edge 0-1 used 3 times; face 4 collinear
+  const ValidationReport r = validateMesh(m);
+  EXPECT_EQ(r.topology.nonManifoldEdges, 1u);
+  EXPECT_EQ(r.topology.degenerateFaces, 1u);
+  EXPECT_FALSE(r.closed);
+}
+
+TEST(Validation, JsonAndTextNameEveryField) {
+  const ValidationReport r = validateMesh(test::unitBox());
+  const std::string json = toJson(r);
+  for (const char* key : {"vertices", "triangles", "closed", "boundary_edges", "non_manifold_edges",
+                          "consistently_oriented", "self_intersecting_pairs", "degenerate_faces", "volume_mm3",
+                          "bounds_mm"})
+    EXPECT_NE(json.find(key), std::string::npos) << key;
+  EXPECT_NE(toText(r).find("self-intersecting pairs: 0"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace reamsim

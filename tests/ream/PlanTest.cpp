@@ -1,0 +1,56 @@
+#include <gtest/gtest.h>
+
+#include "reamsim/mesh/MeshError.h"
+#include "reamsim/ream/Plan.h"
+
+namespace reamsim {
+namespace {
+
+TEST(Plan, FeedExpandsAlongTheAxis) {
+  const ReamPlan p = parsePlan(
+      R"({"reamer": "glenoid-36-R30", "feed": {"start": {"tip": [1, 2, 3], "axis": [0, 0, -2]}, "step_mm": 0.25, "count": 4}})",
+      "plan.json");
+  EXPECT_EQ(p.reamer, "glenoid-36-R30");
+  const auto poses = p.expandedPoses();
+  ASSERT_EQ(poses.size(), 4u);
+  EXPECT_NEAR(poses[0].tip.z, 3 - 0.25, 1e-12);
+  EXPECT_NEAR(poses[3].tip.z, 3 - 1.0, 1e-12);
+  EXPECT_EQ(poses[3].axis, (Vec3{0, 0, -1}));
+  EXPECT_NEAR(p.maxStepMm(), 0.25, 1e-12);
+}
+
+TEST(Plan, ExplicitPosesAndRoundTrip) {
+  const ReamPlan p = parsePlan(
+      R"({"poses": [{"tip": [0, 0, 0], "axis": [1, 0, 0]}, {"tip": [0, 0, 1], "axis": [1, 0, 0], "roll_deg": 30}]})",
+      "plan.json");
+  ASSERT_EQ(p.expandedPoses().size(), 2u);
+  EXPECT_EQ(p.poses[1].rollDeg, 30);
+  const ReamPlan q = parsePlan(planToJson(p), "again.json");
+  EXPECT_EQ(q.poses.size(), 2u);
+  EXPECT_EQ(q.poses[1].tip, p.poses[1].tip);
+}
+
+void expectRejected(const std::string& text, const std::string& fragment) {
+  try {
+    parsePlan(text, "bad_plan.json");
+    FAIL() << "accepted: " << text;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad_plan.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+TEST(Plan, BadPlansAreRejectedClearly) {
+  expectRejected("{", "not valid JSON");
+  expectRejected("[]", "must be a JSON object");
+  expectRejected("{}", "neither");
+  expectRejected(R"({"poses": [{"tip": [0, 0], "axis": [1, 0, 0]}]})", "poses[0].tip");
+  expectRejected(R"({"poses": [{"tip": [0, 0, 0], "axis": [0, 0, 0]}]})", "must not be zero");
+  expectRejected(R"({"feed": {"start": {"tip": [0, 0, 0], "axis": [0, 0, 1]}, "step_mm": -1, "count": 3}})", "step_mm");
+  expectRejected(R"({"feed": {"start": {"tip": [0, 0, 0], "axis": [0, 0, 1]}, "step_mm": 0.1, "count": 0}})", "count");
+  expectRejected(R"({"feed": {"start": {"tip": [0, 0, 0], "axis": [0, 0, 1]}, "count": 3}})", "step_mm");
+  EXPECT_THROW(loadPlan("/nonexistent/plan.json"), InputError);
+}
+
+}  // namespace
+}  // namespace reamsim
