@@ -8,6 +8,7 @@ PACKAGES=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev libtbb-dev
   libvtk9-dev libvtk9-qt-dev qtbase5-dev libqt5opengl5-dev
   libopenmesh-dev libhidapi-dev nlohmann-json3-dev
+  libvtk-dicom-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth
 )

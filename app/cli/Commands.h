@@ -18,5 +18,9 @@ int runRepair(const std::vector<std::string>& args);
 int runExport(const std::vector<std::string>& args);
 int runReam(const std::vector<std::string>& args);
 int runGlenoid(const std::vector<std::string>& args);
+int runImportCt(const std::vector<std::string>& args);
+int runBench(const std::vector<std::string>& args);     // bench KIND: dispatch (BenchCommand.cpp)
+int runBenchCut(const std::vector<std::string>& args);  // bench cut (BenchCutCommand.cpp)
+int runBenchCollision(const std::vector<std::string>& args);  // bench collision (BenchCollisionCommand.cpp)
 
 }  // namespace reamsim::cli

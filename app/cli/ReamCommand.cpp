@@ -14,6 +14,7 @@
 #include "reamsim/mesh/Repair.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
+#include "reamsim/ream/LocalCutBackend.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/ream/ReamController.h"
 #include "reamsim/tools/ReamerFile.h"
@@ -85,7 +86,7 @@ void printRow(const CutLogEntry& e) {
 }  // namespace
 
 int runReam(const std::vector<std::string>& args) {
-  CliArgs a(args, {"bone", "reamer", "plan", "out", "units"}, {"json", "check"});
+  CliArgs a(args, {"bone", "reamer", "plan", "out", "units", "engine"}, {"json", "check"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string outDir = a.required("out");
   const std::string planArg = a.value("plan", "default");
@@ -107,7 +108,12 @@ int runReam(const std::vector<std::string>& args) {
   planNode.setPoses(plan.expandedPoses());
   auto& log = doc.create<LogNode>("Log");
   auto& alerts = doc.create<AlertNode>("Alerts");
-  ReamController controller(doc, boneNode, reamer, log, &alerts);
+  // Cutting engine (issue 4): the local exact engine, or the whole-mesh CGAL reference.
+  const std::string engineName = a.value("engine", "local");
+  if (engineName != "local" && engineName != "reference")
+    throw UsageError("--engine must be 'local' or 'reference', not '" + engineName + "'");
+  ReamController controller(doc, boneNode, reamer, log, &alerts,
+                            engineName == "local" ? localCutBackendFactory() : referenceCutBackendFactory());
 
   const bool json = a.has("json");
   const double startVolume = boneNode.current().volume();
@@ -153,7 +159,8 @@ int runReam(const std::vector<std::string>& args) {
                             {"invariants_checked", a.has("check")},
                             {"invariants_held", invariantsHeld},
                             {"rounded_copy_self_intersecting_steps", roundedSelfIntersectingSteps},
-                            {"engine", "cgal-corefinement-epeck (reference)"}};
+                            {"engine", engineName == "local" ? "local-exact (modules/csg LocalSubtractor)"
+                                                             : "cgal-corefinement-epeck (reference)"}};
 
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);

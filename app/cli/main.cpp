@@ -24,11 +24,18 @@ const char* kUsageText =
     "  export MESH|default --out FILE [--units ...] [--repair] [--ascii]\n"
     "      convert between STL, OBJ, PLY, OFF and VTP (the format follows the extension)\n"
     "  ream --bone MESH|default --reamer PRESET|MESH --plan PLAN.json|default --out DIR [--json]\n"
+    "       [--engine local|reference] (cutting engine, default local; see docs/CSG.md)\n"
+    "  bench cut [--bone default|MESH] [--subdivide N] [--steps N] [--peers] [--check-every N] [--table-5-1] [--export-sequence DIR] [--json]\n"
+    "      time the local CSG engine on a reaming path; one JSON object (docs/BENCHMARKS.md)\n"
+    "  bench collision --bone MESH|default [--reamer PRESET|MESH] [--poses N] [--cut-site glenoid|random] [--json]\n"
+    "      time the collision queries vs the thesis brute force and CGAL AABB_tree; one JSON object (docs/COLLISION.md)\n"
     "      run a reaming plan; prints one row per step and writes DIR/log.csv, DIR/log.json and\n"
     "      the final bone mesh\n"
     "\n"
     "  glenoid MESH [--units ...] [--out FILE.json]\n"
     "      find the glenoid (centre, outward axis, best-fit sphere) of a scapula in the OpenSim frame\n"
+    "  import-ct VOLUME --out MESH [--threshold HU] [--upper-threshold HU] [--target-faces N] [--smooth N] [--json]\n"
+    "      CT volume (DICOM dir, .nrrd/.nhdr, .mha/.mhd, .nii/.nii.gz) to a closed bone mesh; see docs/CT_IMPORT.md\n"
     "\n"
     "exit codes: 0 ok, 1 operation failed, 2 usage error, 3 bad input file, 4 output not written\n"
     "see docs/CLI.md\n";
@@ -43,7 +50,7 @@ int main(int argc, char** argv) {
     return args.empty() ? kUsage : kOk;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", runInfo}, {"repair", runRepair}, {"export", runExport}, {"ream", runReam}, {"glenoid", runGlenoid}};
+      {"info", runInfo}, {"repair", runRepair}, {"export", runExport}, {"ream", runReam}, {"glenoid", runGlenoid}, {"import-ct", runImportCt}, {"bench", runBench}};
   const auto it = commands.find(args[0]);
   if (it == commands.end()) {
     std::fprintf(stderr, "reamsim-cli: unknown command '%s'\n\n%s", args[0].c_str(), kUsageText);

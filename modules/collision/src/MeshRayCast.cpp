@@ -30,6 +30,10 @@ std::vector<MeshHit> allHits(const TriangleMesh& mesh, const Vec3& origin, const
                                         mesh.vertices[tri[2]], culling);
     if (h) raw.push_back(toMeshHit(*h, i, origin, dir));
   }
+  return mergeCrossings(std::move(raw));
+}
+
+std::vector<MeshHit> mergeCrossings(std::vector<MeshHit> raw) {
   // Sort by t, ties by triangle index so the result does not depend on the sort's stability.
   std::sort(raw.begin(), raw.end(), [](const MeshHit& x, const MeshHit& y) {
     return x.t < y.t || (x.t == y.t && x.triangle < y.triangle);

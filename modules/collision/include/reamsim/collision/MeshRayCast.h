@@ -30,4 +30,8 @@ inline constexpr double kHitMergeEpsilon = 1e-9;
 std::vector<MeshHit> allHits(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir,
                              Culling culling = Culling::None);
 
+// The merge rule above applied to raw per-triangle hits (any order); shared with the BVH ray casts so both
+// paths report identical crossings.
+std::vector<MeshHit> mergeCrossings(std::vector<MeshHit> raw);
+
 }  // namespace reamsim

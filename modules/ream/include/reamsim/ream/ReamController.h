@@ -1,7 +1,7 @@
 #pragma once
 // The reaming loop on the shared document: a new reamer pose → collision query → if the cutting volume
-// reaches the bone, subtract it → commit a new bone state and a log row → alerts. The CLI, the tests
-// and (later) the GUI all drive cutting through this class.
+// reaches the bone, subtract it → commit a new bone state and a log row → alerts. The CLI and the tests
+// drive cutting through this class; the GUI runs its two halves (ReamEngine, commitReamStep) itself.
 //
 // This is the Foundation's correct path: thesis collision (bounding boxes, then Möller–Trumbore rays
 // from the cutting-face vertices along the axis) and CGAL whole-mesh corefinement with exact
@@ -9,13 +9,8 @@
 // (bone entering from the side) is still cut; the rays give the axial gap and the contact point.
 #include <memory>
 
-#include "reamsim/collision/ThesisContact.h"
-#include "reamsim/core/AlertNode.h"
-#include "reamsim/core/BoneNode.h"
-#include "reamsim/core/Document.h"
-#include "reamsim/core/LogNode.h"
-#include "reamsim/core/ReamerNode.h"
-#include "reamsim/csg/ReferenceSubtractor.h"
+#include "reamsim/ream/ReamEngine.h"
+#include "reamsim/ream/ReamStep.h"
 
 namespace reamsim {
 
@@ -26,10 +21,14 @@ struct ReamStepOutcome {
   double volumeBookkeepingError = 0;  // |removed − (V_before − V_after)|
 };
 
+// Synchronous composition of the two halves (ReamEngine off-thread part, commitReamStep document
+// part) with the reference backends; the GUI runs the same halves with the engine on a worker.
 class ReamController {
  public:
   // The reamer node must have its cutting volume set (reamer-local coordinates).
-  ReamController(Document& document, BoneNode& bone, ReamerNode& reamer, LogNode& log, AlertNode* alerts = nullptr);
+  // `cut` picks the cutting engine (issue 4: referenceCutBackendFactory() or localCutBackendFactory()).
+  ReamController(Document& document, BoneNode& bone, ReamerNode& reamer, LogNode& log, AlertNode* alerts = nullptr,
+                 CutBackendFactory cut = referenceCutBackendFactory());
   ~ReamController();
 
   ReamStepOutcome moveTo(const Pose& pose);
@@ -38,20 +37,13 @@ class ReamController {
   BoneInvariants checkBone() const;
 
  private:
-  void syncEngineWithBone();
-
   Document& document_;
   BoneNode& bone_;
   ReamerNode& reamer_;
   LogNode& log_;
   AlertNode* alerts_;
-  std::unique_ptr<ReferenceSubtractor> engine_;
-  std::uint64_t engineRevision_ = 0;
-  std::vector<Vec3> localFaceVertices_;
+  ReamEngine engine_;
   std::size_t steps_ = 0;
 };
-
-// Vertices of a cutting volume that face the feed direction (+Z): the probes of the thesis's rays.
-std::vector<Vec3> forwardFacingVertices(const TriangleMesh& cuttingVolume);
 
 }  // namespace reamsim

@@ -1,0 +1,15 @@
+// bench KIND ...: benchmarks that print one JSON object. Each kind lives in its own file.
+#include "CliArgs.h"
+#include "Commands.h"
+
+namespace reamsim::cli {
+
+int runBench(const std::vector<std::string>& args) {
+  if (args.empty()) throw UsageError("bench needs a kind: cut, collision");
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (args[0] == "cut") return runBenchCut(rest);
+  if (args[0] == "collision") return runBenchCollision(rest);
+  throw UsageError("unknown bench kind '" + args[0] + "' (known: cut, collision)");
+}
+
+}  // namespace reamsim::cli

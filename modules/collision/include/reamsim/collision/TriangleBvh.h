@@ -1,0 +1,167 @@
+#pragma once
+// Bounding-volume hierarchy (binary, axis-aligned boxes, binned-SAH build) over triangle *slots*, with
+// local updates so that it follows a bone being cut without a full rebuild.
+//
+// Slots are the caller's stable triangle ids (BoneState triangle slots, or mesh indices). The tree keeps
+// its own copy of each triangle's corners, so queries never touch the BoneState and an update only needs
+// the slots that changed. update():
+//   1. removes slots from their leaves, then one pass over the dirty paths settles sizes, frees emptied
+//      leaves and subtrees (a node left with one child is replaced by it) and refits their boxes;
+//   2. builds one SAH subtree over the new slots (a cut adds its triangles in one place) and grafts it
+//      where the surface-area cost grows least (a subtree spanning separate clusters is split first);
+//   3. refits the graft's path;
+//   4. keeps quality: every node counts the triangles inserted/removed below it since that subtree was
+//      last built; on the paths this update touched, a subtree whose count exceeds half its size is
+//      rebuilt (binned SAH) — the smallest such subtrees first, paid from a rebuild credit proportional to
+//      the edits, so an update costs O(edits log n) amortised. See docs/COLLISION.md.
+// Boxes are padded (kBoxPadRelative x the triangle's extent + an absolute term) so that the Moeller-Trumbore
+// barycentric slack and rounding never let a query miss a triangle that the brute force would report.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "reamsim/mesh/Bounds.h"
+#include "reamsim/mesh/TriangleMesh.h"
+#include "reamsim/mesh/Vec3.h"
+
+namespace reamsim {
+
+struct BvhTriangle {
+  Vec3 a, b, c;
+};
+
+// One node, 64 bytes. Internal: `left`/`right` are child node indices. Leaf: right == -1, `left` is the
+// index of its slot block (kLeafCapacity slots in blocks()), `count` the number of slots used.
+struct BvhNode {
+  Vec3 lo, hi;
+  std::int32_t parent = -1;
+  std::int32_t left = -1;
+  std::int32_t right = -1;
+  std::int32_t count = 0;
+  bool isLeaf() const { return right < 0; }
+};
+
+struct BvhUpdateStats {
+  std::size_t removed = 0;
+  std::size_t added = 0;
+  std::size_t leafSplits = 0;
+  std::size_t rebuiltSubtrees = 0;
+  std::size_t rebuiltTriangles = 0;  // triangles re-sorted by subtree rebuilds in this update
+  std::size_t refitNodes = 0;
+  bool fullRebuild = false;
+  double milliseconds = 0;
+};
+
+// Surface-area-heuristic cost (traversal cost 1, triangle test cost 1, normalised by the root box area):
+// the expected number of box and triangle tests of a random ray. Lower is better.
+struct BvhQuality {
+  double sahCost = 0;
+  std::size_t nodes = 0;
+  std::size_t leaves = 0;
+  std::size_t triangles = 0;
+  std::size_t maxDepth = 0;
+  double meanLeafSize = 0;
+};
+
+class TriangleBvh {
+ public:
+  static constexpr int kLeafCapacity = 8;   // slots per leaf block (room for inserts before a split)
+  static constexpr int kBuildLeafSize = 4;  // leaves made by a build hold at most this many
+  static constexpr double kBoxPadRelative = 1e-7;
+  static constexpr double kRebuildFraction = 0.5;  // rebuild a subtree once edits exceed this share of it
+
+  TriangleBvh() = default;
+  // Slot i = triangle i. Throws std::invalid_argument for an out-of-range vertex index.
+  static TriangleBvh fromMesh(const TriangleMesh& mesh);
+  // Slots given explicitly (slots.size() == triangles.size(), distinct).
+  static TriangleBvh fromTriangles(const std::vector<std::uint32_t>& slots, const std::vector<BvhTriangle>& triangles);
+
+  // Local update. Removed slots must be in the tree; added slots must not be (after the removals), so a
+  // slot may be removed and re-added in the same call. Throws std::invalid_argument otherwise (the tree is
+  // then unchanged).
+  BvhUpdateStats update(const std::vector<std::uint32_t>& removedSlots, const std::vector<std::uint32_t>& addedSlots,
+                        const std::vector<BvhTriangle>& addedTriangles);
+  void rebuild();  // full rebuild from the current triangles
+  // Rebuild work the quality maintenance may spend per edited triangle, amortised (default 1; 0 = refit
+  // and graft only, e.g. inside a haptic frame, with maintenance left to a later update).
+  void setRebuildCreditPerEdit(double credit) { rebuildCreditPerEdit_ = credit; }
+
+  // --- read access for the queries ---
+  bool empty() const { return root_ < 0; }
+  std::int32_t root() const { return root_; }
+  const std::vector<BvhNode>& nodes() const { return nodes_; }
+  const std::uint32_t* leafSlots(const BvhNode& leaf) const { return &blocks_[std::size_t(leaf.left) * kLeafCapacity]; }
+  bool contains(std::uint32_t slot) const { return slot < leafOf_.size() && leafOf_[slot] >= 0; }
+  const BvhTriangle& triangle(std::uint32_t slot) const { return tris_[slot]; }
+  std::size_t triangleCount() const { return triangleCount_; }
+  std::size_t slotCapacity() const { return tris_.size(); }  // 1 + largest slot ever stored
+  Bounds bounds() const;
+  // Calls f(slot) for every triangle in the subtree of `node`.
+  template <class F>
+  void forEachSlot(std::int32_t node, F&& f) const;
+
+  BvhQuality quality() const;  // O(nodes)
+  // Structural self-check for tests: parent links, boxes enclose children and padded triangles, counts,
+  // slot -> leaf map. Returns an empty string when consistent, else the first problem found.
+  std::string validate() const;
+
+  // Triangle box with the padding described above (what leaves enclose).
+  static void paddedBox(const BvhTriangle& t, Vec3& lo, Vec3& hi);
+
+ private:
+  struct BuildRef;
+  std::int32_t buildSubtree(std::vector<BuildRef>& refs, std::size_t begin, std::size_t end, std::int32_t parent);
+  std::int32_t buildRange(std::vector<BuildRef>& refs, std::size_t begin, std::size_t end, std::int32_t parent,
+                          const Vec3& lo, const Vec3& hi, const Vec3& clo, const Vec3& chi);
+  std::int32_t makeLeaf(const BuildRef* refs, std::size_t n, std::int32_t parent);
+  std::int32_t allocNode();
+  std::int32_t allocBlock();
+  void freeSubtree(std::int32_t node, std::vector<std::uint32_t>* slotsOut);
+  void replaceChild(std::int32_t parent, std::int32_t oldChild, std::int32_t newChild);
+  void removeSlot(std::uint32_t slot);
+  std::int32_t settle(std::int32_t node, std::int32_t& removedBelow, BvhUpdateStats& stats);
+  void touch(std::int32_t node);
+  std::int32_t bestSibling(const Vec3& lo, const Vec3& hi) const;
+  void graft(std::int32_t subtree, BvhUpdateStats& stats);
+  std::int32_t rebuildSubtree(std::int32_t node, const std::vector<std::uint32_t>& extra);
+  void markDirty(std::int32_t node);
+  void refit(std::int32_t node, BvhUpdateStats& stats);
+  void recomputeLeafBox(std::int32_t leaf);
+  void maintainQuality(std::size_t editSize, BvhUpdateStats& stats);
+
+  std::vector<BvhNode> nodes_;
+  std::vector<std::int32_t> size_;     // triangles in each node's subtree
+  std::vector<std::int32_t> edits_;    // inserts + removals below each node since its subtree was built
+  std::vector<std::uint8_t> dirty_;    // box must be refitted
+  std::vector<std::uint32_t> touchedStamp_;  // == epoch_: on a path edited by the current update
+  std::vector<std::int32_t> touched_;
+  std::uint32_t epoch_ = 0;
+  std::vector<std::uint32_t> blocks_;  // leaf slot blocks, kLeafCapacity each
+  std::vector<std::int32_t> freeNodes_, freeBlocks_;
+  std::vector<BvhTriangle> tris_;      // by slot
+  std::vector<std::int32_t> leafOf_;   // by slot; -1 when the slot is not in the tree
+  std::int32_t root_ = -1;
+  std::size_t triangleCount_ = 0;
+  double rebuildCredit_ = 0;  // triangles the quality maintenance may still re-sort (see update())
+  double rebuildCreditPerEdit_ = 0.25;
+};
+
+template <class F>
+void TriangleBvh::forEachSlot(std::int32_t node, F&& f) const {
+  std::vector<std::int32_t> stack{node};
+  while (!stack.empty()) {
+    const BvhNode& n = nodes_[stack.back()];
+    stack.pop_back();
+    if (n.isLeaf()) {
+      const std::uint32_t* s = leafSlots(n);
+      for (int i = 0; i < n.count; ++i) f(s[i]);
+    } else {
+      stack.push_back(n.left);
+      stack.push_back(n.right);
+    }
+  }
+}
+
+}  // namespace reamsim

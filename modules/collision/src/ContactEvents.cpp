@@ -1,0 +1,231 @@
+#include "ContactEvents.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "Cubic.h"
+#include "reamsim/collision/TriangleGeometry.h"
+
+namespace reamsim::detail {
+
+namespace {
+
+constexpr double kBaryEps = 1e-9;  // as in Moeller-Trumbore (RayTriangle.h)
+
+// Point x (assumed in the plane of abc up to rounding) inside the closed triangle, with slack.
+bool insideTriangle(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 v0 = b - a, v1 = c - a, v2 = x - a;
+  const double d00 = dot(v0, v0), d01 = dot(v0, v1), d11 = dot(v1, v1), d20 = dot(v2, v0), d21 = dot(v2, v1);
+  const double den = d00 * d11 - d01 * d01;
+  if (!(den > 1e-24 * d00 * d11)) return false;  // degenerate triangle: its edges carry the contact
+  const double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
+  return v >= -kBaryEps && w >= -kBaryEps && v + w <= 1 + kBaryEps;
+}
+
+// L1 magnitudes: only used to scale the "identically zero" threshold, so no square roots are needed.
+double l1(const Vec3& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); }
+double sum3(const Vec3 (&c)[3]) { return l1(c[0]) + l1(c[1]) + l1(c[2]); }
+double sum4(const Vec3 (&c)[4]) { return l1(c[0]) + l1(c[1]) + l1(c[2]) + l1(c[3]); }
+
+Vec3 unitOr(const Vec3& v, const Vec3& fallback) {
+  const double n = norm(v);
+  return n > 0 ? v / n : fallback;
+}
+
+}  // namespace
+
+void sweptTriangleBox(const SegmentMotion& m, const Mat3& rotAtSmax, const Vec3 (&q)[3], double smax, Vec3& lo,
+                      Vec3& hi) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  lo = {inf, inf, inf};
+  hi = {-inf, -inf, -inf};
+  double r = 0;
+  for (const Vec3& v : q) {
+    const Vec3 e = rotAtSmax * v;
+    for (const Vec3& p : {v, e}) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    r = std::max(r, norm(v));
+  }
+  const Vec3 t1 = m.tipAt(smax);
+  const double sag = m.sag(r, smax) * (1 + 1e-12) + 1e-12 * r;
+  const Vec3 tlo{std::min(m.tip0.x, t1.x), std::min(m.tip0.y, t1.y), std::min(m.tip0.z, t1.z)};
+  const Vec3 thi{std::max(m.tip0.x, t1.x), std::max(m.tip0.y, t1.y), std::max(m.tip0.z, t1.z)};
+  lo = lo + tlo - Vec3{sag, sag, sag};
+  hi = hi + thi + Vec3{sag, sag, sag};
+  // Rounding of the mapped points: pad like the BVH boxes.
+  const Vec3 d = hi - lo;
+  const double pad = 1e-9 * (d.x + d.y + d.z) + 1e-12 * (1 + std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z),
+                                                                      std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)}));
+  lo -= Vec3{pad, pad, pad};
+  hi += Vec3{pad, pad, pad};
+}
+
+double sweptBoxTime(const Vec3& lo0, const Vec3& hi0, const Vec3& rateLo, const Vec3& rateHi, const Vec3& blo,
+                    const Vec3& bhi, double smax) {
+  double lo = 0, hi = smax;
+  // Each side: a + b s <= 0.
+  auto clip = [&](double a, double b) {
+    if (b == 0) {
+      if (a > 0) hi = -1;
+    } else if (b > 0) {
+      hi = std::min(hi, -a / b);
+    } else {
+      lo = std::max(lo, -a / b);
+    }
+  };
+  for (int i = 0; i < 3; ++i) {
+    clip(lo0[i] - bhi[i], rateLo[i]);   // lower face reaches the other box's upper face
+    clip(blo[i] - hi0[i], -rateHi[i]);  // upper face reaches the other box's lower face
+  }
+  return lo <= hi * (1 + 1e-12) + 1e-300 ? lo * (1 - 1e-12) : std::numeric_limits<double>::infinity();
+}
+
+// Rot(phi) q = q + phi (k x q) + e with |e| <= (phi^2/2 + phi^3/6)|q|, and phi <= 2 tau s <= 2 tau for s <= 1.
+static double secondOrder(const SegmentMotion& m, double r) {
+  const double t = m.tau;
+  return r * (2 * t * t + 1.34 * t * t * t) * (1 + 1e-9) + 1e-15 * r;
+}
+
+void boxRates(const SegmentMotion& m, const Vec3& qlo, const Vec3& qhi, double r, Vec3& rateLo, Vec3& rateHi) {
+  const Vec3 c = (qlo + qhi) * 0.5, h = (qhi - qlo) * 0.5;
+  const Vec3& k = m.k;
+  // v = k x q is linear in q: its range over the box is centre +- |K| h.
+  const Vec3 vc = cross(k, c);
+  const Vec3 vh{std::abs(k.z) * h.y + std::abs(k.y) * h.z, std::abs(k.z) * h.x + std::abs(k.x) * h.z,
+                std::abs(k.y) * h.x + std::abs(k.x) * h.y};
+  const double w = 2 * m.tau, g = secondOrder(m, r);
+  for (int i = 0; i < 3; ++i) {
+    rateLo[i] = m.delta[i] + w * std::min(0.0, vc[i] - vh[i]) - g;
+    rateHi[i] = m.delta[i] + w * std::max(0.0, vc[i] + vh[i]) + g;
+  }
+}
+
+double approachRate(const SegmentMotion& m, const Vec3& n, const Vec3& q, double side) {
+  // d/ds of side * n.x <= side * n.delta + 2 tau max(0, side * n.(k x q)) + |n| g, negated as a decrease.
+  const double lin = side * dot(n, m.delta);
+  const double rot = side * dot(n, cross(m.k, q));
+  return -(lin + std::min(0.0, rot) * 2 * m.tau) + norm(n) * secondOrder(m, norm(q));
+}
+
+PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const Vec3 (&q)[3], const BvhTriangle& bone,
+                             double smax, bool checkStart) {
+  PairContact out;
+  const Vec3 B[3] = {bone.a, bone.b, bone.c};
+  // Already touching at the start of the segment.
+  const Vec3 X0[3] = {m.tip0 + q[0], m.tip0 + q[1], m.tip0 + q[2]};
+  if (checkStart && trianglesIntersect(X0[0], X0[1], X0[2], B[0], B[1], B[2])) {
+    const ClosestPair cp = closestTriangleTriangle(X0[0], X0[1], X0[2], B[0], B[1], B[2]);
+    out = {true, 0.0, ContactFeature::Initial, cp.onB,
+           unitOr(cross(B[1] - B[0], B[2] - B[0]), Vec3{0, 0, 1})};
+    return out;
+  }
+  double best = smax;
+  auto record = [&](double s, ContactFeature f, const Vec3& point, const Vec3& normal) {
+    if (!out.hit || s < best) {
+      out = {true, s, f, point, normal};
+      best = s;
+    }
+  };
+  const double t2 = m.tau * m.tau;
+  bool degenerateVertexFace = false;
+
+  // (a) reamer vertex reaches the bone face: n . D(s)(x(s) - B0) = 0.
+  const Vec3 n = cross(B[1] - B[0], B[2] - B[0]);
+  for (int i = 0; i < 3; ++i) {
+    Vec3 c[4];
+    m.pointPoly(q[i], B[0], c);
+    const double f[4] = {dot(n, c[0]), dot(n, c[1]), dot(n, c[2]), dot(n, c[3])};
+    double s;
+    const RootScan r = earliestRoot(f, best, l1(n) * sum4(c), [&](double t) {
+      const Vec3 x = m.tipAt(t) + m.rotationAt(t) * p[i];
+      return insideTriangle(x, B[0], B[1], B[2]);
+    }, s);
+    if (r == RootScan::Found) {
+      const Vec3 un = unitOr(n, Vec3{0, 0, 1});
+      record(s, ContactFeature::ReamerVertexBoneFace, m.tipAt(s) + m.rotationAt(s) * p[i], f[0] >= 0 ? un : -un);
+    } else if (r == RootScan::Degenerate) {
+      degenerateVertexFace = true;
+    }
+  }
+
+  // (b) bone vertex reaches the reamer face: (D Rot m0) . (v - tip(s)) - D (m0 . q0) = 0.
+  const Vec3 m0 = cross(q[1] - q[0], q[2] - q[0]);
+  Vec3 M[3];
+  m.vecPoly(m0, M);
+  const double mq = dot(m0, q[0]);
+  for (int j = 0; j < 3; ++j) {
+    const Vec3 V0 = B[j] - m.tip0, V1 = -m.delta;
+    const double f[4] = {dot(M[0], V0) - mq, dot(M[0], V1) + dot(M[1], V0), dot(M[1], V1) + dot(M[2], V0) - t2 * mq,
+                         dot(M[2], V1)};
+    double s;
+    const double reference = sum3(M) * (l1(V0) + l1(V1) + l1(q[0]));
+    const RootScan r = earliestRoot(f, best, reference, [&](double t) {
+      const Mat3 R = m.rotationAt(t);
+      const Vec3 tip = m.tipAt(t);
+      return insideTriangle(B[j], tip + R * p[0], tip + R * p[1], tip + R * p[2]);
+    }, s);
+    if (r == RootScan::Found) {
+      const Vec3 um = unitOr(m.rotationAt(s) * cross(p[1] - p[0], p[2] - p[0]), Vec3{0, 0, 1});
+      record(s, ContactFeature::BoneVertexReamerFace, B[j], f[0] >= 0 ? -um : um);
+    } else if (r == RootScan::Degenerate) {
+      degenerateVertexFace = true;
+    }
+  }
+
+  // (c) edge reaches edge: (e_b x D Rot E) . (tip(s) - B_j) + e_b . D Rot (E x q_i) = 0. Parallel edges
+  // (e_b x Rot E identically zero) are skipped: their first contact is an endpoint reaching a face, (a)/(b).
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 E = q[(i + 1) % 3] - q[i];
+    Vec3 G[3], H[3];
+    m.vecPoly(E, G);
+    m.vecPoly(cross(E, q[i]), H);
+    for (int j = 0; j < 3; ++j) {
+      const Vec3 eb = B[(j + 1) % 3] - B[j];
+      const Vec3 g[3] = {cross(eb, G[0]), cross(eb, G[1]), cross(eb, G[2])};
+      if (!(sum3(g) > 1e-11 * l1(eb) * sum3(G))) continue;
+      const Vec3 T0 = m.tip0 - B[j], T1 = m.delta;
+      const double f[4] = {dot(g[0], T0) + dot(eb, H[0]), dot(g[0], T1) + dot(g[1], T0) + dot(eb, H[1]),
+                           dot(g[1], T1) + dot(g[2], T0) + dot(eb, H[2]), dot(g[2], T1)};
+      const double reference = sum3(g) * (l1(T0) + l1(T1)) + l1(eb) * sum3(H);
+      double s;
+      Vec3 c1, c2;
+      const RootScan r = earliestRoot(f, best, reference, [&](double t) {
+        const Mat3 R = m.rotationAt(t);
+        const Vec3 tip = m.tipAt(t);
+        const double tol = 1e-9 * (norm(eb) + norm(E));
+        double u, v;
+        const double d2 = closestSegmentSegment(tip + R * p[i], tip + R * p[(i + 1) % 3], B[j], B[(j + 1) % 3], u, v,
+                                                c1, c2);
+        return d2 <= tol * tol;
+      }, s);
+      if (r == RootScan::Found) {
+        const Vec3 dir = unitOr(cross(eb, m.rotationAt(s) * (m.R0.transposed() * E)), Vec3{0, 0, 1});
+        record(s, ContactFeature::EdgeEdge, (c1 + c2) * 0.5, f[0] >= 0 ? dir : -dir);
+      }
+    }
+  }
+
+  // Degenerate configurations (a vertex sliding in the other triangle's plane): conservative advancement.
+  if (degenerateVertexFace) {
+    const double rmax = std::max({norm(q[0]), norm(q[1]), norm(q[2])});
+    const double speed = m.speedBound(rmax);
+    double s = 0;
+    for (int it = 0; it < 10000 && speed > 0 && s <= best; ++it) {
+      const Mat3 R = m.rotationAt(s);
+      const Vec3 tip = m.tipAt(s);
+      const Vec3 X[3] = {tip + R * p[0], tip + R * p[1], tip + R * p[2]};
+      const ClosestPair cp = closestTriangleTriangle(X[0], X[1], X[2], B[0], B[1], B[2]);
+      const double d = std::sqrt(cp.squaredDistance);
+      if (d <= kFallbackToleranceMm) {
+        if (!out.hit || s < best) record(s, ContactFeature::Fallback, cp.onB, unitOr(cp.onA - cp.onB, unitOr(n, {0, 0, 1})));
+        break;
+      }
+      s += d / speed;
+    }
+  }
+  return out;
+}
+
+}  // namespace reamsim::detail

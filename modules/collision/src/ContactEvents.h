@@ -1,0 +1,42 @@
+#pragma once
+// Internal: first contact of one moving reamer triangle with one fixed bone triangle along a segment
+// motion (the leaf test of queryFirstContact and of its brute-force reference).
+#include "RationalMotion.h"
+#include "reamsim/collision/FirstContact.h"
+#include "reamsim/collision/TriangleBvh.h"
+
+namespace reamsim::detail {
+
+struct PairContact {
+  bool hit = false;
+  double s = 0;  // segment time
+  ContactFeature feature = ContactFeature::None;
+  Vec3 point, normal;
+};
+
+// p: the reamer triangle in local coordinates; q: the same rotated by m.R0 (offsets from the tip at s = 0).
+// Only contacts with s <= smax are reported. checkStart: test for touching at s = 0 first (callers that know
+// the surfaces are apart at the start skip it).
+PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const Vec3 (&q)[3], const BvhTriangle& bone,
+                             double smax, bool checkStart = true);
+
+// Earliest s in [0, smax] at which a box whose faces move linearly (lower faces at rateLo, upper faces at
+// rateHi per axis, from [lo0, hi0] at s = 0) can overlap [blo, bhi]; +inf when it cannot.
+double sweptBoxTime(const Vec3& lo0, const Vec3& hi0, const Vec3& rateLo, const Vec3& rateHi, const Vec3& blo,
+                    const Vec3& bhi, double smax);
+
+// Conservative face rates of the moving box holding points q (offsets from the tip at s = 0) within
+// [qlo, qhi] (a box of radius r about the tip): translation, first-order rotation k x q over the box (its
+// direction is known, which keeps the bound tight) and a second-order remainder.
+void boxRates(const SegmentMotion& m, const Vec3& qlo, const Vec3& qhi, double r, Vec3& rateLo, Vec3& rateHi);
+
+// Fastest rate at which the signed height n.(x - a) of the point with offset q can move towards zero, given
+// its current side (sign of the height).
+double approachRate(const SegmentMotion& m, const Vec3& n, const Vec3& q, double side);
+
+// Axis-aligned box enclosing the triangle's path over [0, smax] (rotated offsets at both ends, the arc's
+// sag, plus the tip's travel).
+void sweptTriangleBox(const SegmentMotion& m, const Mat3& rotAtSmax, const Vec3 (&q)[3], double smax, Vec3& lo,
+                      Vec3& hi);
+
+}  // namespace reamsim::detail

@@ -1,0 +1,221 @@
+#include "reamsim/collision/DistanceQuery.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "FaceRegionBounds.h"
+#include "PoseFrame.h"
+#include "SurfaceTouch.h"
+#include "reamsim/collision/TriangleGeometry.h"
+
+namespace reamsim {
+
+namespace {
+
+using detail::FaceRegionBounds;
+using detail::PoseFrame;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Distance from a plane of three signed heights when all lie on one side, else 0.
+inline double planeGap(double s0, double s1, double s2) {
+  if (s0 > 0 && s1 > 0 && s2 > 0) return std::min({s0, s1, s2});
+  if (s0 < 0 && s1 < 0 && s2 < 0) return -std::max({s0, s1, s2});
+  return 0;
+}
+inline double sq(double x) { return x * x; }
+constexpr double kTie = 1 - 2 * kDistanceRelativeTolerance;  // on squared distances
+
+// The search over the bone tree. Bone nodes and triangles are bounded against the face's world box and the
+// thin region holding the face (FaceRegionBounds); a bone triangle that survives is measured against the
+// face's own BVH in the reamer frame, where its boxes are tight, with a plane bound before each exact test.
+class FaceDistanceSearch {
+ public:
+  FaceDistanceSearch(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, double max2,
+                     DistanceResult& out)
+      : bone_(bone), reamer_(reamer), face_(reamer.faceBvh()), frame_(pose), region_(reamer, frame_), best2_(max2),
+        out_(out) {
+    frame_.localBoxToWorld(face_.nodes()[face_.root()].lo, face_.nodes()[face_.root()].hi, faceLo_, faceHi_);
+    heap_.reserve(256);
+    fstack_.reserve(64);
+  }
+
+  // Phase 1: a face triangle touching or crossing a bone triangle (distance 0). Only bone geometry meeting
+  // the face region can cross the face, which keeps this to the bone along the region's boundary.
+  bool findCrossing() {
+    crossing_ = true;
+    visit([&](double lb) { return lb > 0; });
+    crossing_ = false;
+    return found_ && best2_ == 0;
+  }
+
+  // Phase 2: the nearest pair (no pair crosses).
+  void nearest() { visit([&](double lb) { return skip(lb); }); }
+
+  bool found() const { return found_; }
+  double best2() const { return best2_; }
+
+ private:
+  double nodeBound(std::int32_t b) const {
+    const BvhNode& B = bone_.nodes()[b];
+    return std::max(boxSquaredDistance(B.lo, B.hi, faceLo_, faceHi_), region_.box(B.lo, B.hi));
+  }
+
+  // Best-first over the bone tree (a min-heap on the lower bound), so the first triangles measured are the
+  // likely closest and the best distance drops early; everything whose bound reaches it is then dropped.
+  // The crossing search only needs some crossing, not the nearest: plain depth-first order (no heap).
+  template <class Prune>
+  void visit(Prune&& prune) {
+    heap_.clear();
+    auto push = [&](std::int32_t b, double lb, bool triangle) {
+      if (prune(lb)) return;
+      heap_.push_back({lb, b, triangle});
+      if (!crossing_) std::push_heap(heap_.begin(), heap_.end());
+    };
+    push(bone_.root(), nodeBound(bone_.root()), false);
+    const auto& bn = bone_.nodes();
+    while (!heap_.empty()) {
+      if (!crossing_) std::pop_heap(heap_.begin(), heap_.end());
+      const Item it = heap_.back();
+      heap_.pop_back();
+      if (prune(it.lb)) {
+        if (!crossing_) return;  // min-heap: everything left is at least as far
+        continue;
+      }
+      if (it.triangle) {
+        measure(static_cast<std::uint32_t>(it.b), bone_.triangle(static_cast<std::uint32_t>(it.b)));
+        if (found_ && best2_ == 0) return;
+        continue;
+      }
+      const BvhNode& B = bn[it.b];
+      if (B.isLeaf()) {
+        const std::uint32_t* bs = bone_.leafSlots(B);
+        for (int i = 0; i < B.count; ++i) {
+          const BvhTriangle& bt = bone_.triangle(bs[i]);
+          Vec3 blo, bhi;
+          TriangleBvh::paddedBox(bt, blo, bhi);
+          push(static_cast<std::int32_t>(bs[i]), std::max(boxSquaredDistance(blo, bhi, faceLo_, faceHi_), region_.triangle(bt)),
+               true);
+        }
+        continue;
+      }
+      if (crossing_ && region_.nearerToSurface(bn[B.left], bn[B.right])) {
+        // Depth-first: the child whose centre lies nearer the face region's surface goes on top.
+        push(B.right, nodeBound(B.right), false);
+        push(B.left, nodeBound(B.left), false);
+      } else {
+        push(B.left, nodeBound(B.left), false);
+        push(B.right, nodeBound(B.right), false);
+      }
+    }
+  }
+
+  // A pair that could beat the best by less than kRelativeTolerance is not evaluated: ties (a fan of face
+  // triangles around the closest vertex) would otherwise all be measured for nothing.
+  bool skip(double lb) const { return crossing_ ? lb > 0 : (lb > best2_ || (found_ && lb >= best2_ * kTie)); }
+
+  // One bone triangle against the face BVH (reamer frame).
+  void measure(std::uint32_t slot, const BvhTriangle& bt) {
+    const BvhTriangle l{frame_.toLocal(bt.a), frame_.toLocal(bt.b), frame_.toLocal(bt.c)};
+    Vec3 llo, lhi;
+    TriangleBvh::paddedBox(l, llo, lhi);
+    const Vec3 bn = normalized(cross(l.b - l.a, l.c - l.a));
+    const double bo = dot(bn, l.a);
+    const auto& fn = face_.nodes();
+    const auto& normals = reamer_.faceUnitNormals();
+    fstack_.clear();
+    fstack_.push_back(face_.root());
+    while (!fstack_.empty()) {
+      const BvhNode& R = fn[fstack_.back()];
+      fstack_.pop_back();
+      if (!R.isLeaf()) {
+        const double dl = boxSquaredDistance(llo, lhi, fn[R.left].lo, fn[R.left].hi);
+        const double dr = boxSquaredDistance(llo, lhi, fn[R.right].lo, fn[R.right].hi);
+        const bool leftFirst = dl <= dr;
+        if (!skip(leftFirst ? dr : dl)) fstack_.push_back(leftFirst ? R.right : R.left);
+        if (!skip(leftFirst ? dl : dr)) fstack_.push_back(leftFirst ? R.left : R.right);
+        continue;
+      }
+      const std::uint32_t* rs = face_.leafSlots(R);
+      for (int j = 0; j < R.count; ++j) {
+        const BvhTriangle& rt = face_.triangle(rs[j]);
+        Vec3 rlo, rhi;
+        TriangleBvh::paddedBox(rt, rlo, rhi);
+        const double boxLb = boxSquaredDistance(llo, lhi, rlo, rhi);
+        if (skip(boxLb)) continue;
+        // Plane bounds: one triangle wholly on one side of the other's plane (whichever is flatter there
+        // gives the tight bound, so both are tried).
+        const Vec3& n = normals[rs[j]];
+        const double o = dot(n, rt.a);
+        if (skip(sq(planeGap(dot(n, l.a) - o, dot(n, l.b) - o, dot(n, l.c) - o)))) continue;
+        if (skip(sq(planeGap(dot(bn, rt.a) - bo, dot(bn, rt.b) - bo, dot(bn, rt.c) - bo)))) continue;
+        ++out_.trianglePairs;
+        ClosestPair cp;
+        if (crossing_) {
+          if (!trianglesIntersect(rt.a, rt.b, rt.c, l.a, l.b, l.c)) continue;
+          cp = closestTriangleTriangle(rt.a, rt.b, rt.c, l.a, l.b, l.c);
+          cp.squaredDistance = 0;
+        } else {
+          cp = closestDisjointTriangles(rt.a, rt.b, rt.c, l.a, l.b, l.c);
+        }
+        if (cp.squaredDistance < best2_ || (!found_ && cp.squaredDistance <= best2_)) {
+          best2_ = cp.squaredDistance;
+          found_ = true;
+          out_.onReamer = frame_.toWorld(cp.onA);
+          out_.onBone = frame_.toWorld(cp.onB);
+          out_.boneSlot = slot;
+          out_.reamerTriangle = reamer_.faceTriangles()[rs[j]];
+          if (best2_ == 0) return;
+        }
+      }
+    }
+  }
+
+  struct Item {
+    double lb;
+    std::int32_t b;  // node, or bone slot when `triangle`
+    bool triangle;
+    bool operator<(const Item& o) const { return lb > o.lb; }  // min-heap
+  };
+  const TriangleBvh& bone_;
+  const ReamerModel& reamer_;
+  const TriangleBvh& face_;
+  PoseFrame frame_;
+  FaceRegionBounds region_;
+  Vec3 faceLo_, faceHi_;
+  double best2_;
+  bool found_ = false, crossing_ = false;
+  DistanceResult& out_;
+  std::vector<Item> heap_;
+  std::vector<std::int32_t> fstack_;
+};
+
+}  // namespace
+
+namespace detail {
+bool faceTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where) {
+  if (bone.empty() || reamer.faceBvh().empty()) return false;
+  DistanceResult out;
+  FaceDistanceSearch search(bone, reamer, pose, kInf, out);
+  if (!search.findCrossing()) return false;
+  if (where) *where = {out.boneSlot, out.reamerTriangle, out.onBone};
+  return true;
+}
+}  // namespace detail
+
+DistanceResult queryFaceDistance(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose,
+                                 double maxDistanceMm) {
+  DistanceResult out;
+  if (bone.empty() || reamer.faceBvh().empty()) return out;
+  const double max2 = maxDistanceMm < kInf ? maxDistanceMm * maxDistanceMm : kInf;
+  FaceDistanceSearch search(bone, reamer, pose, max2, out);
+  if (!search.findCrossing()) search.nearest();
+  if (search.found()) {
+    out.found = true;
+    out.distanceMm = std::sqrt(search.best2());
+  }
+  return out;
+}
+
+}  // namespace reamsim

@@ -1,0 +1,68 @@
+#pragma once
+// Internal: bounds between bone geometry (world) and the region holding the reamer's cutting face
+// (ReamerModel::FaceRegion) under a pose. Squared lower bounds on the distance to the face; zero means the
+// geometry may meet the face region (and so may cross the face).
+#include <algorithm>
+#include <cmath>
+
+#include "PoseFrame.h"
+#include "reamsim/collision/ReamerModel.h"
+#include "reamsim/collision/TriangleBvh.h"
+#include "reamsim/collision/TriangleGeometry.h"
+
+namespace reamsim::detail {
+
+class FaceRegionBounds {
+ public:
+  FaceRegionBounds(const ReamerModel& reamer, const PoseFrame& frame) : r_(reamer.faceRegion()) {
+    centre_ = frame.toWorld(r_.centre);
+    axis_ = frame.R * Vec3{0, 0, 1};
+    z0_ = dot(axis_, frame.t);  // local z = axis . x - z0
+  }
+
+  double box(const Vec3& lo, const Vec3& hi) const {
+    double zlo = -z0_, zhi = -z0_;
+    for (int k = 0; k < 3; ++k) {
+      zlo += axis_[k] * (axis_[k] > 0 ? lo[k] : hi[k]);
+      zhi += axis_[k] * (axis_[k] > 0 ? hi[k] : lo[k]);
+    }
+    double gap = std::max({0.0, zlo - r_.zMax, r_.zMin - zhi});
+    if (r_.shell) {
+      double far2 = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double a = centre_[k] - lo[k], b = centre_[k] - hi[k];
+        far2 += std::max(a * a, b * b);
+      }
+      gap = std::max({gap, std::sqrt(boxSquaredDistance(lo, hi, centre_, centre_)) - r_.rOut, r_.rIn - std::sqrt(far2)});
+    }
+    return gap * gap;
+  }
+
+  // Is a's box centre nearer the region's middle surface (sphere or plane) than b's? A search for a crossing
+  // looks there first.
+  bool nearerToSurface(const BvhNode& a, const BvhNode& b) const { return offset(a) < offset(b); }
+
+  double triangle(const BvhTriangle& t) const {
+    const double za = dot(axis_, t.a) - z0_, zb = dot(axis_, t.b) - z0_, zc = dot(axis_, t.c) - z0_;
+    double gap = std::max({0.0, std::min({za, zb, zc}) - r_.zMax, r_.zMin - std::max({za, zb, zc})});
+    if (r_.shell) {
+      const double near = norm(closestPointOnTriangle(centre_, t.a, t.b, t.c) - centre_);
+      const double far = std::sqrt(std::max({squaredNorm(t.a - centre_), squaredNorm(t.b - centre_), squaredNorm(t.c - centre_)}));
+      gap = std::max({gap, near - r_.rOut, r_.rIn - far});
+    }
+    return gap * gap;
+  }
+
+ private:
+  double offset(const BvhNode& n) const {
+    const Vec3 c = (n.lo + n.hi) * 0.5;
+    if (r_.shell) return std::abs(norm(c - centre_) - 0.5 * (r_.rIn + r_.rOut));
+    return std::abs(dot(axis_, c) - z0_ - 0.5 * (r_.zMin + r_.zMax));
+  }
+
+  const ReamerModel::FaceRegion& r_;
+  Vec3 centre_, axis_;
+  double z0_ = 0;
+};
+
+}  // namespace reamsim::detail

@@ -1,0 +1,196 @@
+#include "reamsim/collision/TriangleGeometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace reamsim {
+
+namespace {
+
+inline double l1(const Vec3& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); }
+inline double maxAbs(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+// True when `axis` separates the two (shifted) triangles by more than the touch tolerance.
+inline bool separatedAlong(const Vec3& axis, const Vec3 (&a)[3], const Vec3 (&b)[3], double mag) {
+  const double pa0 = dot(axis, a[0]), pa1 = dot(axis, a[1]), pa2 = dot(axis, a[2]);
+  const double pb0 = dot(axis, b[0]), pb1 = dot(axis, b[1]), pb2 = dot(axis, b[2]);
+  const double tol = kTouchEpsilon * l1(axis) * mag;
+  const double minA = std::min({pa0, pa1, pa2}), maxA = std::max({pa0, pa1, pa2});
+  const double minB = std::min({pb0, pb1, pb2}), maxB = std::max({pb0, pb1, pb2});
+  return maxA < minB - tol || maxB < minA - tol;
+}
+
+// Segment p->q against triangle abc (Moeller-Trumbore with s in [0, 1]); non-coplanar crossings only.
+bool segmentTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& hit) {
+  const Vec3 d = q - p, e1 = b - a, e2 = c - a;
+  const Vec3 h = cross(d, e2);
+  const double det = dot(e1, h);
+  if (!(std::abs(det) > 1e-14 * norm(d) * norm(e1) * norm(e2))) return false;
+  const double inv = 1.0 / det;
+  const Vec3 s = p - a;
+  const double u = dot(s, h) * inv;
+  constexpr double eps = 1e-9;
+  if (u < -eps || u > 1 + eps) return false;
+  const Vec3 qv = cross(s, e1);
+  const double v = dot(d, qv) * inv;
+  if (v < -eps || u + v > 1 + eps) return false;
+  const double t = dot(e2, qv) * inv;
+  if (t < -eps || t > 1 + eps) return false;
+  hit = p + d * std::clamp(t, 0.0, 1.0);
+  return true;
+}
+
+}  // namespace
+
+bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
+                        const Vec3& b2) {
+  // Work relative to a0 so that the tolerance scales with the configuration, not with the distance to the
+  // world origin.
+  const Vec3 a[3] = {Vec3{}, a1 - a0, a2 - a0};
+  const Vec3 b[3] = {b0 - a0, b1 - a0, b2 - a0};
+  const double mag = std::max({maxAbs(a[1]), maxAbs(a[2]), maxAbs(b[0]), maxAbs(b[1]), maxAbs(b[2])}) + 1e-300;
+  const Vec3 ea[3] = {a[1] - a[0], a[2] - a[1], a[0] - a[2]};
+  const Vec3 eb[3] = {b[1] - b[0], b[2] - b[1], b[0] - b[2]};
+  const Vec3 na = cross(ea[0], a[2] - a[0]);
+  const Vec3 nb = cross(eb[0], b[2] - b[0]);
+  if (separatedAlong(na, a, b, mag) || separatedAlong(nb, a, b, mag)) return false;
+  for (const Vec3& u : ea)
+    for (const Vec3& v : eb)
+      if (separatedAlong(cross(u, v), a, b, mag)) return false;
+  // In-plane edge normals: needed when the triangles are coplanar (harmless otherwise: any axis is sound).
+  for (const Vec3& u : ea)
+    if (separatedAlong(cross(na, u), a, b, mag)) return false;
+  for (const Vec3& v : eb)
+    if (separatedAlong(cross(nb, v), a, b, mag)) return false;
+  return true;
+}
+
+Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, TriangleRegion* region) {
+  TriangleRegion dummy;
+  TriangleRegion& r = region ? *region : dummy;
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) { r = TriangleRegion::VertexA; return a; }
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) { r = TriangleRegion::VertexB; return b; }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    r = TriangleRegion::EdgeAB;
+    const double v = d1 / (d1 - d3);
+    return a + ab * v;
+  }
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) { r = TriangleRegion::VertexC; return c; }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    r = TriangleRegion::EdgeCA;
+    const double w = d2 / (d2 - d6);
+    return a + ac * w;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    r = TriangleRegion::EdgeBC;
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return b + (c - b) * w;
+  }
+  const double denom = va + vb + vc;
+  if (!(denom > 0)) {
+    // Degenerate (zero-area) triangle: closest point over its three edges.
+    Vec3 best = a, c1, c2;
+    double bestD = squaredNorm(p - a), s, t;
+    r = TriangleRegion::VertexA;
+    const Vec3 e[3][2] = {{a, b}, {b, c}, {c, a}};
+    const TriangleRegion er[3] = {TriangleRegion::EdgeAB, TriangleRegion::EdgeBC, TriangleRegion::EdgeCA};
+    for (int i = 0; i < 3; ++i) {
+      const double d = closestSegmentSegment(p, p, e[i][0], e[i][1], s, t, c1, c2);
+      if (d < bestD) { bestD = d; best = c2; r = er[i]; }
+    }
+    return best;
+  }
+  r = TriangleRegion::Face;
+  const double v = vb / denom, w = vc / denom;
+  return a + ab * v + ac * w;
+}
+
+double closestSegmentSegment(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2, double& s, double& t,
+                             Vec3& c1, Vec3& c2) {
+  const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
+  constexpr double tiny = 1e-300;
+  if (a <= tiny && e <= tiny) {
+    s = t = 0;
+    c1 = p1;
+    c2 = p2;
+    return squaredNorm(c1 - c2);
+  }
+  if (a <= tiny) {
+    s = 0;
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = dot(d1, r);
+    if (e <= tiny) {
+      t = 0;
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = dot(d1, d2);
+      const double denom = a * e - b * b;
+      s = denom > 1e-14 * a * e ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  c1 = p1 + d1 * s;
+  c2 = p2 + d2 * t;
+  return squaredNorm(c1 - c2);
+}
+
+ClosestPair closestTriangleTriangle(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
+                                    const Vec3& b2) {
+  const Vec3 A[3] = {a0, a1, a2}, B[3] = {b0, b1, b2};
+  const bool intersecting = trianglesIntersect(a0, a1, a2, b0, b1, b2);
+  if (intersecting) {
+    Vec3 hit;
+    for (int i = 0; i < 3; ++i)
+      if (segmentTriangle(A[i], A[(i + 1) % 3], b0, b1, b2, hit)) return {0, hit, hit};
+    for (int i = 0; i < 3; ++i)
+      if (segmentTriangle(B[i], B[(i + 1) % 3], a0, a1, a2, hit)) return {0, hit, hit};
+  }
+  ClosestPair best = closestDisjointTriangles(a0, a1, a2, b0, b1, b2);
+  // Coplanar overlap or touching within tolerance: the features give the (near-)contact points.
+  if (intersecting) best.squaredDistance = 0;
+  return best;
+}
+
+ClosestPair closestDisjointTriangles(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
+                                     const Vec3& b2) {
+  const Vec3 A[3] = {a0, a1, a2}, B[3] = {b0, b1, b2};
+  ClosestPair best;
+  best.squaredDistance = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 q = closestPointOnTriangle(A[i], b0, b1, b2);
+    const double d = squaredNorm(A[i] - q);
+    if (d < best.squaredDistance) best = {d, A[i], q};
+    const Vec3 p = closestPointOnTriangle(B[i], a0, a1, a2);
+    const double e = squaredNorm(B[i] - p);
+    if (e < best.squaredDistance) best = {e, p, B[i]};
+  }
+  double s, t;
+  Vec3 c1, c2;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double d = closestSegmentSegment(A[i], A[(i + 1) % 3], B[j], B[(j + 1) % 3], s, t, c1, c2);
+      if (d < best.squaredDistance) best = {d, c1, c2};
+    }
+  return best;
+}
+
+}  // namespace reamsim

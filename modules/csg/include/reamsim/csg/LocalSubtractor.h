@@ -1,0 +1,94 @@
+#pragma once
+// The local CSG engine: exact subtraction whose cost follows the cut, not the bone.
+//
+// Per cut: (1) a uniform grid gives the bone faces whose boxes overlap the tool's box (the patch: no face
+// outside it, and no edge on its border, can touch the tool); (2) the patch and the tool are corefined
+// with exact constructions (CGAL Epeck); (3) patch components are classified against the tool and tool
+// components against the bone by exact wedge tests at the intersection edges; (4) the result is committed
+// to a BoneState as a MeshDelta (removed slots, new vertices and faces), so storage, volume and the grid
+// are updated in O(cut). Vertices created by cuts keep their exact coordinates in a side table; the
+// BoneState holds their rounded doubles (what is shown and exported).
+//
+// Dirty bones are accepted: faces in self-intersecting pairs, on non-manifold edges or degenerate are
+// found once at construction; a cut whose tool touches one of them, or whose intersection curve reaches
+// an open border, throws CutError and leaves the bone unchanged. Defects away from the tool are ignored.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "reamsim/core/BoneState.h"
+#include "reamsim/csg/ReferenceSubtractor.h"
+#include "reamsim/mesh/TriangleMesh.h"
+
+namespace reamsim {
+
+class CutError : public std::runtime_error {
+ public:
+  enum class Kind {
+    BadTool,          // the tool is not a closed, outward-oriented triangle mesh
+    DefectReached,    // the tool touches a self-intersecting, non-manifold or degenerate bone face
+    OpenBorderReached,// the intersection curve reaches an open border of the bone
+    Degenerate,       // coplanar or tangential contact the wedge tests cannot decide
+    ToolEnclosed,     // the tool lies entirely inside the bone without touching its surface
+    Inconsistent,     // an internal check failed (the result would not be a closed surface)
+  };
+  CutError(Kind kind, const std::string& what) : std::runtime_error(what), kind_(kind) {}
+  Kind kind() const { return kind_; }
+
+ private:
+  Kind kind_;
+};
+const char* toString(CutError::Kind kind);
+
+struct LocalCut {
+  bool changed = false;          // false: the tool did not reach the bone
+  double removedMm3 = 0;         // from the changed faces only: Σ removed − Σ added (divergence theorem)
+  double removedPieceMm3 = 0;    // independently: volume of the closed piece bone ∩ tool
+  double volumeBeforeMm3 = 0;    // of the BoneState (rounded coordinates)
+  double volumeAfterMm3 = 0;
+  std::size_t facesAfter = 0;
+  std::size_t patchFaces = 0;    // bone faces taken into the local Boolean
+  std::size_t removedFaces = 0;  // triangle slots removed from the bone
+  std::size_t addedFaces = 0;
+  double milliseconds = 0;
+};
+
+struct LocalDefects {
+  std::size_t selfIntersectingPairs = 0;  // pairs meeting other than at shared vertices/edges (by index)
+  std::size_t selfIntersectingFaces = 0;
+  std::size_t nonManifoldFaces = 0;
+  std::size_t degenerateFaces = 0;
+  std::size_t borderEdges = 0;
+  double scanMilliseconds = 0;
+};
+
+class LocalSubtractor {
+ public:
+  // Any triangle mesh with finite coordinates (open, self-intersecting and non-manifold regions are
+  // recorded as defects). Throws std::invalid_argument for an empty mesh or bad indices.
+  explicit LocalSubtractor(const TriangleMesh& bone);
+  ~LocalSubtractor();
+  LocalSubtractor(LocalSubtractor&&) noexcept;
+  LocalSubtractor& operator=(LocalSubtractor&&) noexcept;
+
+  // Subtracts a closed, outward-oriented tool (bone coordinates). Throws CutError (bone unchanged) when
+  // the cut cannot be computed correctly here.
+  LocalCut subtract(const TriangleMesh& tool);
+
+  const BoneState& state() const;  // rounded coordinates, slot based (cheap to copy)
+  TriangleMesh mesh() const;       // rounded to doubles
+  double volumeMm3() const;
+  std::size_t faceCount() const;
+  std::size_t exactVertexCount() const;  // vertices whose exact coordinates are not doubles
+  const LocalDefects& defects() const;
+  // Closed/oriented/self-intersection checks over the whole bone (exact and rounded); costly.
+  BoneInvariants checkInvariants() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace reamsim

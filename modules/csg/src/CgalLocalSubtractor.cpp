@@ -1,0 +1,733 @@
+// CGAL translation unit: the local exact subtraction (see LocalSubtractor.h for the design).
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <chrono>
+#include <map>
+#include <optional>
+#include <unordered_map>
+
+#include "LocalDefectScan.h"
+#include "TrianglePair.h"
+#include "TriangleGrid.h"
+#include "reamsim/csg/LocalSubtractor.h"
+
+namespace reamsim {
+namespace {
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+using P = EK::Point_3;
+using SM = CGAL::Surface_mesh<P>;
+using VI = SM::Vertex_index;
+using FI = SM::Face_index;
+using HI = SM::Halfedge_index;
+using EI = SM::Edge_index;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using csg::Box3;
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+// Intersection points are built once by the corefinement and shared by both meshes, so their interval
+// approximations are identical: looking them up by those intervals avoids exact evaluation (GMP) for
+// every curve vertex; an exact comparison only settles the rare collision of equal intervals.
+struct ApproxKey {
+  std::array<double, 6> v;
+  bool operator==(const ApproxKey& o) const { return v == o.v; }
+};
+ApproxKey approxKey(const P& p) {
+  const auto x = CGAL::to_interval(p.x()), y = CGAL::to_interval(p.y()), z = CGAL::to_interval(p.z());
+  return {{x.first, x.second, y.first, y.second, z.first, z.second}};
+}
+struct ApproxHash {
+  std::size_t operator()(const ApproxKey& k) const {
+    std::size_t h = 0;
+    for (double d : k.v) h = h * 1000003u ^ std::hash<double>()(d);
+    return h;
+  }
+};
+
+std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t(a) << 32) | b;
+}
+std::uint64_t directedKey(std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; }
+
+Vec3 rounded(const P& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}; }
+
+void settle(const P& p) {
+  CGAL::exact(p.x());
+  CGAL::exact(p.y());
+  CGAL::exact(p.z());
+}
+
+void grow(Box3& b, const P& p) {
+  const auto ix = CGAL::to_interval(p.x()), iy = CGAL::to_interval(p.y()), iz = CGAL::to_interval(p.z());
+  b.lo = {std::min(b.lo[0], ix.first), std::min(b.lo[1], iy.first), std::min(b.lo[2], iz.first)};
+  b.hi = {std::max(b.hi[0], ix.second), std::max(b.hi[1], iy.second), std::max(b.hi[2], iz.second)};
+}
+Box3 emptyBox() {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Box3 b;
+  b.lo = {inf, inf, inf};
+  b.hi = {-inf, -inf, -inf};
+  return b;
+}
+
+// 6 × signed tetra volume of (o, a, b, c): the divergence-theorem term of one face.
+double volumeTerm(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return dot(a - o, cross(b - o, c - o));
+}
+
+enum Side : signed char { kUndecided = -1, kOutside = 0, kInside = 1 };
+
+// Side of the face (a, b, q) near edge ab relative to a closed, outward-oriented solid whose two faces at
+// that edge are (a, b, c1) and (b, a, c2). Exact. A face lying on one of the solid's faces near the edge
+// gets `sameWay` when their normals agree and `oppositeWay` when they are opposed.
+Side wedgeSide(const P& a, const P& b, const P& c1, const P& c2, const P& q, Side sameWay, Side oppositeWay) {
+  const auto s1 = CGAL::orientation(a, b, c1, q);
+  const auto s2 = CGAL::orientation(b, a, c2, q);
+  if (s1 == CGAL::COPLANAR && CGAL::coplanar_orientation(a, b, c1, q) == CGAL::POSITIVE) return sameWay;
+  if (s2 == CGAL::COPLANAR && CGAL::coplanar_orientation(b, a, c2, q) == CGAL::POSITIVE) return oppositeWay;
+  // Convex edge (c2 not above the plane of the first face): the interior is the intersection of the
+  // two lower half-spaces; reflex: their union. A face in the plane of one solid face but beyond the
+  // edge is outside a convex wedge and inside a reflex one.
+  const bool convex = CGAL::orientation(a, b, c1, c2) != CGAL::POSITIVE;
+  if (s1 == CGAL::COPLANAR || s2 == CGAL::COPLANAR) return convex ? kOutside : kInside;
+  const bool below1 = s1 == CGAL::NEGATIVE, below2 = s2 == CGAL::NEGATIVE;
+  return (convex ? (below1 && below2) : (below1 || below2)) ? kInside : kOutside;
+}
+
+// Connected components of faces not crossing constrained edges.
+std::vector<int> components(const SM& m, const SM::Property_map<EI, bool>& constrained, int& count) {
+  std::vector<int> comp(m.number_of_faces(), -1);
+  count = 0;
+  std::vector<FI> stack;
+  for (FI f : m.faces()) {
+    if (comp[f.idx()] >= 0) continue;
+    comp[f.idx()] = count;
+    stack.push_back(f);
+    while (!stack.empty()) {
+      const FI g = stack.back();
+      stack.pop_back();
+      for (HI h : CGAL::halfedges_around_face(m.halfedge(g), m)) {
+        if (constrained[m.edge(h)]) continue;
+        const FI n = m.face(m.opposite(h));
+        if (n == SM::null_face() || comp[n.idx()] >= 0) continue;
+        comp[n.idx()] = count;
+        stack.push_back(n);
+      }
+    }
+    ++count;
+  }
+  return comp;
+}
+
+std::array<VI, 3> faceVertices(const SM& m, FI f) {
+  const HI h = m.halfedge(f);
+  return {m.source(h), m.target(h), m.target(m.next(h))};
+}
+
+// True when the faces `added` (a subset of the surface `kept`), with coordinates from `at`, are not
+// degenerate and do not intersect any face of `kept` other than along shared edges and vertices.
+// Epick: predicates only, exact on the given doubles.
+template <class At>
+bool roundingIsSafe(const std::vector<std::array<std::uint32_t, 3>>& kept,
+                    const std::vector<std::array<std::uint32_t, 3>>& added, At&& at) {
+  using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 3, std::size_t,
+                                                          CGAL::Box_intersection_d::ID_EXPLICIT>;
+  auto pt = [&](std::uint32_t uid) {
+    const Vec3 v = at(uid);
+    return IK::Point_3(v.x, v.y, v.z);
+  };
+  auto boxOf = [&](const std::array<std::uint32_t, 3>& t, std::size_t id) {
+    const CGAL::Bbox_3 b = pt(t[0]).bbox() + pt(t[1]).bbox() + pt(t[2]).bbox();
+    return Box(b, id);
+  };
+  for (const auto& t : added)
+    if (CGAL::collinear(pt(t[0]), pt(t[1]), pt(t[2]))) return false;
+  std::vector<Box> a, k;
+  a.reserve(added.size());
+  k.reserve(kept.size());
+  for (std::size_t i = 0; i < added.size(); ++i) a.push_back(boxOf(added[i], i));
+  for (std::size_t i = 0; i < kept.size(); ++i) k.push_back(boxOf(kept[i], i));
+  bool safe = true;
+  struct Stop {};
+  try {
+    CGAL::box_intersection_d(a.begin(), a.end(), k.begin(), k.end(), [&](const Box& ba, const Box& bk) {
+      const bool bad = csg::trianglesIntersectBeyondShared<IK>(added[ba.handle()], kept[bk.handle()], pt);
+      if (bad) {
+        safe = false;
+        throw Stop{};
+      }
+    });
+  } catch (const Stop&) {
+  }
+  return safe;
+}
+
+double elapsedMs(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+const char* toString(CutError::Kind kind) {
+  switch (kind) {
+    case CutError::Kind::BadTool: return "bad-tool";
+    case CutError::Kind::DefectReached: return "defect-reached";
+    case CutError::Kind::OpenBorderReached: return "open-border-reached";
+    case CutError::Kind::Degenerate: return "degenerate-contact";
+    case CutError::Kind::ToolEnclosed: return "tool-enclosed";
+    case CutError::Kind::Inconsistent: return "inconsistent";
+  }
+  return "unknown";
+}
+
+struct LocalSubtractor::Impl {
+  BoneState state;
+  std::unordered_map<std::uint32_t, P> exact;  // vertex slot → exact point, when not a double triple
+  csg::TriangleGrid grid;
+  std::vector<std::uint8_t> defect;  // per triangle slot (DefectFlag bits), 0 for faces made by cuts
+  LocalDefects defects;
+  std::vector<std::uint32_t> candidates;
+
+  P point(std::uint32_t v) const {
+    const auto it = exact.find(v);
+    if (it != exact.end()) return it->second;
+    const Vec3& p = state.vertex(v);
+    return P(p.x, p.y, p.z);
+  }
+  Box3 boxOf(const Triangle& t) const {
+    Box3 b = emptyBox();
+    for (std::uint32_t v : t) {
+      const auto it = exact.find(v);
+      if (it != exact.end()) {
+        grow(b, it->second);
+      } else {
+        const Vec3& p = state.vertex(v);
+        for (int i = 0; i < 3; ++i) {
+          b.lo[i] = std::min(b.lo[i], p[i]);
+          b.hi[i] = std::max(b.hi[i], p[i]);
+        }
+      }
+    }
+    return b;
+  }
+  EK::Triangle_3 triangle(std::uint32_t slot) const {
+    const Triangle& t = state.triangle(slot);
+    return {point(t[0]), point(t[1]), point(t[2])};
+  }
+
+  bool touchesTool(std::uint32_t slot, const SM& tool, CGAL::Side_of_triangle_mesh<SM, EK>& side) const;
+  Side insideBone(const P& q);
+  LocalCut subtract(const TriangleMesh& toolMesh);
+};
+
+// Exact: the face meets the closed tool solid (crosses its surface or lies inside it).
+bool LocalSubtractor::Impl::touchesTool(std::uint32_t slot, const SM& tool,
+                                        CGAL::Side_of_triangle_mesh<SM, EK>& side) const {
+  const EK::Triangle_3 t = triangle(slot);
+  for (int i = 0; i < 3; ++i)
+    if (side(t[i]) != CGAL::ON_UNBOUNDED_SIDE) return true;
+  const CGAL::Bbox_3 tb = t.bbox();
+  const bool degenerate = t.is_degenerate();  // then its edges are tested (points were tested above)
+  for (FI f : tool.faces()) {
+    const auto v = faceVertices(tool, f);
+    const EK::Triangle_3 u(tool.point(v[0]), tool.point(v[1]), tool.point(v[2]));
+    if (!CGAL::do_overlap(tb, u.bbox())) continue;
+    if (!degenerate) {
+      if (CGAL::do_intersect(t, u)) return true;
+      continue;
+    }
+    for (int i = 0; i < 3; ++i)
+      if (t[i] != t[(i + 1) % 3] && CGAL::do_intersect(EK::Segment_3(t[i], t[(i + 1) % 3]), u)) return true;
+  }
+  return false;
+}
+
+// Parity of exact crossings along an axis-parallel ray through the grid; a ray that grazes an edge or a
+// vertex is discarded and the next axis tried. kUndecided when all six do.
+Side LocalSubtractor::Impl::insideBone(const P& q) {
+  std::vector<std::uint32_t> slots;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int dir : {1, -1}) {
+      Box3 probe = emptyBox();
+      grow(probe, q);
+      constexpr double inf = std::numeric_limits<double>::infinity();
+      if (dir > 0) probe.hi[axis] = inf; else probe.lo[axis] = -inf;
+      grid.query(probe, slots);
+      EK::Vector_3 d(axis == 0 ? dir : 0, axis == 1 ? dir : 0, axis == 2 ? dir : 0);
+      const EK::Ray_3 ray(q, d);
+      bool clean = true;
+      std::size_t crossings = 0;
+      for (std::uint32_t s : slots) {
+        if (defect[s] & csg::kDegenerate) continue;  // no area: cannot be crossed
+        const EK::Triangle_3 t = triangle(s);
+        if (!CGAL::do_intersect(ray, t)) continue;
+        for (int i = 0; i < 3 && clean; ++i)
+          if (CGAL::do_intersect(ray, EK::Segment_3(t[i], t[(i + 1) % 3]))) clean = false;
+        if (!clean || t.has_on(q)) {
+          clean = false;
+          break;
+        }
+        ++crossings;
+      }
+      if (clean) return (crossings % 2) ? kInside : kOutside;
+    }
+  }
+  return kUndecided;
+}
+
+LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
+  const auto start = std::chrono::steady_clock::now();
+  LocalCut cut;
+  cut.volumeBeforeMm3 = cut.volumeAfterMm3 = state.volume();
+  cut.facesAfter = state.liveTriangleCount();
+
+  // The tool, exact. Its box bounds everything it can touch.
+  SM tool;
+  Box3 toolBox = emptyBox();
+  {
+    std::vector<VI> v;
+    v.reserve(toolMesh.vertices.size());
+    for (const Vec3& p : toolMesh.vertices) {
+      if (!isFinite(p)) throw CutError(CutError::Kind::BadTool, "tool has a non-finite coordinate");
+      v.push_back(tool.add_vertex(P(p.x, p.y, p.z)));
+      for (int i = 0; i < 3; ++i) {
+        toolBox.lo[i] = std::min(toolBox.lo[i], p[i]);
+        toolBox.hi[i] = std::max(toolBox.hi[i], p[i]);
+      }
+    }
+    for (const Triangle& t : toolMesh.triangles) {
+      if (t[0] >= v.size() || t[1] >= v.size() || t[2] >= v.size() ||
+          tool.add_face(v[t[0]], v[t[1]], v[t[2]]) == SM::null_face())
+        throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
+    }
+    if (tool.is_empty() || !CGAL::is_closed(tool) || signedVolume(toolMesh) <= 0)
+      throw CutError(CutError::Kind::BadTool, "tool is not a closed, outward-oriented triangle mesh");
+  }
+
+  // A margin so that faces within rounding distance of the new ones are in the patch too (see below).
+  for (int i = 0; i < 3; ++i) {
+    const double m = 1e-9 * (1 + std::abs(toolBox.lo[i]) + std::abs(toolBox.hi[i]));
+    toolBox.lo[i] -= m;
+    toolBox.hi[i] += m;
+  }
+  grid.query(toolBox, candidates);
+  // No face near the tool: it misses the bone, unless it is buried inside it (then it leaves a cavity,
+  // found by the ray parity below). A tool not within the bone's box cannot be buried.
+  const Bounds& bb = state.bounds();
+  const bool mayBeBuried = toolBox.lo[0] > bb.min.x && toolBox.lo[1] > bb.min.y && toolBox.lo[2] > bb.min.z &&
+                           toolBox.hi[0] < bb.max.x && toolBox.hi[1] < bb.max.y && toolBox.hi[2] < bb.max.z;
+  if (candidates.empty() && !mayBeBuried) {
+    cut.milliseconds = elapsedMs(start);
+    return cut;
+  }
+
+  // Defect faces may stay out of the patch when they do not touch the tool (the patch only has to hold
+  // every face that does); one that touches it stops the cut.
+  const SM toolCopy = tool;  // corefinement refines `tool`; side queries use the original
+  std::optional<CGAL::Side_of_triangle_mesh<SM, EK>> side;
+  auto sideOf = [&]() -> CGAL::Side_of_triangle_mesh<SM, EK>& {
+    if (!side) side.emplace(toolCopy);
+    return *side;
+  };
+  std::vector<std::uint32_t> patchSlots;
+  patchSlots.reserve(candidates.size());
+  for (std::uint32_t s : candidates) {
+    if (defect[s] == 0) {
+      patchSlots.push_back(s);
+      continue;
+    }
+    if (touchesTool(s, toolCopy, sideOf())) {
+      const char* what = (defect[s] & csg::kSelfIntersecting) ? "self-intersecting"
+                         : (defect[s] & csg::kNonManifold)    ? "non-manifold"
+                                                              : "degenerate";
+      throw CutError(CutError::Kind::DefectReached, std::string("the tool touches a ") + what +
+                                                        " bone face (slot " + std::to_string(s) +
+                                                        "); the bone is unchanged");
+    }
+  }
+  cut.patchFaces = patchSlots.size();
+
+  // The patch, with the exact coordinates of earlier cuts.
+  SM patch;
+  patch.set_recycle_garbage(false);  // new elements must not inherit the properties of removed ones
+  auto slotOfV = patch.add_property_map<VI, std::uint32_t>("v:slot", kNone).first;
+  auto origOfF = patch.add_property_map<FI, std::uint32_t>("f:orig", kNone).first;
+  {
+    std::unordered_map<std::uint32_t, VI> vmap;
+    vmap.reserve(patchSlots.size());
+    for (std::uint32_t i = 0; i < patchSlots.size(); ++i) {
+      const Triangle& t = state.triangle(patchSlots[i]);
+      VI v[3];
+      for (int k = 0; k < 3; ++k) {
+        auto [it, added] = vmap.try_emplace(t[k]);
+        if (added) {
+          it->second = patch.add_vertex(point(t[k]));
+          slotOfV[it->second] = t[k];
+        }
+        v[k] = it->second;
+      }
+      const FI f = patch.add_face(v[0], v[1], v[2]);
+      if (f == SM::null_face())
+        throw CutError(CutError::Kind::DefectReached,
+                       "the bone surface is not manifold near the cut (slot " + std::to_string(patchSlots[i]) +
+                           "); the bone is unchanged");
+      origOfF[f] = i;
+    }
+  }
+
+  auto conP = patch.add_property_map<EI, bool>("e:c", false).first;
+  auto conT = tool.add_property_map<EI, bool>("e:c", false).first;
+  try {
+    PMP::corefine(patch, tool, CGAL::parameters::edge_is_constrained_map(conP),
+                  CGAL::parameters::edge_is_constrained_map(conT));
+  } catch (const std::exception& e) {
+    throw CutError(CutError::Kind::Inconsistent, std::string("corefinement failed: ") + e.what());
+  }
+
+  // Intersection curve: patch vertices on it get unified ids shared with the tool's copies.
+  const std::uint32_t nP = std::uint32_t(patch.number_of_vertices());
+  std::unordered_multimap<ApproxKey, std::uint32_t, ApproxHash> curve;
+  auto findOnCurve = [&](const P& p) -> std::uint32_t {
+    const auto range = curve.equal_range(approxKey(p));
+    std::uint32_t found = kNone;
+    std::size_t n = 0;
+    for (auto it = range.first; it != range.second; ++it, ++n) found = it->second;
+    if (n <= 1) return found;
+    for (auto it = range.first; it != range.second; ++it)
+      if (patch.point(VI(it->second)) == p) return it->second;
+    return kNone;
+  };
+  std::unordered_map<std::uint64_t, HI> patchEdge, toolEdge;
+  std::size_t constrainedEdges = 0;
+  std::vector<char> visitedCurve(nP, 0);
+  for (EI e : patch.edges()) {
+    if (!conP[e]) continue;
+    ++constrainedEdges;
+    const HI h = patch.halfedge(e);
+    if (patch.is_border(e))
+      throw CutError(CutError::Kind::OpenBorderReached,
+                     "the cut reaches an open border of the bone surface; the bone is unchanged");
+    for (VI v : {patch.source(h), patch.target(h)}) {
+      if (CGAL::is_border(v, patch))
+        throw CutError(CutError::Kind::OpenBorderReached,
+                       "the cut touches an open border of the bone surface; the bone is unchanged");
+      if (!visitedCurve[v.idx()]) {
+        visitedCurve[v.idx()] = 1;
+        curve.emplace(approxKey(patch.point(v)), std::uint32_t(v.idx()));
+      }
+    }
+    patchEdge.emplace(pairKey(patch.source(h).idx(), patch.target(h).idx()), h);
+  }
+  std::vector<std::uint32_t> toolUid(tool.number_of_vertices());
+  for (VI v : tool.vertices()) toolUid[v.idx()] = nP + std::uint32_t(v.idx());
+  for (EI e : tool.edges()) {
+    if (!conT[e]) continue;
+    const HI h = tool.halfedge(e);
+    for (VI v : {tool.source(h), tool.target(h)}) {
+      const std::uint32_t twin = findOnCurve(tool.point(v));
+      if (twin == kNone)
+        throw CutError(CutError::Kind::Inconsistent, "an intersection vertex of the tool has no bone twin");
+      toolUid[v.idx()] = twin;
+    }
+    toolEdge.emplace(pairKey(toolUid[tool.source(h).idx()], toolUid[tool.target(h).idx()]), h);
+  }
+  if (toolEdge.size() != patchEdge.size())
+    throw CutError(CutError::Kind::Inconsistent, "the intersection curves of bone and tool differ");
+
+  // Classify components: at an intersection edge, the exact wedge test against the other surface;
+  // components that do not reach the curve by a point test (side of the tool; ray parity for the bone).
+  int nPC = 0, nTC = 0;
+  const std::vector<int> pcomp = components(patch, conP, nPC);
+  const std::vector<int> tcomp = components(tool, conT, nTC);
+  std::vector<Side> pside(nPC, kUndecided), tside(nTC, kUndecided);
+  for (const auto& [key, hp0] : patchEdge) {
+    const auto found = toolEdge.find(key);
+    if (found == toolEdge.end())
+      throw CutError(CutError::Kind::Inconsistent, "the intersection curves of bone and tool differ");
+    const HI ht0 = found->second;
+    for (HI hp : {hp0, patch.opposite(hp0)}) {  // patch faces against the tool's wedge
+      const int c = pcomp[patch.face(hp).idx()];
+      if (pside[c] != kUndecided) continue;
+      // Orient the tool halfedge like hp (a → b) or take its opposite.
+      const bool same = toolUid[tool.source(ht0).idx()] == patch.source(hp).idx();
+      const HI t = same ? ht0 : tool.opposite(ht0);
+      pside[c] = wedgeSide(tool.point(tool.source(t)), tool.point(tool.target(t)),
+                           tool.point(tool.target(tool.next(t))),
+                           tool.point(tool.target(tool.next(tool.opposite(t)))),
+                           patch.point(patch.target(patch.next(hp))), kInside, kOutside);
+    }
+    for (HI ht : {ht0, tool.opposite(ht0)}) {  // tool faces against the bone's wedge
+      const int c = tcomp[tool.face(ht).idx()];
+      if (tside[c] != kUndecided) continue;
+      const bool same = patch.source(hp0).idx() == toolUid[tool.source(ht).idx()];
+      const HI p = same ? hp0 : patch.opposite(hp0);
+      tside[c] = wedgeSide(patch.point(patch.source(p)), patch.point(patch.target(p)),
+                           patch.point(patch.target(patch.next(p))),
+                           patch.point(patch.target(patch.next(patch.opposite(p)))),
+                           tool.point(tool.target(tool.next(ht))), kOutside, kOutside);
+    }
+  }
+  std::vector<char> pHasCurve(nPC, 0), tHasCurve(nTC, 0);
+  for (const auto& [key, hp] : patchEdge) {
+    pHasCurve[pcomp[patch.face(hp).idx()]] = 1;
+    pHasCurve[pcomp[patch.face(patch.opposite(hp)).idx()]] = 1;
+  }
+  for (const auto& [key, ht] : toolEdge) {
+    tHasCurve[tcomp[tool.face(ht).idx()]] = 1;
+    tHasCurve[tcomp[tool.face(tool.opposite(ht)).idx()]] = 1;
+  }
+  for (FI f : patch.faces()) {
+    const int c = pcomp[f.idx()];
+    if (pside[c] != kUndecided || pHasCurve[c]) continue;
+    const auto v = faceVertices(patch, f);
+    const auto s = sideOf()(CGAL::centroid(patch.point(v[0]), patch.point(v[1]), patch.point(v[2])));
+    if (s != CGAL::ON_BOUNDARY) pside[c] = s == CGAL::ON_BOUNDED_SIDE ? kInside : kOutside;
+  }
+  for (FI f : tool.faces()) {
+    const int c = tcomp[f.idx()];
+    if (tside[c] != kUndecided || tHasCurve[c]) continue;
+    const auto v = faceVertices(tool, f);
+    tside[c] = insideBone(CGAL::centroid(tool.point(v[0]), tool.point(v[1]), tool.point(v[2])));
+  }
+  for (Side s : pside)
+    if (s == kUndecided)
+      throw CutError(CutError::Kind::Degenerate,
+                     "coplanar or tangential contact between tool and bone; the bone is unchanged");
+  for (Side s : tside)
+    if (s == kUndecided)
+      throw CutError(CutError::Kind::Degenerate,
+                     "coplanar or tangential contact between tool and bone; the bone is unchanged");
+
+  bool anyInside = false;
+  for (Side s : pside) anyInside |= s == kInside;
+  for (Side s : tside) anyInside |= s == kInside;
+  if (!anyInside) {
+    cut.milliseconds = elapsedMs(start);
+    return cut;
+  }
+
+  // The new surface in unified vertex ids: kept patch faces, and tool faces inside the bone reversed.
+  std::vector<std::array<std::uint32_t, 3>> kept;  // all kept faces (for the closedness check)
+  std::vector<std::array<std::uint32_t, 3>> added;
+  std::vector<std::uint32_t> removed;
+  std::vector<char> origSeenUnchanged(patchSlots.size(), 0);
+  const Vec3 o = {0.5 * (toolBox.lo[0] + toolBox.hi[0]), 0.5 * (toolBox.lo[1] + toolBox.hi[1]),
+                  0.5 * (toolBox.lo[2] + toolBox.hi[2])};
+  double piece6 = 0;
+  auto pieceTerm = [&](const P& a, const P& b, const P& c) { piece6 += volumeTerm(o, rounded(a), rounded(b), rounded(c)); };
+  for (FI f : patch.faces()) {
+    const auto v = faceVertices(patch, f);
+    const std::array<std::uint32_t, 3> ids = {std::uint32_t(v[0].idx()), std::uint32_t(v[1].idx()),
+                                              std::uint32_t(v[2].idx())};
+    if (pside[pcomp[f.idx()]] == kInside) {
+      pieceTerm(patch.point(v[0]), patch.point(v[1]), patch.point(v[2]));
+      continue;
+    }
+    kept.push_back(ids);
+    const std::uint32_t orig = origOfF[f];
+    if (orig != kNone) {
+      const Triangle& t = state.triangle(patchSlots[orig]);
+      const std::uint32_t s0 = slotOfV[v[0]], s1 = slotOfV[v[1]], s2 = slotOfV[v[2]];
+      if ((s0 == t[0] && s1 == t[1] && s2 == t[2]) || (s0 == t[1] && s1 == t[2] && s2 == t[0]) ||
+          (s0 == t[2] && s1 == t[0] && s2 == t[1])) {
+        origSeenUnchanged[orig] = 1;
+        continue;
+      }
+    }
+    added.push_back(ids);
+  }
+  for (std::uint32_t i = 0; i < patchSlots.size(); ++i)
+    if (!origSeenUnchanged[i]) removed.push_back(patchSlots[i]);
+  for (FI f : tool.faces()) {
+    if (tside[tcomp[f.idx()]] != kInside) continue;
+    const auto v = faceVertices(tool, f);
+    pieceTerm(tool.point(v[0]), tool.point(v[1]), tool.point(v[2]));
+    const std::array<std::uint32_t, 3> ids = {toolUid[v[0].idx()], toolUid[v[2].idx()], toolUid[v[1].idx()]};
+    kept.push_back(ids);
+    added.push_back(ids);
+  }
+
+  // Closedness check: every directed edge of the new surface is used once, and its twin is used too
+  // unless it lies on the patch border (edges shared with faces outside the patch, or open borders).
+  {
+    std::unordered_map<std::uint64_t, std::uint32_t> use;
+    use.reserve(3 * kept.size());
+    for (const auto& t : kept)
+      for (int i = 0; i < 3; ++i)
+        if (++use[directedKey(t[i], t[(i + 1) % 3])] > 1)
+          throw CutError(CutError::Kind::Degenerate,
+                         "the cut would leave a non-manifold edge (tangential contact); the bone is unchanged");
+    for (const auto& [key, count] : use) {
+      const std::uint32_t a = std::uint32_t(key >> 32), b = std::uint32_t(key & 0xffffffffu);
+      if (use.count(directedKey(b, a))) continue;
+      bool onPatchBorder = false;
+      if (a < nP && b < nP) {
+        const auto h = CGAL::halfedge(VI(a), VI(b), patch);
+        onPatchBorder = h.second && patch.is_border(patch.opposite(h.first));
+      }
+      if (!onPatchBorder)
+        throw CutError(CutError::Kind::Inconsistent, "the cut would leave an open seam; the bone is unchanged");
+    }
+  }
+
+  // The delta: original slots for old vertices, new vertices in first-use order.
+  MeshDelta delta;
+  delta.removedTriangles = removed;
+  std::vector<std::uint32_t> ref(nP + tool.number_of_vertices(), kNone);
+  std::vector<P> newPoints;
+  auto refOf = [&](std::uint32_t uid) {
+    if (ref[uid] != kNone) return ref[uid];
+    if (uid < nP && slotOfV[VI(uid)] != kNone) return ref[uid] = slotOfV[VI(uid)];
+    const P& p = uid < nP ? patch.point(VI(uid)) : tool.point(VI(uid - nP));
+    newPoints.push_back(p);  // exact values are only computed if they have to be kept (below)
+    delta.addedVertices.push_back(rounded(p));
+    return ref[uid] = MeshDelta::newVertex(std::uint32_t(newPoints.size() - 1));
+  };
+  for (const auto& t : added) delta.addedTriangles.push_back({refOf(t[0]), refOf(t[1]), refOf(t[2])});
+
+  // Removed volume from the changed faces only, in the document's rounded coordinates.
+  auto at = [&](std::uint32_t r) {
+    return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : state.vertex(r);
+  };
+  double removed6 = 0;
+  for (std::uint32_t s : removed) {
+    const Triangle& t = state.triangle(s);
+    removed6 += volumeTerm(o, state.vertex(t[0]), state.vertex(t[1]), state.vertex(t[2]));
+  }
+  for (const Triangle& t : delta.addedTriangles) removed6 -= volumeTerm(o, at(t[0]), at(t[1]), at(t[2]));
+
+  // New vertices are rounded to doubles when that is safe: the rounded new faces are neither degenerate
+  // nor intersect each other or their kept neighbours. Then the engine forgets their exact values, which
+  // keeps exact coordinates from compounding cut after cut; otherwise it keeps them (and the document's
+  // rounded copy may self-intersect there, which checkInvariants reports).
+  const bool keepExact = !roundingIsSafe(kept, added, [&](std::uint32_t uid) {
+    // Every vertex of `kept` is an old slot or was given a reference with the added faces above.
+    const std::uint32_t r = ref[uid] != kNone ? ref[uid] : slotOfV[VI(uid)];
+    return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : state.vertex(r);
+  });
+
+  DeltaPlacement placement;
+  BoneState next = state.applyDelta(delta, &placement);
+
+  // Side tables: forget the exact points of freed vertices, record those of new ones; re-grid faces.
+  for (std::uint32_t s : removed) {
+    for (std::uint32_t v : state.triangle(s))
+      if (!next.isVertexLive(v)) exact.erase(v);
+    grid.remove(s);
+  }
+  for (std::size_t i = 0; i < newPoints.size(); ++i) {
+    const std::uint32_t slot = placement.vertexSlots[i];
+    if (slot == kNone) continue;
+    const Vec3& d = delta.addedVertices[i];
+    if (!keepExact || P(d.x, d.y, d.z) == newPoints[i]) {
+      exact.erase(slot);
+    } else {
+      settle(newPoints[i]);  // collapse the lazy history so later cuts do not re-evaluate it
+      exact[slot] = newPoints[i];
+    }
+  }
+  state = std::move(next);
+  if (defect.size() < state.triangleSlotCount()) defect.resize(state.triangleSlotCount(), 0);
+  for (std::uint32_t s : placement.triangleSlots) {
+    defect[s] = 0;
+    grid.insert(s, boxOf(state.triangle(s)));
+  }
+
+  cut.changed = true;
+  cut.removedMm3 = removed6 / 6.0;
+  cut.removedPieceMm3 = piece6 / 6.0;
+  cut.volumeAfterMm3 = state.volume();
+  cut.facesAfter = state.liveTriangleCount();
+  cut.removedFaces = removed.size();
+  cut.addedFaces = delta.addedTriangles.size();
+  cut.milliseconds = elapsedMs(start);
+  return cut;
+}
+
+LocalSubtractor::LocalSubtractor(const TriangleMesh& bone) : impl_(std::make_unique<Impl>()) {
+  if (bone.triangles.empty()) throw std::invalid_argument("bone mesh is empty");
+  const auto start = std::chrono::steady_clock::now();
+  Impl& m = *impl_;
+  m.state = BoneState::fromMesh(bone);
+  // Scan in slot order so that flags index slots directly.
+  TriangleMesh slots;
+  slots.vertices.resize(m.state.vertexSlotCount());
+  for (std::uint32_t v = 0; v < slots.vertices.size(); ++v) slots.vertices[v] = m.state.vertex(v);
+  slots.triangles.resize(m.state.triangleSlotCount(), Triangle{0, 0, 0});
+  std::vector<char> live(slots.triangles.size(), 0);
+  m.state.forEachLiveTriangle([&](std::uint32_t s, const Triangle& t) {
+    slots.triangles[s] = t;
+    live[s] = 1;
+  });
+  const csg::DefectScan scan = csg::scanDefects(slots);
+  m.defect = scan.flags;
+  m.defects.borderEdges = scan.borderEdges;
+  m.defects.selfIntersectingPairs = scan.selfIntersectingPairs;
+  m.grid.init(m.state.bounds(), m.state.liveTriangleCount());
+  for (std::uint32_t s = 0; s < slots.triangles.size(); ++s) {
+    if (!live[s]) {
+      m.defect[s] = 0;
+      continue;
+    }
+    const std::uint8_t f = m.defect[s];
+    if (f & csg::kSelfIntersecting) ++m.defects.selfIntersectingFaces;
+    if (f & csg::kNonManifold) ++m.defects.nonManifoldFaces;
+    if (f & csg::kDegenerate) ++m.defects.degenerateFaces;
+    m.grid.insert(s, m.boxOf(slots.triangles[s]));
+  }
+  m.defects.scanMilliseconds = elapsedMs(start);
+}
+
+LocalSubtractor::~LocalSubtractor() = default;
+LocalSubtractor::LocalSubtractor(LocalSubtractor&&) noexcept = default;
+LocalSubtractor& LocalSubtractor::operator=(LocalSubtractor&&) noexcept = default;
+
+LocalCut LocalSubtractor::subtract(const TriangleMesh& tool) { return impl_->subtract(tool); }
+const BoneState& LocalSubtractor::state() const { return impl_->state; }
+TriangleMesh LocalSubtractor::mesh() const { return impl_->state.toMesh(); }
+double LocalSubtractor::volumeMm3() const { return impl_->state.volume(); }
+std::size_t LocalSubtractor::faceCount() const { return impl_->state.liveTriangleCount(); }
+std::size_t LocalSubtractor::exactVertexCount() const { return impl_->exact.size(); }
+const LocalDefects& LocalSubtractor::defects() const { return impl_->defects; }
+
+BoneInvariants LocalSubtractor::checkInvariants() const {
+  using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
+  const Impl& m = *impl_;
+  SM exactMesh;
+  CGAL::Surface_mesh<IK::Point_3> roundedMesh;
+  std::unordered_map<std::uint32_t, std::pair<VI, CGAL::Surface_mesh<IK::Point_3>::Vertex_index>> vmap;
+  bool manifold = true;
+  m.state.forEachLiveTriangle([&](std::uint32_t, const Triangle& t) {
+    VI ve[3];
+    CGAL::Surface_mesh<IK::Point_3>::Vertex_index vr[3];
+    for (int k = 0; k < 3; ++k) {
+      auto [it, added] = vmap.try_emplace(t[k]);
+      if (added) {
+        const Vec3& p = m.state.vertex(t[k]);
+        it->second = {exactMesh.add_vertex(m.point(t[k])), roundedMesh.add_vertex({p.x, p.y, p.z})};
+      }
+      ve[k] = it->second.first;
+      vr[k] = it->second.second;
+    }
+    if (exactMesh.add_face(ve[0], ve[1], ve[2]) == SM::null_face()) manifold = false;
+    roundedMesh.add_face(vr[0], vr[1], vr[2]);
+  });
+  BoneInvariants inv;
+  inv.closed = manifold && CGAL::is_closed(exactMesh);
+  inv.outwardOriented = inv.closed && PMP::is_outward_oriented(exactMesh);
+  inv.selfIntersectsExact = !manifold || PMP::does_self_intersect(exactMesh);
+  inv.selfIntersectsRounded = !manifold || PMP::does_self_intersect(roundedMesh);
+  return inv;
+}
+
+}  // namespace reamsim

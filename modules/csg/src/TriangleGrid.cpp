@@ -1,0 +1,102 @@
+#include "TriangleGrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace reamsim::csg {
+
+void TriangleGrid::init(const Bounds& domain, std::size_t faces, double targetPerCell) {
+  const Vec3 size = !domain.empty() ? domain.max - domain.min : Vec3{1, 1, 1};
+  const double ext[3] = {std::max(size.x, 1e-3), std::max(size.y, 1e-3), std::max(size.z, 1e-3)};
+  // A surface fills its box sparsely; sizing cells by the box volume gives roughly the wanted density on
+  // the occupied cells for bone-like shapes, and the cap keeps the table small for thin ones.
+  const double cells = std::max(1.0, double(faces) / targetPerCell);
+  cell_ = std::cbrt(ext[0] * ext[1] * ext[2] / cells);
+  for (int i = 0; i < 3; ++i) {
+    cell_ = std::max(cell_, ext[i] / 256.0);
+  }
+  for (int i = 0; i < 3; ++i) {
+    n_[i] = std::max(1, std::min(256, int(std::ceil(ext[i] / cell_))));
+    origin_[i] = (!domain.empty() ? domain.min[i] : 0.0);
+  }
+  cells_.assign(std::size_t(n_[0]) * n_[1] * n_[2], {});
+  boxes_.clear();
+  present_.clear();
+  stamp_.clear();
+  epoch_ = 0;
+}
+
+std::array<int, 3> TriangleGrid::cellOf(const std::array<double, 3>& p) const {
+  std::array<int, 3> c{};
+  for (int i = 0; i < 3; ++i) {
+    const double f = std::floor((p[i] - origin_[i]) / cell_);
+    c[i] = f < 0 ? 0 : (f >= n_[i] ? n_[i] - 1 : int(f));
+  }
+  return c;
+}
+
+template <class F>
+void TriangleGrid::forCells(const Box3& b, F&& f) const {
+  const auto lo = cellOf(b.lo), hi = cellOf(b.hi);
+  for (int k = lo[2]; k <= hi[2]; ++k)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) f(index(i, j, k));
+}
+
+void TriangleGrid::insert(std::uint32_t slot, const Box3& box) {
+  if (slot >= boxes_.size()) {
+    boxes_.resize(slot + 1);
+    present_.resize(slot + 1, 0);
+    stamp_.resize(slot + 1, 0);
+  }
+  if (present_[slot]) remove(slot);
+  boxes_[slot] = box;
+  present_[slot] = 1;
+  forCells(box, [&](std::size_t c) { cells_[c].push_back(slot); });
+}
+
+void TriangleGrid::remove(std::uint32_t slot) {
+  if (!contains(slot)) return;
+  forCells(boxes_[slot], [&](std::size_t c) {
+    auto& v = cells_[c];
+    auto it = std::find(v.begin(), v.end(), slot);
+    if (it != v.end()) {
+      *it = v.back();
+      v.pop_back();
+    }
+  });
+  present_[slot] = 0;
+}
+
+bool TriangleGrid::mark(std::uint32_t slot) {
+  if (stamp_[slot] == epoch_) return false;
+  stamp_[slot] = epoch_;
+  return true;
+}
+
+void TriangleGrid::query(const Box3& q, std::vector<std::uint32_t>& out) {
+  out.clear();
+  if (++epoch_ == 0) {  // wrapped: forget old stamps
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    epoch_ = 1;
+  }
+  forCells(q, [&](std::size_t c) {
+    for (std::uint32_t s : cells_[c])
+      if (mark(s) && boxes_[s].overlaps(q)) out.push_back(s);
+  });
+}
+
+void TriangleGrid::ray(const std::array<double, 3>& origin, int axis, int dir, std::vector<std::uint32_t>& out) {
+  // The ray as a degenerate box reaching to infinity: faces beyond the domain sit in the border cells.
+  Box3 q;
+  q.lo = origin;
+  q.hi = origin;
+  if (dir > 0)
+    q.hi[axis] = std::numeric_limits<double>::infinity();
+  else
+    q.lo[axis] = -std::numeric_limits<double>::infinity();
+  query(q, out);
+}
+
+}  // namespace reamsim::csg

@@ -1,0 +1,54 @@
+#pragma once
+// Uniform grid over triangle boxes: which bone faces may touch a tool, in time proportional to the
+// cells the tool's box covers. Boxes are closed and conservative (they contain the exact triangle), so
+// a face whose box misses the query box cannot touch anything inside it. Coordinates outside the
+// domain are clamped to the border cells, so faces created outside it are still found.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "reamsim/mesh/Bounds.h"
+
+namespace reamsim::csg {
+
+struct Box3 {
+  std::array<double, 3> lo{}, hi{};
+  bool overlaps(const Box3& o) const {
+    for (int i = 0; i < 3; ++i)
+      if (hi[i] < o.lo[i] || o.hi[i] < lo[i]) return false;
+    return true;
+  }
+};
+
+class TriangleGrid {
+ public:
+  // About `targetPerCell` faces per occupied cell for a surface of `faces` faces spanning `domain`.
+  void init(const Bounds& domain, std::size_t faces, double targetPerCell = 8.0);
+  void insert(std::uint32_t slot, const Box3& box);
+  void remove(std::uint32_t slot);  // no-op for a slot that is not in the grid
+  const Box3& box(std::uint32_t slot) const { return boxes_[slot]; }
+  bool contains(std::uint32_t slot) const { return slot < present_.size() && present_[slot] != 0; }
+
+  // Slots whose boxes overlap `query`, each once, in no particular order.
+  void query(const Box3& query, std::vector<std::uint32_t>& out);
+  // Slots in the cells an axis-parallel ray from `origin` along +axis (dir > 0) or −axis crosses.
+  void ray(const std::array<double, 3>& origin, int axis, int dir, std::vector<std::uint32_t>& out);
+
+ private:
+  std::array<int, 3> cellOf(const std::array<double, 3>& p) const;
+  std::size_t index(int i, int j, int k) const { return (std::size_t(k) * n_[1] + j) * n_[0] + i; }
+  template <class F>
+  void forCells(const Box3& b, F&& f) const;
+  bool mark(std::uint32_t slot);  // true the first time a slot is seen in the current query
+
+  std::array<double, 3> origin_{};
+  double cell_ = 1;
+  std::array<int, 3> n_{1, 1, 1};
+  std::vector<std::vector<std::uint32_t>> cells_;
+  std::vector<Box3> boxes_;
+  std::vector<std::uint8_t> present_;
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t epoch_ = 0;
+};
+
+}  // namespace reamsim::csg

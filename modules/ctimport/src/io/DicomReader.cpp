@@ -1,0 +1,208 @@
+// DICOM series through vtk-dicom (Debian libvtk-dicom-dev, built with GDCM for compressed transfer
+// syntaxes). The series is found with vtkDICOMDirectory; before reading voxels, the slice positions are
+// checked here (vtk-dicom would silently stack slices with gaps): equal orientation and size, no duplicate
+// positions, uniform spacing — a gap of n spacings is reported as n-1 missing slices. World coordinates are
+// DICOM patient coordinates (LPS); CT values are rescaled to HU.
+#include <vtkDICOMDirectory.h>
+#include <vtkDICOMMetaData.h>
+#include <vtkDICOMReader.h>
+#include <vtkDICOMTag.h>
+#include <vtkDICOMValue.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkIntArray.h>
+#include <vtkMatrix4x4.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <new>
+
+#include "Geometry.h"
+#include "Readers.h"
+#include "VtkMessages.h"
+#include "reamsim/ctimport/Progress.h"
+#include "reamsim/mesh/MeshError.h"
+
+namespace reamsim::ct::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string mm(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", x);
+  return b;
+}
+
+// The files of the series to read: all of a directory's largest series, or the series holding `path`.
+std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::string>& notes) {
+  std::error_code ec;
+  const bool isDir = fs::is_directory(path, ec);
+  if (!isDir && !fs::is_regular_file(path, ec)) throw InputError(path, "file or directory not found");
+  const std::string dir = isDir ? path : fs::path(path).parent_path().string();
+  VtkMessageCapture capture;
+  auto finder = vtkSmartPointer<vtkDICOMDirectory>::New();
+  capture.observe(finder);
+  finder->SetDirectoryName(dir.empty() ? "." : dir.c_str());
+  finder->SetScanDepth(1);
+  finder->RequirePixelDataOn();
+  finder->Update();
+  const int n = finder->GetNumberOfSeries();
+  if (n == 0)
+    throw InputError(path, isDir ? "no DICOM image series found in the directory"
+                                 : "not a readable DICOM image file (or no image series beside it)");
+  int chosen = -1;
+  if (!isDir) {
+    const std::string wanted = fs::weakly_canonical(path, ec).string();
+    for (int s = 0; s < n && chosen < 0; ++s) {
+      vtkStringArray* files = finder->GetFileNamesForSeries(s);
+      for (vtkIdType i = 0; i < files->GetNumberOfValues(); ++i)
+        if (fs::weakly_canonical(fs::path(std::string(files->GetValue(i))), ec).string() == wanted) chosen = s;
+    }
+    if (chosen < 0) throw InputError(path, "not a readable DICOM image file");
+  } else {
+    vtkIdType most = 0;
+    for (int s = 0; s < n; ++s)
+      if (finder->GetFileNamesForSeries(s)->GetNumberOfValues() > most) {
+        most = finder->GetFileNamesForSeries(s)->GetNumberOfValues();
+        chosen = s;
+      }
+    if (n > 1)
+      notes.push_back(std::to_string(n) + " series in the directory; read the largest (" + std::to_string(most) +
+                      " files); pass one of its files to choose another");
+  }
+  vtkStringArray* files = finder->GetFileNamesForSeries(chosen);
+  std::vector<std::string> out;
+  for (vtkIdType i = 0; i < files->GetNumberOfValues(); ++i) out.push_back(files->GetValue(i));
+  return out;
+}
+
+Vec3 crossOf(const double* r, const double* c) { return cross(Vec3{r[0], r[1], r[2]}, Vec3{c[0], c[1], c[2]}); }
+
+// Orientation, size and spacing of single-frame slices must agree before they are stacked.
+void checkSlices(const std::string& path, vtkDICOMMetaData* meta, const std::vector<std::string>& files) {
+  const int n = meta->GetNumberOfInstances();
+  if (n < 2) throw InputError(path, "the series has a single image; a CT volume needs at least 2 slices");
+  double iop0[6];
+  const vtkDICOMValue& o0 = meta->Get(0, DC::ImageOrientationPatient);
+  if (!o0.IsValid() || o0.GetNumberOfValues() != 6)
+    throw InputError(files[0], "no ImageOrientationPatient: cannot place the slices in space");
+  for (int k = 0; k < 6; ++k) iop0[k] = o0.GetDouble(std::size_t(k));
+  const Vec3 normal = crossOf(iop0, iop0 + 3);
+  const int rows0 = meta->Get(0, DC::Rows).AsInt(), cols0 = meta->Get(0, DC::Columns).AsInt();
+  std::vector<std::pair<double, int>> pos;
+  for (int f = 0; f < n; ++f) {
+    const std::string& file = f < int(files.size()) ? files[std::size_t(f)] : path;
+    const vtkDICOMValue& o = meta->Get(f, DC::ImageOrientationPatient);
+    const vtkDICOMValue& p = meta->Get(f, DC::ImagePositionPatient);
+    if (!o.IsValid() || o.GetNumberOfValues() != 6 || !p.IsValid() || p.GetNumberOfValues() != 3)
+      throw InputError(file, "no ImagePositionPatient/ImageOrientationPatient: cannot place the slice");
+    for (int k = 0; k < 6; ++k)
+      if (std::abs(o.GetDouble(std::size_t(k)) - iop0[k]) > 1e-3)
+        throw InputError(file, "slice orientation differs from the rest of the series");
+    if (meta->Get(f, DC::Rows).AsInt() != rows0 || meta->Get(f, DC::Columns).AsInt() != cols0)
+      throw InputError(file, "slice size differs from the rest of the series");
+    pos.emplace_back(dot(normal, Vec3{p.GetDouble(0), p.GetDouble(1), p.GetDouble(2)}), f);
+  }
+  std::sort(pos.begin(), pos.end());
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < pos.size(); ++i) gaps.push_back(pos[i].first - pos[i - 1].first);
+  std::vector<double> sorted = gaps;
+  std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+  const double spacing = sorted[sorted.size() / 2];
+  const auto fileOf = [&](std::size_t i) {
+    const int f = pos[i].second;
+    return f < int(files.size()) ? fs::path(files[std::size_t(f)]).filename().string() : std::string("?");
+  };
+  for (std::size_t i = 0; i < gaps.size(); ++i) {
+    if (gaps[i] < 1e-3)
+      throw InputError(path, "slices " + fileOf(i) + " and " + fileOf(i + 1) + " are at the same position " +
+                                 mm(pos[i].first) + " mm (duplicate slice or two series mixed?)");
+    if (std::abs(gaps[i] - spacing) <= 0.01 * spacing + 1e-3) continue;
+    const double ratio = gaps[i] / spacing;
+    const long whole = std::lround(ratio);
+    if (whole >= 2 && std::abs(ratio - double(whole)) < 0.05)
+      throw InputError(path, "missing slice" + std::string(whole > 2 ? "s" : "") + ": gap of " + mm(gaps[i]) +
+                                 " mm between " + fileOf(i) + " and " + fileOf(i + 1) + " where the spacing is " +
+                                 mm(spacing) + " mm (" + std::to_string(whole - 1) + " slice" +
+                                 (whole > 2 ? "s" : "") + " missing)");
+    throw InputError(path, "inconsistent slice spacing: " + mm(gaps[i]) + " mm between " + fileOf(i) + " and " +
+                               fileOf(i + 1) + ", " + mm(spacing) + " mm elsewhere");
+  }
+}
+
+}  // namespace
+
+CtVolume readDicom(const std::string& path, const ReadTick& tick) {
+  CtVolume v;
+  v.sourcePath = path;
+  v.format = "dicom";
+  v.space = PatientSpace::LPS;
+  const std::vector<std::string> files = seriesFiles(path, v.notes);
+
+  VtkMessageCapture capture;
+  auto reader = vtkSmartPointer<vtkDICOMReader>::New();
+  capture.observe(reader);
+  auto names = vtkSmartPointer<vtkStringArray>::New();
+  for (const std::string& f : files) names->InsertNextValue(f);
+  reader->SetFileNames(names);
+  reader->SetMemoryRowOrderToFileNative();
+  reader->AutoRescaleOn();
+  reader->UpdateInformation();
+  if (capture.anyError()) throw InputError(path, "cannot read the DICOM series: " + capture.firstMessage());
+  vtkDICOMMetaData* meta = reader->GetMetaData();
+  if (!meta) throw InputError(path, "cannot read the DICOM series meta data");
+  const bool singleFrames = int(files.size()) == meta->GetNumberOfInstances() &&
+                            meta->Get(0, DC::NumberOfFrames).AsInt() <= 1;
+  if (singleFrames) checkSlices(path, meta, files);
+  if (meta->Get(0, DC::Modality).AsString() == "CT") v.valueUnit = "HU";
+
+  if (tick) capture.observeProgress(reader, tick);
+  try {
+    reader->Update();
+    if (capture.cancelled()) throw ImportCancelled("reading");
+  } catch (const std::bad_alloc&) {
+    throw InputError(path, "out of memory reading the DICOM series");
+  }
+  if (capture.anyError()) throw InputError(path, "cannot read the DICOM pixel data: " + capture.firstMessage());
+  vtkImageData* img = reader->GetOutput();
+  vtkDataArray* scalars = img ? img->GetPointData()->GetScalars() : nullptr;
+  if (!scalars || scalars->GetNumberOfComponents() != 1)
+    throw InputError(path, "the series is not a single-component (grayscale) image");
+  int ext[6];
+  img->GetExtent(ext);
+  for (int a = 0; a < 3; ++a) v.dims[std::size_t(a)] = ext[2 * a + 1] - ext[2 * a] + 1;
+  if (std::size_t(scalars->GetNumberOfTuples()) != v.voxelCount())
+    throw InputError(path, "the reader returned incomplete pixel data");
+  v.values.resize(v.voxelCount());
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i) v.values[std::size_t(i)] = float(scalars->GetComponent(i, 0));
+  const int st = scalars->GetDataType();
+  v.integerValued = st != VTK_FLOAT && st != VTK_DOUBLE;
+  if (!v.integerValued) {
+    v.integerValued = std::all_of(v.values.begin(), v.values.end(), [](float x) { return x == std::floor(x); });
+  }
+
+  double spacing[3], vtkOrigin[3];
+  img->GetSpacing(spacing);
+  img->GetOrigin(vtkOrigin);
+  vtkMatrix4x4* m = reader->GetPatientMatrix();
+  if (!m) throw InputError(path, "the series gives no patient orientation");
+  std::array<Vec3, 3> steps;
+  for (int a = 0; a < 3; ++a) steps[std::size_t(a)] = Vec3{m->GetElement(0, a), m->GetElement(1, a), m->GetElement(2, a)} * spacing[a];
+  setAxesFromSteps(v, steps, path, 0);
+  for (int r = 0; r < 3; ++r) {
+    double x = m->GetElement(r, 3);
+    for (int c = 0; c < 3; ++c) x += m->GetElement(r, c) * vtkOrigin[c];
+    v.origin[r] = x;
+  }
+  v.notes.push_back(std::to_string(files.size()) + " DICOM files, transfer syntax " +
+                    meta->Get(0, DC::TransferSyntaxUID).AsString());
+  return v;
+}
+
+}  // namespace reamsim::ct::io

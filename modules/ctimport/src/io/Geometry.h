@@ -1,0 +1,13 @@
+#pragma once
+// Turns per-axis step vectors (spacing included, as NRRD "space directions" or a scaled matrix) into the
+// volume's spacing and orthonormal direction; errors name the file and header line.
+#include <array>
+#include <string>
+
+#include "reamsim/ctimport/CtVolume.h"
+
+namespace reamsim::ct::io {
+
+void setAxesFromSteps(CtVolume& v, const std::array<Vec3, 3>& steps, const std::string& path, long line);
+
+}  // namespace reamsim::ct::io

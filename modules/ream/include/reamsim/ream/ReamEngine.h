@@ -1,0 +1,68 @@
+#pragma once
+// The half of the reaming loop that may run off the UI thread: the collision query and the Boolean, on
+// a cutting engine this object owns. It never touches the Document (single-threaded by contract);
+// commitReamStep (ReamStep.h) applies its result to the document on the document's thread.
+//
+// Threading: one call at a time (compute on a worker, adopt on the UI thread while no compute runs).
+// BoneState values are immutable, so the caller may hand the current state to a worker.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "reamsim/core/BoneState.h"
+#include "reamsim/core/Pose.h"
+#include "reamsim/ream/ReamBackends.h"
+
+namespace reamsim {
+
+struct ReamComputation {
+  Pose pose;
+  std::uint64_t baseRevision = 0;  // bone revision the step was computed against
+  ThesisContactResult contact;
+  bool contactChecked = false;     // false: no collision backend, nothing was queried
+  ReferenceCut cut;                // cut.changed: `next` holds the bone after the cut
+  std::optional<BoneState> next;
+  double volumeBookkeepingError = 0;  // |removed − (V_before − V_after)|
+};
+
+class ReamEngine {
+ public:
+  // `contact` may be null (no collision: nothing is cut) and `cut` empty (collision and alerts only).
+  ReamEngine(std::shared_ptr<const TriangleMesh> cuttingVolumeLocal, std::unique_ptr<ContactBackend> contact,
+             CutBackendFactory cut);
+  ~ReamEngine();
+
+  // Builds the cutting engine for this bone state now (otherwise the first compute does). Throws what
+  // the cut backend throws for a bone it cannot cut (e.g. an open surface).
+  void prepare(const BoneState& bone, std::uint64_t revision);
+  // One step at `pose`; stepMm is the tip travel since the previous step (grows the broad phase).
+  // Throws std::runtime_error when the Boolean fails; the engine then resyncs on the next call.
+  ReamComputation compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm);
+  // The `next` of the last compute was committed to the bone history as `revision`.
+  void adopt(std::uint64_t revision);
+
+  bool canCollide() const { return contact_ != nullptr; }
+  bool canCut() const { return static_cast<bool>(cutFactory_); }
+  BoneInvariants checkBone() const;  // costly; precondition: prepared or computed at least once
+  const std::shared_ptr<const TriangleMesh>& cuttingVolume() const { return cuttingVolume_; }
+
+ private:
+  void sync(const BoneState& bone, std::uint64_t revision);
+
+  std::shared_ptr<const TriangleMesh> cuttingVolume_;
+  std::vector<Vec3> localFaceVertices_;
+  std::unique_ptr<ContactBackend> contact_;
+  CutBackendFactory cutFactory_;
+  std::unique_ptr<CutBackend> cutter_;
+  TriangleMesh boneMesh_;              // the bone as the collision query sees it
+  std::uint64_t meshRevision_ = 0;     // revision of boneMesh_ (0: none)
+  std::uint64_t cutterRevision_ = 0;   // revision the cutter holds (0: none)
+  bool pendingAdopt_ = false;          // the cutter is one cut ahead of any committed revision
+};
+
+// Vertices of a cutting volume that face the feed direction (+Z): the probes of the thesis's rays.
+std::vector<Vec3> forwardFacingVertices(const TriangleMesh& cuttingVolume);
+
+}  // namespace reamsim

@@ -1,0 +1,35 @@
+#include "reamsim/ream/LocalCutBackend.h"
+
+#include "reamsim/csg/LocalSubtractor.h"
+
+namespace reamsim {
+namespace {
+
+class LocalCutBackend final : public CutBackend {
+ public:
+  explicit LocalCutBackend(const TriangleMesh& bone) : engine_(bone) {}
+  ReferenceCut subtract(const TriangleMesh& tool) override {
+    const LocalCut c = engine_.subtract(tool);
+    ReferenceCut r;
+    r.changed = c.changed;
+    r.removedMm3 = c.removedMm3;
+    r.volumeBeforeMm3 = c.volumeBeforeMm3;
+    r.volumeAfterMm3 = c.volumeAfterMm3;
+    r.facesAfter = c.facesAfter;
+    r.milliseconds = c.milliseconds;
+    return r;
+  }
+  TriangleMesh mesh() const override { return engine_.mesh(); }
+  BoneInvariants checkInvariants() const override { return engine_.checkInvariants(); }
+
+ private:
+  LocalSubtractor engine_;
+};
+
+}  // namespace
+
+CutBackendFactory localCutBackendFactory() {
+  return [](const TriangleMesh& bone) -> std::unique_ptr<CutBackend> { return std::make_unique<LocalCutBackend>(bone); };
+}
+
+}  // namespace reamsim

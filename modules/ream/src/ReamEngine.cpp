@@ -1,0 +1,99 @@
+#include "reamsim/ream/ReamEngine.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace reamsim {
+namespace {
+
+TriangleMesh transformed(const TriangleMesh& local, const RigidTransform& t) {
+  TriangleMesh out = local;
+  for (Vec3& p : out.vertices) p = t.apply(p);
+  return out;
+}
+
+}  // namespace
+
+std::vector<Vec3> forwardFacingVertices(const TriangleMesh& m) {
+  std::vector<Vec3> normal(m.vertices.size());
+  for (const Triangle& t : m.triangles) {
+    const Vec3 area = cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]);
+    for (std::uint32_t v : t) normal[v] += area;
+  }
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i < m.vertices.size(); ++i)
+    if (normal[i].z > 0) out.push_back(m.vertices[i]);
+  return out;
+}
+
+ReamEngine::ReamEngine(std::shared_ptr<const TriangleMesh> cuttingVolumeLocal, std::unique_ptr<ContactBackend> contact,
+                       CutBackendFactory cut)
+    : cuttingVolume_(std::move(cuttingVolumeLocal)), contact_(std::move(contact)), cutFactory_(std::move(cut)) {
+  if (!cuttingVolume_) throw std::invalid_argument("the reamer has no cutting volume");
+  localFaceVertices_ = forwardFacingVertices(*cuttingVolume_);
+}
+
+ReamEngine::~ReamEngine() = default;
+
+void ReamEngine::prepare(const BoneState& bone, std::uint64_t revision) { sync(bone, revision); }
+
+// The cutter keeps exact coordinates between cuts; when the bone changed underneath (undo, a new import,
+// a dropped computation) it restarts from the given state.
+void ReamEngine::sync(const BoneState& bone, std::uint64_t revision) {
+  if (meshRevision_ != revision || pendingAdopt_) {
+    boneMesh_ = bone.toMesh();
+    meshRevision_ = revision;
+  }
+  if (cutFactory_ && (!cutter_ || cutterRevision_ != revision || pendingAdopt_)) {
+    cutter_.reset();
+    cutterRevision_ = 0;
+    cutter_ = cutFactory_(boneMesh_);
+    cutterRevision_ = revision;
+  }
+  pendingAdopt_ = false;
+}
+
+ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm) {
+  sync(bone, revision);
+  ReamComputation out;
+  out.pose = pose;
+  out.baseRevision = revision;
+  if (!contact_) return out;
+
+  const RigidTransform toBone = toTransform(pose);
+  const TriangleMesh tool = transformed(*cuttingVolume_, toBone);
+  std::vector<Vec3> probes;
+  probes.reserve(localFaceVertices_.size());
+  for (const Vec3& p : localFaceVertices_) probes.push_back(toBone.apply(p));
+  out.contact = contact_->query(boneMesh_, bone.bounds(), tool, probes, pose.axis, stepMm);
+  out.contactChecked = true;
+
+  // Whenever the boxes overlap the exact Boolean runs, so a contact the rays cannot see (bone entering
+  // from the side) is still cut; the rays give the axial gap and the contact point.
+  if (out.contact.boxesOverlap && cutter_) {
+    pendingAdopt_ = true;  // from here the cutter may differ from `revision` (also if subtract throws)
+    out.cut = cutter_->subtract(tool);
+    if (!out.cut.changed) {
+      pendingAdopt_ = false;
+      return out;
+    }
+    out.volumeBookkeepingError = std::abs(out.cut.removedMm3 - (out.cut.volumeBeforeMm3 - out.cut.volumeAfterMm3));
+    boneMesh_ = cutter_->mesh();
+    out.next = BoneState::commitByDiff(bone, boneMesh_);
+  }
+  return out;
+}
+
+void ReamEngine::adopt(std::uint64_t revision) {
+  if (!pendingAdopt_) return;
+  meshRevision_ = revision;
+  cutterRevision_ = revision;
+  pendingAdopt_ = false;
+}
+
+BoneInvariants ReamEngine::checkBone() const {
+  if (!cutter_) throw std::logic_error("ReamEngine::checkBone: no cutting engine");
+  return cutter_->checkInvariants();
+}
+
+}  // namespace reamsim

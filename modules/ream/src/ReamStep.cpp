@@ -1,0 +1,43 @@
+#include "reamsim/ream/ReamStep.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace reamsim {
+
+CutLogEntry commitReamStep(Document& document, BoneNode& bone, ReamerNode& reamer, LogNode& log, AlertNode* alerts,
+                           ReamComputation& c, std::size_t stepIndex, const CommitOptions& options) {
+  if (bone.currentRevision() != c.baseRevision)
+    throw std::logic_error("commitReamStep: the bone changed since the step was computed");
+  Document::BatchScope batch(document);
+  reamer.setPose(c.pose);
+
+  CutLogEntry e;
+  e.stepIndex = stepIndex;
+  e.pose = c.pose;
+  e.boxesOverlap = c.contact.boxesOverlap;
+  e.minDistanceMm = c.contact.minDistanceMm;
+  e.contactPoint = c.contact.contactPoint;
+  e.cumulativeMm3 = log.cumulativeMm3();
+  e.cutMs = c.cut.milliseconds;
+  if (c.cut.changed && c.next) {
+    e.contact = true;
+    e.removedMm3 = c.cut.removedMm3;
+    e.cumulativeMm3 += e.removedMm3;
+    e.boneStateId = bone.commit(std::move(*c.next), "cut " + std::to_string(stepIndex));
+    c.next.reset();
+  }
+  if (options.initialVolumeMm3) e.cumulativeMm3 = *options.initialVolumeMm3 - bone.current().volume();
+  e.faces = bone.current().liveTriangleCount();
+  if (options.logEveryStep || e.contact) log.append(e);
+
+  if (alerts) {
+    std::vector<Alert> list;
+    if (e.boxesOverlap) list.push_back({AlertKind::BoundsOverlap, reamer.id(), bone.id(), e.minDistanceMm});
+    if (e.contact) list.push_back({AlertKind::Contact, reamer.id(), bone.id(), 0.0});
+    alerts->setAlerts(std::move(list));
+  }
+  return e;
+}
+
+}  // namespace reamsim

@@ -1,0 +1,76 @@
+// `reamsim-cli bench collision` as a user runs it: one JSON object with the documented fields, and clear
+// errors for bad input. Small and fast: the bundled 1.5k-face scapula, few poses, tiny baseline budgets.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+CliRun run(const std::string& args) {
+  CliRun r;
+  const std::string errFile = testing::TempDir() + "/bench_cli_stderr.txt";
+  const std::string command = std::string(REAMSIM_CLI) + " " + args + " 2>" + errFile;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (FILE* f = std::fopen(errFile.c_str(), "r")) {
+    while (std::size_t n = fread(buf.data(), 1, buf.size(), f)) r.err.append(buf.data(), n);
+    std::fclose(f);
+  }
+  return r;
+}
+
+const std::string kBone = std::string(REAMSIM_RESOURCE_DIR) + "/bones/scapula_R_opensim.vtp";
+
+}  // namespace
+
+TEST(collisionBenchCli, PrintsOneJsonObjectWithEveryQueryType) {
+  const CliRun r = run("bench collision --bone " + kBone + " --poses 40 --thesis-budget-s 0.05 --cgal-budget-s 0.05 "
+                       "--cut-steps 2 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["faces"], 1543);
+  EXPECT_EQ(j["bone"]["closed"], false);
+  EXPECT_GT(j["build_ms"].get<double>(), 0.0);
+  EXPECT_TRUE(j.contains("update_after_cut_ms"));
+  EXPECT_NE(j["update"]["kind"].get<std::string>().find("dent"), std::string::npos);  // open bone: no exact cut
+  for (const char* q : {"overlap_any", "overlap_faces", "min_distance", "first_contact", "ray_first_hit",
+                        "ray_first_hit_culled", "ray_all_hits", "penetration_depth"}) {
+    ASSERT_TRUE(j["queries"].contains(q)) << q;
+    EXPECT_GT(j["queries"][q]["median_us"].get<double>(), 0.0) << q;
+    EXPECT_GE(j["queries"][q]["p99_us"].get<double>(), j["queries"][q]["median_us"].get<double>()) << q;
+    EXPECT_TRUE(j["queries"][q].contains("speedup_vs_thesis")) << q;
+  }
+  EXPECT_TRUE(j["queries"]["ray_first_hit"].contains("speedup_vs_cgal"));
+  EXPECT_TRUE(j["queries"]["min_distance"]["cgal"].is_null());  // AABB_tree has no triangle-triangle distance
+  EXPECT_EQ(j["checks"]["ray_first_hit_identical_to_brute_force"], "40/40");
+  EXPECT_TRUE(j.contains("targets"));
+}
+
+TEST(collisionBenchCli, BadInputIsAClearError) {
+  CliRun r = run("bench collision --bone /nonexistent/bone.ply --json");
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_NE(r.err.find("/nonexistent/bone.ply"), std::string::npos) << r.err;
+  r = run("bench collision --bone " + kBone + " --bogus 1");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--bogus"), std::string::npos) << r.err;
+  r = run("bench collision --poses 10");
+  EXPECT_EQ(r.exitCode, 2);  // --bone is required
+  r = run("bench collision --bone " + kBone + " --reamer no-such-preset");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("no-such-preset"), std::string::npos) << r.err;
+  EXPECT_EQ(run("bench").exitCode, 2);
+  EXPECT_EQ(run("bench frobnicate").exitCode, 2);
+}

@@ -1,0 +1,201 @@
+// The BVH following a bone being cut: local updates from MeshDelta / slot changes / commitByDiff, checked
+// against a brute-force view of the same BoneState after every cut, and its quality over thousands of cuts.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "CollisionFixtures.h"
+#include "reamsim/collision/BoneCollider.h"
+#include "reamsim/collision/BruteForce.h"
+#include "reamsim/collision/SyntheticCut.h"
+#include "reamsim/csg/ReferenceSubtractor.h"
+
+using namespace reamsim;
+
+namespace {
+
+// The state as a plain mesh plus the slot of each mesh triangle (toMesh keeps slot order).
+struct Snapshot {
+  TriangleMesh mesh;
+  std::vector<std::uint32_t> slotOf;
+};
+Snapshot snapshot(const BoneState& s) {
+  Snapshot out{s.toMesh(), {}};
+  s.forEachLiveTriangle([&](std::uint32_t slot, const Triangle&) { out.slotOf.push_back(slot); });
+  return out;
+}
+
+// Queries of every type on the collider agree with the brute force on the state's mesh.
+void expectAgreesWithBruteForce(const BoneCollider& collider, const BoneState& state, const ReamerModel& reamer,
+                                std::mt19937_64& rng, int queries) {
+  const Snapshot snap = snapshot(state);
+  ASSERT_EQ(snap.slotOf.size(), collider.bvh().triangleCount());
+  for (int i = 0; i < queries; ++i) {
+    const RigidTransform T = toTransform(test::poseNearSurface(snap.mesh, rng, -2, 3, 25));
+    const OverlapResult ref = bruteForceOverlap(snap.mesh, reamer, T, collider.closed());
+    const OverlapResult got = collider.overlap(reamer, T);
+    std::vector<std::uint32_t> mapped;
+    for (std::uint32_t idx : ref.touchedSlots) mapped.push_back(snap.slotOf[idx]);
+    std::sort(mapped.begin(), mapped.end());
+    EXPECT_EQ(got.touchedSlots, mapped);
+    EXPECT_NEAR(collider.faceDistance(reamer, T).distanceMm, bruteForceFaceDistance(snap.mesh, reamer, T).distanceMm,
+                1e-9);
+    const Vec3 o = T.translation - T.applyToDirection({0, 0, 1}) * 5.0, dir = T.applyToDirection({0, 0, 1});
+    const auto bf = firstHit(snap.mesh, o, dir);
+    const auto bv = collider.firstHit(o, dir);
+    ASSERT_EQ(bf.has_value(), bv.has_value());
+    if (bf) {
+      EXPECT_EQ(bf->t, bv->t);
+      EXPECT_EQ(snap.slotOf[bf->triangle], bv->triangle);
+    }
+    EXPECT_EQ(allHits(snap.mesh, o, dir).size(), collider.allHits(o, dir).size());
+    if (::testing::Test::HasFailure()) return;
+  }
+}
+
+double freshSah(const BoneState& s) { return BoneCollider(s).bvh().quality().sahCost; }
+
+}  // namespace
+
+TEST(collisionBvhUpdate, DentCutsKeepTheTreeValidAndTheQueriesExact) {
+  BoneState state = BoneState::fromMesh(test::defaultScapula());
+  BoneCollider collider(state);
+  ASSERT_TRUE(collider.closed());
+  ASSERT_EQ(collider.bvh().validate(), "");
+  const ReamerModel reamer = ReamerModel::fromSpec(test::smallSpec(false, 24, 6));
+  std::mt19937_64 rng(5);
+  std::size_t changed = 0;
+  for (int cut = 0; cut < 60; ++cut) {
+    const Snapshot snap = snapshot(state);
+    const RigidTransform T = toTransform(test::poseNearSurface(snap.mesh, rng, -1.0, -0.2, 20));
+    const OverlapResult touched = collider.overlap(reamer, T);
+    if (touched.touchedSlots.empty()) continue;
+    const MeshDelta delta = dentDelta(state, touched.touchedSlots, reamer, T);
+    DeltaPlacement placement;
+    state = state.applyDelta(delta, &placement);
+    const BvhUpdateStats stats = collider.applyDelta(state, delta, placement);
+    EXPECT_EQ(stats.removed, delta.removedTriangles.size());
+    EXPECT_EQ(stats.added, delta.addedTriangles.size());
+    ASSERT_EQ(collider.bvh().validate(), "") << "after cut " << cut;
+    changed += stats.removed;
+    if (cut % 10 == 9) expectAgreesWithBruteForce(collider, state, reamer, rng, 20);
+    if (::testing::Test::HasFailure()) return;
+  }
+  EXPECT_GT(changed, 2000u);
+}
+
+// Thousands of cuts: the tree stays valid, its SAH cost stays close to a fresh build's, and the rebuild work
+// stays proportional to the edits.
+TEST(collisionBvhUpdate, QualityHoldsOverThousandsOfCuts) {
+  BoneState state = BoneState::fromMesh(test::defaultScapula());
+  BoneCollider collider(state);
+  const ReamerModel reamer = ReamerModel::fromSpec(test::smallSpec(false, 16, 4));
+  std::mt19937_64 rng(6);
+  std::size_t edits = 0, rebuilt = 0, cuts = 0;
+  const TriangleMesh original = state.toMesh();
+  for (int cut = 0; cut < 2000; ++cut) {
+    // Cut where the current surface is: sample the original mesh, then place against the current tree.
+    const RigidTransform T = toTransform(test::poseNearSurface(original, rng, -1.5, 0.5, 20));
+    const OverlapResult touched = collider.overlap(reamer, T);
+    if (touched.touchedSlots.empty()) continue;
+    const MeshDelta delta = dentDelta(state, touched.touchedSlots, reamer, T);
+    DeltaPlacement placement;
+    state = state.applyDelta(delta, &placement);
+    const BvhUpdateStats s = collider.applyDelta(state, delta, placement);
+    edits += s.removed + s.added;
+    rebuilt += s.rebuiltTriangles;
+    ++cuts;
+    if (cut % 250 == 0) {
+      ASSERT_EQ(collider.bvh().validate(), "") << "after cut " << cut;
+    }
+  }
+  ASSERT_EQ(collider.bvh().validate(), "");
+  EXPECT_GT(cuts, 1000u);
+  const double ratio = collider.bvh().quality().sahCost / freshSah(state);
+  std::printf("after %zu cuts (%zu edits, %zu triangles re-sorted): SAH cost %.4f x a fresh build, depth %zu\n", cuts,
+              edits, rebuilt, ratio, collider.bvh().quality().maxDepth);
+  EXPECT_LT(ratio, 1.3) << "SAH cost relative to a fresh build after " << cuts << " cuts";
+  EXPECT_LE(rebuilt, 4 * edits + 2 * state.liveTriangleCount());
+  std::mt19937_64 qrng(7);
+  expectAgreesWithBruteForce(collider, state, reamer, qrng, 30);
+}
+
+// An engine that only returns a whole new mesh (the CGAL reference) goes through commitByDiff and syncTo.
+TEST(collisionBvhUpdate, ExactCgalCutsFollowedBySyncTo) {
+  const TriangleMesh bone = test::defaultScapula();
+  BoneState state = BoneState::fromMesh(bone);
+  BoneCollider collider(state);
+  std::ifstream in(std::string(REAMSIM_RESOURCE_DIR) + "/bones/scapula_R_glenoid.json");
+  const nlohmann::json g = nlohmann::json::parse(in);
+  const Vec3 centre{g["centre_mm"][0], g["centre_mm"][1], g["centre_mm"][2]};
+  const Vec3 outward{g["outward_axis"][0], g["outward_axis"][1], g["outward_axis"][2]};
+  ReamerSpec spec = test::smallSpec(false, 32, 6);
+  spec.diameterMm = 30;
+  spec.sphereRadiusMm = 30;
+  const ReamerModel reamer = ReamerModel::fromSpec(spec);
+  ReferenceSubtractor engine(bone);
+  std::mt19937_64 rng(8);
+  for (int step = 1; step <= 3; ++step) {
+    Pose p;
+    p.axis = -outward;
+    p.tip = centre + outward * 1.0 + p.axis * (0.6 * step);
+    const RigidTransform T = toTransform(p);
+    TriangleMesh tool = reamer.solid();
+    for (Vec3& v : tool.vertices) v = T.apply(v);
+    const ReferenceCut cut = engine.subtract(tool);
+    ASSERT_TRUE(cut.changed) << "step " << step;
+    const BoneState next = BoneState::commitByDiff(state, engine.mesh());
+    const SlotChanges changes = diffSlots(collider.bvh(), next);
+    EXPECT_FALSE(changes.removed.empty());
+    EXPECT_FALSE(changes.added.empty());
+    const BvhUpdateStats s = collider.syncTo(next);
+    EXPECT_EQ(s.removed, changes.removed.size());
+    EXPECT_EQ(s.added, changes.added.size());
+    state = next;
+    ASSERT_EQ(collider.bvh().validate(), "");
+    EXPECT_TRUE(diffSlots(collider.bvh(), state).removed.empty());
+    // The cut region is where the reamer is: it now touches the new faces, and nothing is left to cut deeper
+    // than the cut itself.
+    EXPECT_TRUE(collider.overlap(reamer, T, OverlapMode::AnyContact).overlap);
+    expectAgreesWithBruteForce(collider, state, reamer, rng, 25);
+  }
+}
+
+TEST(collisionBvhUpdate, InvalidUpdatesAreRejectedAndLeaveTheTreeUnchanged) {
+  const TriangleMesh m = test::icosphere(2, 10, {0, 0, 0});
+  TriangleBvh bvh = TriangleBvh::fromMesh(m);
+  const BvhTriangle t{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  EXPECT_THROW(bvh.update({9999}, {}, {}), std::invalid_argument);         // not in the tree
+  EXPECT_THROW(bvh.update({3, 3}, {}, {}), std::invalid_argument);         // removed twice
+  EXPECT_THROW(bvh.update({}, {5}, {t}), std::invalid_argument);           // already present
+  EXPECT_THROW(bvh.update({}, {400, 400}, {t, t}), std::invalid_argument);  // added twice
+  EXPECT_THROW(bvh.update({}, {400}, {}), std::invalid_argument);          // sizes differ
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(bvh.update({}, {400}, {{{nan, 0, 0}, {1, 0, 0}, {0, 1, 0}}}), std::invalid_argument);
+  EXPECT_EQ(bvh.triangleCount(), m.triangles.size());
+  EXPECT_EQ(bvh.validate(), "");
+  // Removing and re-adding the same slot in one update is allowed.
+  bvh.update({5}, {5}, {t});
+  EXPECT_EQ(bvh.validate(), "");
+  EXPECT_EQ(bvh.triangle(5).b, t.b);
+}
+
+TEST(collisionBvhUpdate, EmptyingAndRefillingTheTree) {
+  const TriangleMesh m = test::icosphere(1, 10, {0, 0, 0});
+  TriangleBvh bvh = TriangleBvh::fromMesh(m);
+  std::vector<std::uint32_t> all(m.triangles.size());
+  for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  bvh.update(all, {}, {});
+  EXPECT_TRUE(bvh.empty());
+  EXPECT_EQ(bvh.validate(), "");
+  std::vector<BvhTriangle> tris;
+  for (const Triangle& t : m.triangles) tris.push_back({m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]});
+  const BvhUpdateStats s = bvh.update({}, all, tris);
+  EXPECT_TRUE(s.fullRebuild);
+  EXPECT_EQ(bvh.triangleCount(), m.triangles.size());
+  EXPECT_EQ(bvh.validate(), "");
+  EXPECT_TRUE(insideClosedSurface(bvh, {0, 0, 0}));
+}

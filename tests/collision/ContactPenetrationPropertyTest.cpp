@@ -1,0 +1,192 @@
+// Queries 3 (first contact along a motion) and 5 (penetration depth along the axis) against their
+// brute-force references, >= 10,000 random motions/poses each over three bones and two reamers, plus
+// independent checks that do not share the event solver: at the reported time the surfaces touch and just
+// before they do not; backed out by the reported depth they separate. Tolerance: 1e-9 in t, 1e-9 x reamer
+// radius in depth.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "CollisionFixtures.h"
+#include "reamsim/collision/BruteForce.h"
+#include "reamsim/collision/FirstContact.h"
+#include "reamsim/collision/PenetrationQuery.h"
+#include "reamsim/collision/TriangleGeometry.h"
+
+using namespace reamsim;
+
+namespace {
+
+const double kPi = 3.14159265358979323846;
+
+// >= 10,000 queries per query type over the three bones (brute force on the 1.5k scapula is the costly part).
+constexpr std::size_t kSphereQueries = 4000, kSlabQueries = 4000, kScapulaQueries = 2000;
+static_assert(kSphereQueries + kSlabQueries + kScapulaQueries >= 10000);
+
+const TriangleMesh& sphere() {
+  static const TriangleMesh m = test::icosphere(2, 20, {3, -2, 1});
+  return m;
+}
+const TriangleMesh& slab() {
+  static const TriangleMesh m = test::block({-30, -30, 0}, {30, 30, 20}, 4);
+  return m;
+}
+const TriangleMesh& scapula() {
+  static const TriangleMesh m = test::bundledScapula();
+  return m;
+}
+
+// Brute force over all pairs: do the posed reamer surface and the bone surface touch?
+bool surfacesTouch(const TriangleMesh& bone, const ReamerModel& reamer, const RigidTransform& T) {
+  TriangleMesh r = reamer.solid();
+  for (Vec3& v : r.vertices) v = T.apply(v);
+  const Bounds rb = computeBounds(r).expanded(1e-6);
+  for (const Triangle& b : bone.triangles) {
+    Bounds bb;
+    for (std::uint32_t v : b) bb.add(bone.vertices[v]);
+    if (!bb.overlaps(rb)) continue;
+    for (const Triangle& t : r.triangles)
+      if (trianglesIntersect(r.vertices[t[0]], r.vertices[t[1]], r.vertices[t[2]], bone.vertices[b[0]],
+                             bone.vertices[b[1]], bone.vertices[b[2]]))
+        return true;
+  }
+  return false;
+}
+
+// A motion that starts off the surface and heads towards it, with a lateral drift and a rotation.
+std::pair<RigidTransform, RigidTransform> randomMotion(const TriangleMesh& bone, std::mt19937_64& rng, std::size_t i) {
+  std::uniform_real_distribution<double> u(0, 1);
+  const Pose start = test::poseNearSurface(bone, rng, 0.3, 3, 30);
+  const Vec3 lateral = test::anyPerpendicular(start.axis) * (u(rng) - 0.5);
+  const Vec3 tip1 = start.tip + start.axis * (5 * u(rng) - 0.5) + lateral;
+  const Vec3 k = normalized(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
+  // Mostly small turns; every 50th motion turns by more than 90 degrees (several path segments).
+  const double angle = (i % 50 == 0 ? 100 + 60 * u(rng) : 10 * u(rng)) * kPi / 180;
+  const RigidTransform from = toTransform(start);
+  RigidTransform to = from;
+  to.translation = tip1;
+  const Vec3 cols[3] = {{from.rotation[0], from.rotation[3], from.rotation[6]},
+                        {from.rotation[1], from.rotation[4], from.rotation[7]},
+                        {from.rotation[2], from.rotation[5], from.rotation[8]}};
+  for (int c = 0; c < 3; ++c) {
+    const Vec3 r = test::rotate(cols[c], k, angle);
+    to.rotation[c] = r.x;
+    to.rotation[3 + c] = r.y;
+    to.rotation[6 + c] = r.z;
+  }
+  return {from, to};
+}
+
+struct Counts {
+  std::size_t queries = 0, hits = 0, independent = 0;
+};
+
+Counts checkFirstContact(const TriangleMesh& bone, std::size_t n, std::size_t independentEvery, std::uint64_t seed) {
+  const TriangleBvh bvh = TriangleBvh::fromMesh(bone);
+  const ReamerModel reamers[2] = {ReamerModel::fromSpec(test::smallSpec(false)), ReamerModel::fromSpec(test::smallSpec(true))};
+  std::mt19937_64 rng(seed);
+  Counts c;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ReamerModel& reamer = reamers[i % 2];
+    const auto [from, to] = randomMotion(bone, rng, i);
+    const FirstContactResult ref = bruteForceFirstContact(bone, reamer, from, to);
+    const FirstContactResult got = queryFirstContact(bvh, reamer, from, to);
+    EXPECT_EQ(got.hit, ref.hit) << "query " << i << " t " << got.t << " vs " << ref.t;
+    if (got.hit && ref.hit) {
+      EXPECT_NEAR(got.t, ref.t, 1e-9) << "query " << i;
+    }
+    if (got.hit) {
+      EXPECT_NEAR(norm(got.normal), 1.0, 1e-9);
+      EXPECT_GE(got.t, 0.0);
+      EXPECT_LE(got.t, 1.0);
+    }
+    if (i % independentEvery == 0) {
+      // Independent of the event solver: touching at t, and (when t > 0) apart a little earlier; no contact:
+      // apart all along the path (sampled).
+      if (got.hit) {
+        EXPECT_TRUE(surfacesTouch(bone, reamer, interpolateMotion(from, to, got.t))) << "query " << i;
+        if (got.t > 1e-6) {
+          EXPECT_FALSE(surfacesTouch(bone, reamer, interpolateMotion(from, to, got.t - 1e-6))) << "query " << i;
+        }
+      } else {
+        for (int k = 0; k <= 16; ++k)
+          EXPECT_FALSE(surfacesTouch(bone, reamer, interpolateMotion(from, to, k / 16.0))) << "query " << i;
+      }
+      ++c.independent;
+    }
+    if (::testing::Test::HasFailure()) return c;
+    ++c.queries;
+    c.hits += got.hit;
+  }
+  return c;
+}
+
+Counts checkPenetration(const TriangleMesh& bone, bool closed, std::size_t n, std::size_t independentEvery,
+                        std::uint64_t seed) {
+  const TriangleBvh bvh = TriangleBvh::fromMesh(bone);
+  const ReamerModel reamers[2] = {ReamerModel::fromSpec(test::smallSpec(false)), ReamerModel::fromSpec(test::smallSpec(true))};
+  std::mt19937_64 rng(seed);
+  Counts c;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ReamerModel& reamer = reamers[i % 2];
+    const RigidTransform T = toTransform(test::poseNearSurface(bone, rng, -4, 1, 30));
+    const PenetrationResult ref = bruteForceAxialPenetration(bone, reamer, T, closed);
+    const PenetrationResult got = queryAxialPenetration(bvh, reamer, T, closed);
+    const double tol = kChainToleranceRelative * reamer.radius();
+    EXPECT_EQ(got.penetrating, ref.penetrating) << "query " << i;
+    EXPECT_EQ(got.enclosed, ref.enclosed) << "query " << i;
+    EXPECT_NEAR(got.depthMm, ref.depthMm, tol) << "query " << i;
+    if (i % independentEvery == 0 && got.penetrating && !got.enclosed) {
+      // Backed out by the depth (+ a hair) the surfaces are apart; a hair less they still touch.
+      auto backed = [&](double d) {
+        RigidTransform b = T;
+        b.translation = T.translation + got.backOut * d;
+        return b;
+      };
+      EXPECT_FALSE(surfacesTouch(bone, reamer, backed(got.depthMm + 1e-6))) << "query " << i;
+      if (got.depthMm > 1e-6) {
+        EXPECT_TRUE(surfacesTouch(bone, reamer, backed(got.depthMm - 1e-6))) << "query " << i;
+      }
+      ++c.independent;
+    }
+    if (::testing::Test::HasFailure()) return c;
+    ++c.queries;
+    c.hits += got.depthMm > 0;
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST(collisionFirstContactProperty, Sphere) {
+  const Counts c = checkFirstContact(sphere(), kSphereQueries, 40, 31);
+  EXPECT_EQ(c.queries, kSphereQueries);
+  EXPECT_GT(c.hits, 1000u);
+  EXPECT_LT(c.hits, 3300u);
+}
+TEST(collisionFirstContactProperty, Slab) {
+  const Counts c = checkFirstContact(slab(), kSlabQueries, 40, 32);
+  EXPECT_EQ(c.queries, kSlabQueries);
+  EXPECT_GT(c.hits, 1000u);
+}
+TEST(collisionFirstContactProperty, BundledScapula) {
+  const Counts c = checkFirstContact(scapula(), kScapulaQueries, 40, 33);
+  EXPECT_EQ(c.queries, kScapulaQueries);
+  EXPECT_GT(c.hits, 1000u);
+}
+
+TEST(collisionPenetrationProperty, SphereClosed) {
+  const Counts c = checkPenetration(sphere(), true, kSphereQueries, 40, 41);
+  EXPECT_EQ(c.queries, kSphereQueries);
+  EXPECT_GT(c.hits, 1000u);
+}
+TEST(collisionPenetrationProperty, SlabClosed) {
+  const Counts c = checkPenetration(slab(), true, kSlabQueries, 40, 42);
+  EXPECT_EQ(c.queries, kSlabQueries);
+  EXPECT_GT(c.hits, 1000u);
+}
+TEST(collisionPenetrationProperty, BundledScapulaOpen) {
+  const Counts c = checkPenetration(scapula(), false, kScapulaQueries, 40, 43);
+  EXPECT_EQ(c.queries, kScapulaQueries);
+  EXPECT_GT(c.hits, 1000u);
+}

@@ -1,0 +1,85 @@
+// Bones in and out of the window: import errors in a dialog with the importer's message (never a crash),
+// a valid mesh replaces the bone, save in another format, recent files, drag and drop, CSV export.
+#include <QDockWidget>
+#include <QFile>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QTemporaryDir>
+#include <QUrl>
+#include <QtTest/QTest>
+
+#include "GuiEnvironment.h"
+#include "reamsim/mesh/MeshIO.h"
+
+namespace reamsim::ui::test {
+namespace {
+
+const QString kData = REAMSIM_TEST_DATA_DIR;
+
+TEST(GuiFiles, MalformedFileShowsTheImporterMessageAndKeepsTheBone) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  const std::uint64_t revision = f.session().bone()->currentRevision();
+  const QString path = kData + "/malformed/stl_ascii_bad_number.stl";
+  w.openFile(path);
+  w.waitImport();
+  EXPECT_TRUE(w.lastError().contains("stl_ascii_bad_number.stl")) << w.lastError().toStdString();
+  EXPECT_TRUE(w.lastError().contains("cannot parse vertex x from '1.0abc'")) << w.lastError().toStdString();
+  auto* box = w.findChild<QMessageBox*>("ErrorDialog");
+  ASSERT_NE(box, nullptr);
+  EXPECT_TRUE(box->isVisible());
+  EXPECT_TRUE(box->text().contains("1.0abc"));
+  box->close();
+  EXPECT_EQ(f.session().bone()->currentRevision(), revision);
+  EXPECT_TRUE(w.recentFiles().isEmpty());
+}
+
+TEST(GuiFiles, OpenSaveRecentDropAndCsvExport) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f(REAMSIM_GUI_PLUGIN_DIR, false);
+  MainWindow& w = *f.window;
+  const QString cube = kData + "/good/cube_quads_comments.off";
+  w.openFile(cube);
+  w.waitImport();
+  ASSERT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_EQ(f.session().bone()->current().liveTriangleCount(), 12u);
+  EXPECT_TRUE(f.session().canCut()) << f.session().cuttingStatus().toStdString();
+  ASSERT_EQ(w.recentFiles().size(), 1);
+  EXPECT_TRUE(w.recentFiles().front().endsWith("cube_quads_comments.off"));
+  EXPECT_TRUE(w.windowTitle().contains("cube_quads_comments.off"));
+
+  QTemporaryDir out;
+  const QString saved = out.filePath("bone.stl");
+  w.saveBoneAs(saved);
+  ASSERT_TRUE(QFile::exists(saved)) << w.lastError().toStdString();
+  EXPECT_EQ(readMesh(saved.toStdString()).mesh.triangles.size(), 12u);
+  w.saveBoneAs(out.filePath("bone.unknownformat"));  // refused with the writer's message
+  EXPECT_TRUE(w.lastError().contains("bone.unknownformat")) << w.lastError().toStdString();
+
+  // Drag and drop a file onto the window: it is opened like File → Open.
+  QMimeData mime;
+  mime.setUrls({QUrl::fromLocalFile(kData + "/good/tetra_le_vertex_index.ply")});
+  QDragEnterEvent enter(QPoint(50, 50), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(&w, &enter);
+  EXPECT_TRUE(enter.isAccepted());
+  QDropEvent drop(QPointF(50, 50), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(&w, &drop);
+  w.waitImport();
+  EXPECT_EQ(f.session().bone()->current().liveTriangleCount(), 4u);
+  EXPECT_EQ(w.recentFiles().size(), 2);
+
+  // CSV export of the (empty) log through the panel: header only.
+  auto* panel = w.findChild<QDockWidget*>("LogPanel");
+  ASSERT_NE(panel, nullptr);
+  QString error;
+  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "exportCsv", Q_RETURN_ARG(QString, error),
+                                        Q_ARG(QString, out.filePath("log.csv")), Q_ARG(bool, false)));
+  EXPECT_TRUE(error.isEmpty()) << error.toStdString();
+  QFile csv(out.filePath("log.csv"));
+  ASSERT_TRUE(csv.open(QIODevice::ReadOnly));
+  EXPECT_EQ(csv.readAll().count('\n'), 1);
+}
+
+}  // namespace
+}  // namespace reamsim::ui::test

@@ -1,0 +1,115 @@
+// The two halves of the reaming loop used by the GUI: the engine computes on a worker thread, the
+// document commits on the main thread. Same results as the synchronous controller; a computation made
+// against a bone that changed meanwhile (undo) is refused and the engine resyncs.
+#include <gtest/gtest.h>
+
+#include <future>
+#include <stdexcept>
+
+#include "ReamFixture.h"
+#include "reamsim/ream/ReamStep.h"
+#include "reamsim/tools/Primitives.h"
+
+namespace reamsim {
+namespace {
+
+TriangleMesh block() { return buildBox(Bounds{{-40, -40, -30}, {40, 40, 0}}, 4); }
+
+ReamerSpec flat20() {
+  ReamerSpec spec;
+  spec.name = "flat-20";
+  spec.diameterMm = 20;
+  spec.bodyLengthMm = 10;
+  spec.segments = 32;
+  return spec;
+}
+
+Pose at(double z) { return Pose{{0, 0, z}, {0, 0, -1}, 0}; }
+
+ReamEngine referenceEngine(const ReamerNode& reamer) {
+  return ReamEngine(reamer.cuttingVolume(), makeThesisContactBackend(), referenceCutBackendFactory());
+}
+
+TEST(ReamEngine, WorkerThreadStepsMatchTheController) {
+  test::ReamScene sync(block(), flat20());
+  test::ReamScene split(block(), flat20());
+  ReamEngine engine = referenceEngine(*split.reamer);
+  const double zs[] = {1.0, 0.2, -0.3, -0.8, -1.3};
+  for (std::size_t i = 0; i < std::size(zs); ++i) {
+    const ReamStepOutcome expected = sync.controller->moveTo(at(zs[i]));
+    const BoneState bone = split.bone->current();  // immutable value: safe to hand to the worker
+    const std::uint64_t revision = split.bone->currentRevision();
+    const double stepMm = i == 0 ? 0.0 : std::abs(zs[i] - zs[i - 1]);
+    ReamComputation c =
+        std::async(std::launch::async, [&] { return engine.compute(bone, revision, at(zs[i]), stepMm); }).get();
+    const CutLogEntry e = commitReamStep(split.doc, *split.bone, *split.reamer, *split.log, split.alerts, c, i);
+    if (e.boneStateId) engine.adopt(e.boneStateId);
+    EXPECT_EQ(e.contact, expected.entry.contact) << "step " << i;
+    EXPECT_EQ(e.boxesOverlap, expected.entry.boxesOverlap) << "step " << i;
+    EXPECT_NEAR(e.removedMm3, expected.entry.removedMm3, 1e-9 * std::max(1.0, e.removedMm3)) << "step " << i;
+    EXPECT_EQ(e.faces, expected.entry.faces) << "step " << i;
+    EXPECT_EQ(split.alerts->alerts().size(), sync.alerts->alerts().size());
+  }
+  EXPECT_GT(split.log->cumulativeMm3(), 100.0);  // 1.3 mm of a 20 mm flat reamer: ~400 mm3
+  EXPECT_NEAR(split.bone->current().volume(), sync.bone->current().volume(), 1e-6);
+  EXPECT_FALSE(engine.checkBone().selfIntersectsExact);
+}
+
+TEST(ReamEngine, StaleComputationIsRefusedAndEngineResyncs) {
+  test::ReamScene s(block(), flat20());
+  ReamEngine engine = referenceEngine(*s.reamer);
+  ReamComputation first = engine.compute(s.bone->current(), s.bone->currentRevision(), at(-0.5), 0);
+  const CutLogEntry cut = commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, first, 0);
+  ASSERT_TRUE(cut.contact);
+  engine.adopt(cut.boneStateId);
+  const double afterFirst = s.bone->current().volume();
+
+  ReamComputation second = engine.compute(s.bone->current(), s.bone->currentRevision(), at(-1.0), 0.5);
+  ASSERT_TRUE(second.cut.changed);
+  ASSERT_TRUE(s.bone->undo());  // the user undid while the second step was computed
+  EXPECT_THROW(commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, second, 1), std::logic_error);
+  EXPECT_EQ(s.log->size(), 1u);
+
+  // Without adopt the engine must rebuild from the undone state: a cut to -1.0 removes ~2x the first.
+  ReamComputation again = engine.compute(s.bone->current(), s.bone->currentRevision(), at(-1.0), 0.5);
+  ASSERT_TRUE(again.cut.changed);
+  EXPECT_NEAR(again.cut.removedMm3, 2 * cut.removedMm3, 0.01 * cut.removedMm3);
+  EXPECT_GT(s.bone->current().volume(), afterFirst);
+}
+
+TEST(ReamEngine, CollisionOnlyEngineNeverCutsAndCutLogSkipsNonCuts) {
+  test::ReamScene s(block(), flat20());
+  ReamEngine engine(s.reamer->cuttingVolume(), makeThesisContactBackend(), CutBackendFactory{});
+  EXPECT_FALSE(engine.canCut());
+  const double volume = s.bone->current().volume();
+  ReamComputation c = engine.compute(s.bone->current(), s.bone->currentRevision(), at(-0.5), 0);
+  EXPECT_TRUE(c.contactChecked);
+  EXPECT_TRUE(c.contact.penetrating);
+  EXPECT_FALSE(c.cut.changed);
+  const CutLogEntry e = commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, c, 0, CommitOptions{false, std::nullopt});
+  EXPECT_FALSE(e.contact);
+  EXPECT_EQ(s.log->size(), 0u);  // the GUI's log lists cuts only
+  EXPECT_TRUE(s.alerts->has(AlertKind::BoundsOverlap));
+  EXPECT_EQ(s.bone->current().volume(), volume);
+  EXPECT_EQ(s.reamer->pose().tip, at(-0.5).tip);
+}
+
+TEST(ReamEngine, CumulativeFromInitialVolumeIgnoresUndoneCuts) {
+  test::ReamScene s(block(), flat20());
+  ReamEngine engine = referenceEngine(*s.reamer);
+  CommitOptions options{false, s.bone->current().volume()};
+  auto step = [&](double z, std::size_t i) {
+    ReamComputation c = engine.compute(s.bone->current(), s.bone->currentRevision(), at(z), 0.5);
+    const CutLogEntry e = commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, c, i, options);
+    if (e.boneStateId) engine.adopt(e.boneStateId);
+    return e;
+  };
+  const CutLogEntry first = step(-0.5, 0);
+  ASSERT_TRUE(s.bone->undo());
+  const CutLogEntry again = step(-0.5, 1);  // the same cut again: cumulative is one cut, not two
+  EXPECT_NEAR(again.cumulativeMm3, first.removedMm3, 1e-6 * first.removedMm3);
+  EXPECT_EQ(s.log->size(), 2u);
+}
+
+}  // namespace
+}  // namespace reamsim

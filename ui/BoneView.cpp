@@ -1,0 +1,314 @@
+#include "BoneView.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkLight.h>
+#include <vtkLookupTable.h>
+#include <vtkMatrix4x4.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkTextProperty.h>
+
+#include <QTimer>
+
+#include "ReamSession.h"
+#include "ThesisInteractorStyle.h"
+
+namespace reamsim::ui {
+namespace {
+
+vtkSmartPointer<vtkPolyData> toPolyData(const TriangleMesh& m) {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  for (const Vec3& p : m.vertices) points->InsertNextPoint(p.x, p.y, p.z);
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  for (const Triangle& t : m.triangles) {
+    const vtkIdType ids[3] = {t[0], t[1], t[2]};
+    cells->InsertNextCell(3, ids);
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetPolys(cells);
+  return poly;
+}
+
+void setColour(vtkProperty* p, const QColor& c) { p->SetColor(c.redF(), c.greenF(), c.blueF()); }
+
+}  // namespace
+
+BoneView::BoneView(ReamSession& session, QWidget* parent) : QVTKOpenGLNativeWidget(parent), session_(session) {
+  setObjectName("BoneView");
+  auto window = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
+  // No multisampling: with a software rasteriser (llvmpipe) 8x MSAA costs most of the frame.
+  window->SetMultiSamples(0);
+  setRenderWindow(window);
+  renderer_ = vtkSmartPointer<vtkRenderer>::New();
+  window->AddRenderer(renderer_);
+  renderer_->GetActiveCamera()->ParallelProjectionOn();  // orthographic: true sizes
+  renderer_->GradientBackgroundOn();
+  renderer_->AutomaticLightCreationOff();
+
+  boneMapper_ = vtkSmartPointer<vtkPolyDataMapper>::New();
+  boneActor_ = vtkSmartPointer<vtkActor>::New();
+  boneActor_->SetMapper(boneMapper_);
+  reamerMapper_ = vtkSmartPointer<vtkPolyDataMapper>::New();
+  reamerMapper_->ScalarVisibilityOff();
+  reamerActor_ = vtkSmartPointer<vtkActor>::New();
+  reamerActor_->SetMapper(reamerMapper_);
+  renderer_->AddActor(boneActor_);
+  renderer_->AddActor(reamerActor_);
+
+  depthLut_ = vtkSmartPointer<vtkLookupTable>::New();
+  depthLut_->SetHueRange(0.62, 0.0);  // blue (shallow) → red (deep)
+  depthLut_->SetNumberOfTableValues(256);
+  depthLut_->UseBelowRangeColorOn();   // the untouched surface keeps the bone colour
+  depthLut_->Build();
+  scalarBar_ = vtkSmartPointer<vtkScalarBarActor>::New();
+  scalarBar_->SetLookupTable(depthLut_);
+  scalarBar_->SetTitle("removed depth (mm)");
+  scalarBar_->SetNumberOfLabels(5);
+  scalarBar_->SetMaximumWidthInPixels(70);
+  scalarBar_->SetPosition(0.9, 0.15);
+  scalarBar_->SetHeight(0.6);
+  scalarBar_->SetWidth(0.08);
+  scalarBar_->UnconstrainedFontSizeOn();
+  scalarBar_->GetLabelTextProperty()->SetFontSize(12);
+  scalarBar_->GetTitleTextProperty()->SetFontSize(12);
+  scalarBar_->SetVisibility(false);
+  renderer_->AddViewProp(scalarBar_);
+
+  directional_ = vtkSmartPointer<vtkLight>::New();
+  directional_->SetLightTypeToHeadlight();
+  point_ = vtkSmartPointer<vtkLight>::New();
+  point_->SetLightTypeToSceneLight();
+  point_->SetPositional(true);
+  point_->SetConeAngle(180);  // a point light, not a spot
+  renderer_->AddLight(directional_);
+  renderer_->AddLight(point_);
+
+  style_ = vtkSmartPointer<ThesisInteractorStyle>::New();
+  style_->reamerAxis = [this](Vec3& tip, Vec3& axis) {
+    const ReamerNode* r = session_.reamer();
+    if (!r || !r->cuttingVolume()) return false;
+    tip = r->pose().tip;
+    axis = r->pose().axis;
+    return true;
+  };
+  style_->dragAlongAxis = [this](double mm) { Q_EMIT reamerDragged(mm); };
+  interactor()->SetInteractorStyle(style_);
+
+  setRenderSettings(settings_);
+  subscription_ = session_.document().subscribe([this](const DocumentEvent&) { onDocumentEvent(); });
+  connect(&session_, &ReamSession::boneReplaced, this, &BoneView::onBoneReplaced);
+  onBoneReplaced();
+}
+
+BoneView::~BoneView() = default;
+
+vtkRenderer* BoneView::renderer() const { return renderer_; }
+
+void BoneView::render() {
+  renderPending_ = false;
+  renderer_->ResetCameraClippingRange();  // the reamer may have moved out of the previous range
+  renderWindow()->Render();
+}
+
+std::size_t BoneView::displayedTriangleCount() const {
+  auto* poly = vtkPolyData::SafeDownCast(boneMapper_->GetInput());
+  return poly ? static_cast<std::size_t>(poly->GetNumberOfPolys()) : 0;
+}
+
+void BoneView::onBoneReplaced() {
+  shownBoneChange_ = UINT64_MAX;
+  onDocumentEvent();
+  const Bounds b = session_.bone()->current().bounds();
+  if (!b.empty()) {
+    const Vec3 c = b.center(), s = b.size();
+    point_->SetPosition(c.x, c.y + s.y, c.z + s.z);  // above and in front of the bone
+    point_->SetFocalPoint(c.x, c.y, c.z);
+  }
+  resetView();
+}
+
+void BoneView::onDocumentEvent() {
+  const BoneNode* bone = session_.bone();
+  const ReamerNode* reamer = session_.reamer();
+  bool changed = false;
+  if (bone->modifiedCount() != shownBoneChange_) {
+    shownBoneChange_ = bone->modifiedCount();
+    if (bone->currentRevision() != shownRevision_ || displayedTriangleCount() == 0) rebuildBone();
+    changed = true;
+  }
+  if (reamer->modifiedCount() != shownReamerChange_) {
+    shownReamerChange_ = reamer->modifiedCount();
+    const Pose& p = reamer->pose();
+    const bool moved = !(p.tip == shownPose_.tip) || !(p.axis == shownPose_.axis) || p.rollDeg != shownPose_.rollDeg;
+    if (reamer->cuttingVolume().get() != shownCuttingVolume_) {
+      rebuildReamer();
+      changed = true;
+    }
+    if (moved) {
+      shownPose_ = p;
+      placeReamer();
+      changed = true;
+    }
+  }
+  if (changed) requestRender();
+}
+
+// One render per turn of the event loop, however many document changes arrived (a key press and the
+// worker's result for it often land together).
+void BoneView::requestRender() {
+  if (renderPending_) return;
+  renderPending_ = true;
+  QTimer::singleShot(0, this, [this] {
+    if (renderPending_) render();
+  });
+}
+
+void BoneView::rebuildBone() {
+  const BoneNode& bone = *session_.bone();
+  shownRevision_ = bone.currentRevision();
+  const auto& entries = bone.history().entries();
+  if (entries.front().revision != initialRevision_) {  // a new bone: new reference for depth
+    initialRevision_ = entries.front().revision;
+    surfaces_.setInitial(entries.front().state);
+  }
+  const std::size_t cursor = bone.history().cursor();
+  // Highlight what the step into the current state made (nothing for the imported state).
+  const BoneState* previous = cursor > 0 ? &entries[cursor - 1].state : nullptr;
+  BoneSurfaceBuilder::Result r =
+      surfaces_.build(bone.current(), previous, settings_.bone, settings_.freshCut, settings_.smoothShading);
+  freshTriangles_ = r.freshTriangles;
+  maxDepthMm_ = r.maxDepthMm;
+  boneMapper_->SetInputData(r.polyData);
+  applyColouring();
+}
+
+void BoneView::rebuildReamer() {
+  const auto& volume = session_.reamer()->cuttingVolume();
+  shownCuttingVolume_ = volume.get();
+  if (volume) reamerMapper_->SetInputData(toPolyData(*volume));
+  reamerActor_->SetVisibility(volume != nullptr);
+}
+
+void BoneView::placeReamer() {
+  const RigidTransform t = session_.reamer()->transform();
+  auto m = vtkSmartPointer<vtkMatrix4x4>::New();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m->SetElement(i, j, t.rotation[3 * i + j]);
+  m->SetElement(0, 3, t.translation.x);
+  m->SetElement(1, 3, t.translation.y);
+  m->SetElement(2, 3, t.translation.z);
+  reamerActor_->SetUserMatrix(m);
+}
+
+void BoneView::applyColouring() {
+  boneMapper_->ScalarVisibilityOn();
+  if (colourMode_ == ColourMode::Depth) {
+    boneMapper_->SetScalarModeToUsePointFieldData();
+    boneMapper_->SelectColorArray("depth_mm");
+    boneMapper_->SetColorModeToMapScalars();
+    const double top = std::max(0.1, maxDepthMm_);
+    depthLut_->SetTableRange(0.02, top);  // below 0.02 mm: untouched
+    const QColor& b = settings_.bone;
+    depthLut_->SetBelowRangeColor(b.redF(), b.greenF(), b.blueF(), 1.0);
+    boneMapper_->SetLookupTable(depthLut_);
+    boneMapper_->UseLookupTableScalarRangeOn();
+    scalarBar_->SetVisibility(true);
+  } else {
+    boneMapper_->SetScalarModeToUseCellFieldData();
+    boneMapper_->SelectColorArray("colour");
+    boneMapper_->SetColorModeToDirectScalars();
+    scalarBar_->SetVisibility(false);
+  }
+}
+
+void BoneView::applyLights() {
+  directional_->SetIntensity(settings_.directionalIntensity);
+  point_->SetIntensity(settings_.pointIntensity);
+  for (vtkActor* a : {boneActor_.Get(), reamerActor_.Get()}) {
+    vtkProperty* p = a->GetProperty();
+    p->SetAmbient(settings_.ambient);
+    p->SetDiffuse(settings_.diffuse);
+    p->SetSpecular(settings_.specular);
+    p->SetSpecularPower(settings_.specularPower);
+  }
+}
+
+void BoneView::setRenderSettings(const RenderSettings& s) {
+  const bool recolour = s.bone != settings_.bone || s.freshCut != settings_.freshCut ||
+                        s.smoothShading != settings_.smoothShading;
+  settings_ = s;
+  renderer_->SetBackground(s.background.redF(), s.background.greenF(), s.background.blueF());
+  renderer_->SetBackground2(s.background2.redF(), s.background2.greenF(), s.background2.blueF());
+  setColour(boneActor_->GetProperty(), s.bone);
+  setColour(reamerActor_->GetProperty(), s.reamer);
+  reamerActor_->GetProperty()->SetOpacity(s.reamerOpacity);
+  applyLights();
+  if (recolour && displayedTriangleCount() > 0) rebuildBone();
+  render();
+}
+
+void BoneView::setWireframe(bool on) {
+  wireframe_ = on;
+  if (on) {
+    boneActor_->GetProperty()->SetRepresentationToWireframe();
+  } else {
+    boneActor_->GetProperty()->SetRepresentationToSurface();
+  }
+  render();
+}
+
+void BoneView::setColourMode(ColourMode mode) {
+  colourMode_ = mode;
+  applyColouring();
+  render();
+}
+
+void BoneView::resetView() {
+  vtkCamera* cam = renderer_->GetActiveCamera();
+  cam->ParallelProjectionOn();
+  renderer_->ResetCamera(boneActor_->GetBounds());
+  render();
+}
+
+// Bone frame as in the bundled OpenSim scapula: +X anterior, +Y superior, +Z lateral.
+void BoneView::setStandardView(StandardView view) {
+  const Bounds b = session_.bone()->current().bounds();
+  if (b.empty()) return;
+  Vec3 focus = b.center(), direction{0, 0, -1}, up{0, 1, 0};
+  switch (view) {
+    case StandardView::Anterior: direction = {-1, 0, 0}; break;  // looking from the front
+    case StandardView::Posterior: direction = {1, 0, 0}; break;
+    case StandardView::Superior: direction = {0, -1, 0}; up = {-1, 0, 0}; break;
+    case StandardView::EnFace: {
+      // Along the planned axis, onto the glenoid (where the plan starts, else the reamer).
+      const PlanNode* plan = session_.plan();
+      const Pose pose = plan && !plan->poses().empty() ? plan->poses().front() : session_.reamer()->pose();
+      direction = normalized(pose.axis);
+      focus = pose.tip;
+      up = std::abs(direction.y) < 0.9 ? Vec3{0, 1, 0} : Vec3{1, 0, 0};
+      break;
+    }
+  }
+  vtkCamera* cam = renderer_->GetActiveCamera();
+  const double distance = std::max(1.0, b.diagonal());
+  cam->SetFocalPoint(focus.x, focus.y, focus.z);
+  cam->SetPosition(focus.x - direction.x * distance, focus.y - direction.y * distance, focus.z - direction.z * distance);
+  cam->SetViewUp(up.x, up.y, up.z);
+  cam->OrthogonalizeViewUp();
+  cam->SetParallelScale(view == StandardView::EnFace ? 30.0 : 0.55 * std::max({b.size().x, b.size().y, b.size().z}));
+  renderer_->ResetCameraClippingRange();
+  render();
+}
+
+}  // namespace reamsim::ui
+

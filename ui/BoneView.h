@@ -1,0 +1,88 @@
+#pragma once
+// The central 3D view: bone and reamer of the shared document in an orthographic VTK view (sizes are
+// true; perspective would hide over-reaming), standard views, wireframe, the freshly cut surface
+// highlighted, and a depth-coloured mode showing how far the surface was removed.
+#include <QVTKOpenGLNativeWidget.h>
+#include <vtkSmartPointer.h>
+
+#include <cmath>
+#include <cstdint>
+
+#include "BoneSurface.h"
+#include "RenderSettings.h"
+#include "reamsim/core/Pose.h"
+#include "reamsim/core/Signal.h"
+
+class vtkActor;
+class vtkLight;
+class vtkLookupTable;
+class vtkPolyDataMapper;
+class vtkRenderer;
+class vtkScalarBarActor;
+
+namespace reamsim::ui {
+
+class ReamSession;
+class ThesisInteractorStyle;
+
+class BoneView : public QVTKOpenGLNativeWidget {
+  Q_OBJECT
+ public:
+  enum class StandardView { Anterior, Posterior, Superior, EnFace };
+  enum class ColourMode { Surface, Depth };
+
+  BoneView(ReamSession& session, QWidget* parent = nullptr);
+  ~BoneView() override;
+
+  void setRenderSettings(const RenderSettings& settings);
+  const RenderSettings& renderSettings() const { return settings_; }
+  void setWireframe(bool on);
+  bool wireframe() const { return wireframe_; }
+  void setColourMode(ColourMode mode);
+  ColourMode colourMode() const { return colourMode_; }
+  void setStandardView(StandardView view);
+  void resetView();
+
+  std::size_t freshTriangleCount() const { return freshTriangles_; }
+  double maxDepthMm() const { return maxDepthMm_; }
+  std::size_t displayedTriangleCount() const;
+  vtkRenderer* renderer() const;
+
+ Q_SIGNALS:
+  void reamerDragged(double mm);  // Ctrl + left drag, along the reamer axis
+
+ public Q_SLOTS:
+  void render();         // now
+  void requestRender();  // coalesced: once per turn of the event loop
+
+ private:
+  void onDocumentEvent();
+  void rebuildBone();
+  void rebuildReamer();
+  void placeReamer();
+  void applyColouring();
+  void applyLights();
+  void onBoneReplaced();
+
+  ReamSession& session_;
+  Subscription subscription_;
+  RenderSettings settings_;
+  BoneSurfaceBuilder surfaces_;
+  vtkSmartPointer<vtkRenderer> renderer_;
+  vtkSmartPointer<vtkActor> boneActor_, reamerActor_;
+  vtkSmartPointer<vtkPolyDataMapper> boneMapper_, reamerMapper_;
+  vtkSmartPointer<vtkLookupTable> depthLut_;
+  vtkSmartPointer<vtkScalarBarActor> scalarBar_;
+  vtkSmartPointer<vtkLight> directional_, point_;
+  vtkSmartPointer<ThesisInteractorStyle> style_;
+  bool wireframe_ = false;
+  bool renderPending_ = false;
+  Pose shownPose_{{NAN, NAN, NAN}, {NAN, NAN, NAN}, 0};
+  ColourMode colourMode_ = ColourMode::Surface;
+  std::uint64_t initialRevision_ = 0, shownRevision_ = 0, shownBoneChange_ = UINT64_MAX, shownReamerChange_ = UINT64_MAX;
+  const void* shownCuttingVolume_ = nullptr;
+  std::size_t freshTriangles_ = 0;
+  double maxDepthMm_ = 0;
+};
+
+}  // namespace reamsim::ui

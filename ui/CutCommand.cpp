@@ -1,0 +1,24 @@
+#include "CutCommand.h"
+
+#include <QCoreApplication>
+
+namespace reamsim::ui {
+
+CutCommand::CutCommand(BoneNode& bone, const CutLogEntry& entry) : bone_(bone) {
+  setText(QCoreApplication::translate("CutCommand", "Cut %1: %2 mm³, %3 faces")
+              .arg(entry.stepIndex)
+              .arg(entry.removedMm3, 0, 'f', 2)
+              .arg(entry.faces));
+}
+
+void CutCommand::undo() { bone_.undo(); }
+
+void CutCommand::redo() {
+  if (first_) {
+    first_ = false;
+    return;
+  }
+  bone_.redo();
+}
+
+}  // namespace reamsim::ui

@@ -1,0 +1,270 @@
+#include "MainWindow.h"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QApplication>
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QProgressBar>
+#include <QSettings>
+#include <QStatusBar>
+#include <QToolBar>
+#include <QUndoView>
+#include <cmath>
+
+#include "PluginHost.h"
+
+namespace reamsim::ui {
+
+MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidget* parent)
+    : QMainWindow(parent), plugins_(plugins), persistent_(useStoredSettings) {
+  setObjectName("ReamSimMainWindow");
+  session_ = std::make_unique<ReamSession>(plugins_);
+  view_ = new BoneView(*session_, this);
+  setCentralWidget(view_);
+  if (persistent_) {
+    QSettings settings;
+    view_->setRenderSettings(RenderSettings::load(settings));
+    recent_ = settings.value("recent_files").toStringList();
+  }
+  buildActions();
+  buildMenus();
+  buildDocks();
+  buildStatusBar();
+  loadKeyBindings();
+  setAcceptDrops(true);
+  view_->setFocusPolicy(Qt::StrongFocus);
+  view_->setFocus();
+
+  connect(view_, &BoneView::reamerDragged, this, &MainWindow::dragReamer);
+  connect(session_.get(), &ReamSession::stepFinished, this, [this] { updateStatus(); });
+  connect(session_.get(), &ReamSession::engineError, this, [this](const QString& m) {
+    showError(tr("Cutting failed"), tr("The cutting engine reported an error; the bone is unchanged.\n\n%1").arg(m));
+  });
+  connect(session_.get(), &ReamSession::progress, this, [this](int done, int total) {
+    progress_->setVisible(total > 0);
+    progress_->setRange(0, std::max(1, total));
+    progress_->setValue(done);
+  });
+  connect(session_.get(), &ReamSession::busyChanged, this, [this](bool busy) {
+    engineLabel_->setText(busy ? tr("computing…") : session_->cuttingStatus());
+    if (!busy) progress_->setVisible(false);
+  });
+  connect(&importWatcher_, &QFutureWatcher<ImportOutcome>::finished, this, &MainWindow::importFinished);
+  alertSubscription_ = session_->document().observeNode(session_->alerts()->id(), [this] { updateStatus(); });
+  updateStatus();
+  updateTitle();
+  resize(1280, 800);
+}
+
+MainWindow::~MainWindow() {
+  // Views and panels observe the session's document: they go first.
+  alertSubscription_.reset();
+  if (importWatcher_.isRunning()) importWatcher_.waitForFinished();
+  for (QDockWidget* d : panels_) delete d;
+  panels_.clear();
+  delete historyDock_;
+  delete takeCentralWidget();
+  view_ = nullptr;
+  session_.reset();
+}
+
+QAction* MainWindow::action(const QString& objectName) const { return findChild<QAction*>(objectName); }
+
+void MainWindow::buildActions() {
+  for (const MoveInfo& m : reamerMoves()) {
+    auto* a = new QAction(tr(m.label), this);
+    a->setObjectName(QString("reamer_") + m.id);
+    a->setShortcut(QKeySequence(m.defaultKey));
+    a->setShortcutContext(Qt::WindowShortcut);
+    a->setAutoRepeat(true);
+    const ReamerMove move = m.move;
+    connect(a, &QAction::triggered, this, [this, move] { applyMove(move); });
+    moveActions_.insert(static_cast<int>(move), a);
+    addAction(a);
+  }
+}
+
+void MainWindow::buildMenus() {
+  auto add = [this](QMenu* menu, const QString& name, const QString& text, const QKeySequence& keys, auto slot) {
+    auto* a = menu->addAction(text);
+    a->setObjectName(name);
+    if (!keys.isEmpty()) a->setShortcut(keys);
+    connect(a, &QAction::triggered, this, slot);
+    return a;
+  };
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  add(file, "open", tr("&Open bone…"), QKeySequence::Open, [this] {
+    if (!plugins_.meshImport()) return showError(tr("Open"), tr("No mesh import plugin is loaded (Help → Plugins)."));
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open bone mesh"), {},
+                                                      plugins_.meshImport()->nameFilters().join(";;"));
+    if (!path.isEmpty()) openFile(path, true);
+  })->setEnabled(plugins_.meshImport() != nullptr);
+  add(file, "open_no_repair", tr("Open &without repair (view only)…"), {}, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open bone mesh (no repair, no cutting)"), {},
+                                                      plugins_.meshImport()->nameFilters().join(";;"));
+    if (!path.isEmpty()) openFile(path, false);
+  })->setEnabled(plugins_.meshImport() != nullptr);
+  recentMenu_ = file->addMenu(tr("Open &recent"));
+  connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::rebuildRecentMenu);
+  add(file, "load_default", tr("Load the &default case"), {}, [this] { loadDefaultCase(); });
+  add(file, "save", tr("&Save bone as…"), QKeySequence::SaveAs, [this] {
+    if (!plugins_.meshImport()) return showError(tr("Save"), tr("No mesh import plugin is loaded (Help → Plugins)."));
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save bone mesh"), "bone.ply",
+                                                      plugins_.meshImport()->nameFilters().join(";;"));
+    if (!path.isEmpty()) saveBoneAs(path);
+  })->setEnabled(plugins_.meshImport() != nullptr);
+  file->addSeparator();
+  add(file, "quit", tr("&Quit"), QKeySequence::Quit, [this] { close(); });
+
+  QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+  QAction* undo = session_->undoStack()->createUndoAction(this, tr("&Undo"));
+  undo->setObjectName("undo");
+  undo->setShortcut(QKeySequence::Undo);
+  QAction* redo = session_->undoStack()->createRedoAction(this, tr("&Redo"));
+  redo->setObjectName("redo");
+  redo->setShortcuts({QKeySequence::Redo, QKeySequence("Ctrl+Y")});
+  edit->addAction(undo);
+  edit->addAction(redo);
+  edit->addSeparator();
+  add(edit, "key_bindings", tr("&Key bindings…"), {}, [this] { editKeyBindings(); });
+
+  QMenu* view = menuBar()->addMenu(tr("&View"));
+  add(view, "view_anterior", tr("&Anterior"), QKeySequence("1"), [this] { view_->setStandardView(BoneView::StandardView::Anterior); });
+  add(view, "view_posterior", tr("&Posterior"), QKeySequence("2"), [this] { view_->setStandardView(BoneView::StandardView::Posterior); });
+  add(view, "view_superior", tr("&Superior"), QKeySequence("3"), [this] { view_->setStandardView(BoneView::StandardView::Superior); });
+  add(view, "view_en_face", tr("&En face (planned axis)"), QKeySequence("4"), [this] { view_->setStandardView(BoneView::StandardView::EnFace); });
+  add(view, "view_reset", tr("&Reset view"), QKeySequence("0"), [this] { view_->resetView(); });
+  view->addSeparator();
+  QAction* wire = add(view, "wireframe", tr("&Wireframe"), QKeySequence("W"), [this](bool on) { view_->setWireframe(on); });
+  wire->setCheckable(true);
+  QAction* depth = add(view, "depth_colouring", tr("&Depth colouring (removed mm)"), QKeySequence("C"), [this](bool on) {
+    view_->setColourMode(on ? BoneView::ColourMode::Depth : BoneView::ColourMode::Surface);
+  });
+  depth->setCheckable(true);
+  add(view, "render_settings", tr("Colours, material and &lights…"), {}, [this] { editRenderSettings(); });
+  view->addSeparator();
+  viewMenuForDocks_ = view;
+
+  QMenu* reamer = menuBar()->addMenu(tr("&Reamer"));
+  for (const MoveInfo& m : reamerMoves()) reamer->addAction(moveActions_.value(static_cast<int>(m.move)));
+  reamer->addSeparator();
+  add(reamer, "ream_to_depth", tr("Ream to &depth…"), QKeySequence("Ctrl+D"), [this] { askReamToDepth(); });
+  add(reamer, "stop", tr("&Stop queued steps"), QKeySequence("Esc"), [this] { session_->cancelQueued(); });
+
+  QMenu* help = menuBar()->addMenu(tr("&Help"));
+  add(help, "plugins", tr("&Plugins…"), {}, [this] { showPluginsDialog(); });
+  add(help, "about", tr("&About ReamSim"), {}, [this] {
+    QMessageBox::about(this, tr("About ReamSim"),
+                       tr("ReamSim — glenoid reaming simulator.\nOrthographic views; exact mesh Booleans."));
+  });
+
+  QToolBar* steps = addToolBar(tr("Steps"));
+  steps->setObjectName("StepsToolBar");
+  auto spin = [&](const QString& name, const QString& label, double value, double max, const QString& suffix) {
+    steps->addWidget(new QLabel(label, steps));
+    auto* s = new QDoubleSpinBox(steps);
+    s->setObjectName(name);
+    s->setDecimals(2);
+    s->setRange(0.01, max);
+    s->setValue(value);
+    s->setSuffix(suffix);
+    s->setFocusPolicy(Qt::ClickFocus);
+    steps->addWidget(s);
+    return s;
+  };
+  moveStep_ = spin("move_step", tr(" Move "), 0.5, 50, " mm");
+  rotateStep_ = spin("rotate_step", tr(" Rotate "), 2.0, 90, "°");
+  feedStep_ = spin("feed_step", tr(" Feed "), 0.2, 10, " mm");
+  if (persistent_) {
+    QSettings s;
+    setSteps(s.value("steps/move_mm", 0.5).toDouble(), s.value("steps/rotate_deg", 2.0).toDouble(),
+             s.value("steps/feed_mm", 0.2).toDouble());
+    for (QDoubleSpinBox* b : {moveStep_, rotateStep_, feedStep_})
+      connect(b, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this] {
+        QSettings s;
+        s.setValue("steps/move_mm", moveStep_->value());
+        s.setValue("steps/rotate_deg", rotateStep_->value());
+        s.setValue("steps/feed_mm", feedStep_->value());
+      });
+  }
+}
+
+void MainWindow::buildDocks() {
+  historyDock_ = new QDockWidget(tr("History"), this);
+  historyDock_->setObjectName("HistoryDock");
+  auto* undoView = new QUndoView(session_->undoStack(), historyDock_);
+  undoView->setObjectName("HistoryView");
+  undoView->setEmptyLabel(tr("imported bone"));
+  undoView->setFocusPolicy(Qt::NoFocus);
+  historyDock_->setWidget(undoView);
+  addDockWidget(Qt::RightDockWidgetArea, historyDock_);
+  viewMenuForDocks_->addAction(historyDock_->toggleViewAction());
+  for (PanelInterface* p : plugins_.panels()) {
+    QDockWidget* dock = p->createPanel(session_->document(), this);
+    if (!dock) continue;
+    panels_.push_back(dock);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+    viewMenuForDocks_->addAction(dock->toggleViewAction());
+  }
+}
+
+void MainWindow::buildStatusBar() {
+  alertLabel_ = new QLabel(this);
+  alertLabel_->setObjectName("AlertLabel");
+  alertLabel_->setMinimumWidth(140);
+  distanceLabel_ = new QLabel(this);
+  distanceLabel_->setObjectName("DistanceLabel");
+  distanceLabel_->setMinimumWidth(170);
+  engineLabel_ = new QLabel(this);
+  engineLabel_->setObjectName("EngineLabel");
+  progress_ = new QProgressBar(this);
+  progress_->setObjectName("StepProgress");
+  progress_->setMaximumWidth(160);
+  progress_->setVisible(false);
+  statusBar()->addPermanentWidget(engineLabel_, 1);
+  statusBar()->addPermanentWidget(progress_);
+  statusBar()->addPermanentWidget(distanceLabel_);
+  statusBar()->addPermanentWidget(alertLabel_);
+}
+
+// The thesis's alerts from the AlertNode, with the live minimum distance of the last collision query.
+void MainWindow::updateStatus() {
+  const AlertNode* alerts = session_->alerts();
+  if (alerts->has(AlertKind::Contact)) {
+    alertLabel_->setText(tr("CONTACT"));
+    alertLabel_->setStyleSheet("QLabel { color: white; background: #c0392b; padding: 1px 6px; }");
+  } else if (alerts->has(AlertKind::BoundsOverlap)) {
+    alertLabel_->setText(tr("boxes overlap"));
+    alertLabel_->setStyleSheet("QLabel { color: black; background: #f39c12; padding: 1px 6px; }");
+  } else {
+    alertLabel_->setText(session_->canCollide() ? tr("clear") : tr("no collision"));
+    alertLabel_->setStyleSheet({});
+  }
+  const double d = session_->lastMinDistanceMm();
+  distanceLabel_->setText(std::isfinite(d) ? tr("min distance %1 mm").arg(d, 0, 'f', 2) : tr("min distance —"));
+  if (!session_->busy()) engineLabel_->setText(session_->cuttingStatus());
+}
+
+QString MainWindow::statusAlertText() const { return alertLabel_->text(); }
+QString MainWindow::statusDistanceText() const { return distanceLabel_->text(); }
+
+void MainWindow::updateTitle() {
+  setWindowTitle(boneName_.isEmpty() ? tr("ReamSim") : tr("ReamSim — %1").arg(boneName_));
+}
+
+void MainWindow::showError(const QString& title, const QString& message) {
+  lastError_ = message;
+  statusBar()->showMessage(title + ": " + message.section('\n', 0, 0), 10000);
+  // Non-blocking (window-modal): the event loop, the worker and the tests keep running.
+  auto* box = new QMessageBox(QMessageBox::Critical, title, message, QMessageBox::Ok, this);
+  box->setObjectName("ErrorDialog");
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->open();
+}
+
+}  // namespace reamsim::ui

@@ -1,0 +1,110 @@
+#pragma once
+// The ReamSim main window: the 3D view, the reamer controls (thesis keys, remappable), live cutting
+// through the ReamSession, undo/redo with a history view, file open/save (via the mesh import plugin),
+// drag and drop, recent files, the plugin panels (log) and Help → Plugins.
+#include <QFutureWatcher>
+#include <QMainWindow>
+#include <QMap>
+#include <QStringList>
+#include <memory>
+
+#include "BoneView.h"
+#include "ReamerMotion.h"
+#include "ReamSession.h"
+
+class QAction;
+class QDoubleSpinBox;
+class QLabel;
+class QMenu;
+class QProgressBar;
+class QDockWidget;
+
+namespace reamsim::ui {
+
+class PluginHost;
+
+struct ImportOutcome {
+  ImportedBone bone;
+  QString error;
+};
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  // useStoredSettings = false: defaults only, nothing read from or written to QSettings (demo,
+  // benchmark, tests: reproducible pictures and numbers).
+  MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  ReamSession& session() { return *session_; }
+  BoneView* view() const { return view_; }
+  const PluginHost& plugins() const { return plugins_; }
+  QAction* moveAction(ReamerMove move) const { return moveActions_.value(static_cast<int>(move)); }
+  QAction* action(const QString& objectName) const;
+  const QString& lastError() const { return lastError_; }
+  QStringList recentFiles() const { return recent_; }
+  QString statusAlertText() const;
+  QString statusDistanceText() const;
+
+  void setSteps(double moveMm, double rotateDeg, double feedMm);
+  double feedStepMm() const;
+  void setKeyBinding(ReamerMove move, const QKeySequence& keys);
+
+ public Q_SLOTS:
+  bool loadDefaultCase();
+  void openFile(const QString& path, bool repair = true);
+  bool importRunning() const { return importWatcher_.isRunning(); }
+  void waitImport();
+  void saveBoneAs(const QString& path);
+  void reamToDepth(double depthMm);
+  void applyMove(ReamerMove move);
+  void dragReamer(double mm);
+  void showPluginsDialog();
+  void showError(const QString& title, const QString& message);
+
+ protected:
+  void dragEnterEvent(QDragEnterEvent* e) override;
+  void dropEvent(QDropEvent* e) override;
+
+ private:
+  void buildActions();
+  void buildMenus();
+  void buildDocks();
+  void buildStatusBar();
+  void installBone(ImportedBone bone, const QString& name, const QString& recentPath);
+  void importFinished();
+  void updateStatus();
+  void updateTitle();
+  void addRecent(const QString& path);
+  void rebuildRecentMenu();
+  void loadKeyBindings();
+  void editKeyBindings();
+  void editRenderSettings();
+  void askReamToDepth();
+  Pose targetPose() const;
+
+  const PluginHost& plugins_;
+  const bool persistent_;
+  std::unique_ptr<ReamSession> session_;  // outlives every view and panel (see ~MainWindow)
+  BoneView* view_ = nullptr;
+  std::vector<QDockWidget*> panels_;
+  QDockWidget* historyDock_ = nullptr;
+  QMap<int, QAction*> moveActions_;
+  QMenu* recentMenu_ = nullptr;
+  QMenu* viewMenuForDocks_ = nullptr;
+  QStringList recent_;
+  QDoubleSpinBox* moveStep_ = nullptr;
+  QDoubleSpinBox* rotateStep_ = nullptr;
+  QDoubleSpinBox* feedStep_ = nullptr;
+  QLabel* alertLabel_ = nullptr;
+  QLabel* distanceLabel_ = nullptr;
+  QLabel* engineLabel_ = nullptr;
+  QProgressBar* progress_ = nullptr;
+  Subscription alertSubscription_;
+  QFutureWatcher<ImportOutcome> importWatcher_;
+  QString importPath_;
+  QString boneName_;
+  QString lastError_;
+};
+
+}  // namespace reamsim::ui

@@ -1,0 +1,155 @@
+// MainWindow: bones in and out — default case, open (off the UI thread), save, recent files, drag and drop.
+#include <QCoreApplication>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFileInfo>
+#include <QMenu>
+#include <QMimeData>
+#include <QSettings>
+#include <QStatusBar>
+#include <QtConcurrent/QtConcurrentRun>
+
+#include "MainWindow.h"
+#include "PluginHost.h"
+#include "reamsim/ream/DefaultCase.h"
+#include "reamsim/ream/Plan.h"
+#include "reamsim/tools/ReamerPresets.h"
+
+namespace reamsim::ui {
+namespace {
+
+constexpr int kMaxRecent = 8;
+constexpr const char* kDefaultReamer = "glenoid-36-R30";
+
+// Where the reamer waits over a freshly imported bone: above its lateral (+Z) side, feeding along -Z.
+Pose startPoseFor(const Bounds& b) {
+  const Vec3 c = b.center();
+  return Pose{{c.x, c.y, b.max.z + 10.0}, {0, 0, -1}, 0};
+}
+
+}  // namespace
+
+bool MainWindow::loadDefaultCase() {
+  try {
+    DefaultBone d = loadDefaultBone();
+    const ReamPlan plan = loadPlan(defaultPlanPath());
+    session_->setReamer(loadPreset(plan.reamer.empty() ? kDefaultReamer : plan.reamer, reamerPresetsPath()));
+    ImportedBone bone;
+    bone.report = "bundled default scapula: " + d.meshPath;
+    bone.original = std::make_shared<const TriangleMesh>(d.mesh);
+    bone.mesh = std::move(d.mesh);
+    bone.cuttable = true;  // the bundled bone is stored repaired (closed, outward, no self-intersections)
+    const std::vector<Pose> poses = plan.expandedPoses();
+    const Pose start = plan.feed ? plan.feed->start : (poses.empty() ? startPoseFor(Bounds{}) : poses.front());
+    session_->plan()->setReamerSpecName(plan.reamer);
+    session_->plan()->setPoses(poses);
+    session_->plan()->setFeedDescription(plan.description);
+    installBone(std::move(bone), tr("default scapula"), {});
+    session_->moveReamer(start);  // the user's path: the first collision query runs at the start pose
+    view_->setStandardView(BoneView::StandardView::Anterior);
+    return true;
+  } catch (const std::exception& e) {
+    showError(tr("Default case"), QString::fromStdString(e.what()));
+    return false;
+  }
+}
+
+void MainWindow::openFile(const QString& path, bool repair) {
+  if (!plugins_.meshImport()) {
+    showError(tr("Open"), tr("Cannot open %1: no mesh import plugin is loaded (Help → Plugins).").arg(path));
+    return;
+  }
+  if (importWatcher_.isRunning()) {
+    showError(tr("Open"), tr("Still importing %1.").arg(importPath_));
+    return;
+  }
+  importPath_ = path;
+  statusBar()->showMessage(tr("Importing %1…").arg(path));
+  const MeshImportInterface* importer = plugins_.meshImport();
+  const std::string file = path.toStdString();
+  importWatcher_.setFuture(QtConcurrent::run([importer, file, repair] {
+    ImportOutcome out;
+    try {
+      out.bone = importer->importBone(file, repair);
+    } catch (const std::exception& e) {
+      out.error = QString::fromStdString(e.what());
+    }
+    return out;
+  }));
+}
+
+void MainWindow::waitImport() {
+  if (importWatcher_.isRunning()) importWatcher_.waitForFinished();
+  QCoreApplication::processEvents();  // delivers finished()
+}
+
+void MainWindow::importFinished() {
+  ImportOutcome out = importWatcher_.result();
+  if (!out.error.isEmpty()) {
+    showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), out.error);
+    return;
+  }
+  if (out.bone.mesh.triangles.empty()) {
+    showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), importPath_ + ": the mesh has no triangles");
+    return;
+  }
+  if (!session_->reamer()->cuttingVolume()) session_->setReamer(loadPreset(kDefaultReamer, reamerPresetsPath()));
+  const Bounds b = BoneState::fromMesh(out.bone.mesh).bounds();
+  session_->plan()->setPoses({});
+  installBone(std::move(out.bone), QFileInfo(importPath_).fileName(), importPath_);
+  session_->moveReamer(startPoseFor(b));
+  statusBar()->showMessage(tr("Opened %1").arg(importPath_), 5000);
+}
+
+void MainWindow::installBone(ImportedBone bone, const QString& name, const QString& recentPath) {
+  const Pose start = session_->reamer()->pose();
+  session_->loadBone(std::move(bone), name, start);
+  boneName_ = name;
+  if (!recentPath.isEmpty()) addRecent(recentPath);
+  updateTitle();
+  updateStatus();
+}
+
+void MainWindow::saveBoneAs(const QString& path) {
+  if (!plugins_.meshImport()) {
+    showError(tr("Save"), tr("Cannot save %1: no mesh import plugin is loaded (Help → Plugins).").arg(path));
+    return;
+  }
+  try {
+    plugins_.meshImport()->exportMesh(session_->bone()->current().toMesh(), path.toStdString());
+    statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+  } catch (const std::exception& e) {
+    showError(tr("Cannot save %1").arg(QFileInfo(path).fileName()), QString::fromStdString(e.what()));
+  }
+}
+
+void MainWindow::addRecent(const QString& path) {
+  const QString full = QFileInfo(path).absoluteFilePath();
+  recent_.removeAll(full);
+  recent_.prepend(full);
+  while (recent_.size() > kMaxRecent) recent_.removeLast();
+  if (persistent_) QSettings().setValue("recent_files", recent_);
+}
+
+void MainWindow::rebuildRecentMenu() {
+  recentMenu_->clear();
+  for (const QString& path : recent_) {
+    QAction* a = recentMenu_->addAction(path);
+    connect(a, &QAction::triggered, this, [this, path] { openFile(path, true); });
+  }
+  if (recent_.isEmpty()) recentMenu_->addAction(tr("(none)"))->setEnabled(false);
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* e) {
+  if (e->mimeData()->hasUrls() && !e->mimeData()->urls().isEmpty() && e->mimeData()->urls().front().isLocalFile())
+    e->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* e) {
+  const QList<QUrl> urls = e->mimeData()->urls();
+  if (urls.isEmpty() || !urls.front().isLocalFile()) return;
+  e->acceptProposedAction();
+  openFile(urls.front().toLocalFile(), true);
+}
+
+}  // namespace reamsim::ui

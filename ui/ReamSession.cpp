@@ -1,0 +1,199 @@
+#include "ReamSession.h"
+
+#include <QElapsedTimer>
+#include <QEventLoop>
+#include <QTimer>
+#include <QtConcurrent/QtConcurrentRun>
+
+#include "CutCommand.h"
+#include "PluginHost.h"
+#include "reamsim/ream/ReamStep.h"
+#include "reamsim/tools/ReamerGeometry.h"
+
+namespace reamsim::ui {
+
+ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(parent), plugins_(plugins) {
+  bone_ = &document_.create<BoneNode>("Bone");
+  reamer_ = &document_.create<ReamerNode>("Reamer");
+  plan_ = &document_.create<PlanNode>("Plan");
+  log_ = &document_.create<LogNode>("Log");
+  alerts_ = &document_.create<AlertNode>("Alerts");
+  undo_.setUndoLimit(0);  // unlimited: the states share storage (see CutCommand)
+  connect(&watcher_, &QFutureWatcher<StepResult>::finished, this, &ReamSession::finished);
+}
+
+ReamSession::~ReamSession() {
+  queued_.clear();
+  latestUserPose_.reset();
+  if (running_) watcher_.waitForFinished();  // the job uses engine_
+  watcher_.disconnect(this);
+}
+
+void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose& start) {
+  cancelQueued();
+  if (running_) watcher_.waitForFinished();  // its result is dropped: the revision changes below
+  {
+    Document::BatchScope batch(document_);
+    bone_->setName(sourceName.toStdString());
+    bone_->resetHistory(BoneState::fromMesh(b.mesh), "import");
+    bone_->setOriginalMesh(std::move(b.original));
+    bone_->setImportReport(std::move(b.report));
+    document_.remove(log_->id());  // the log is append-only: a new bone gets a new one
+    log_ = &document_.create<LogNode>("Log");
+    alerts_->clear();
+    reamer_->setPose(start);
+  }
+  undo_.clear();
+  boneCuttable_ = b.cuttable;
+  initialVolume_ = bone_->current().volume();
+  cuts_ = steps_ = 0;
+  lastComputedPose_.reset();
+  lastMinDistance_ = std::numeric_limits<double>::infinity();
+  rebuildEngine();
+  Q_EMIT boneReplaced();
+}
+
+void ReamSession::setReamer(const ReamerSpec& spec) {
+  cancelQueued();
+  if (running_) watcher_.waitForFinished();
+  reamer_->setSpec(spec);
+  reamer_->setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(spec)));
+  rebuildEngine();
+}
+
+void ReamSession::rebuildEngine() {
+  engine_.reset();
+  if (!reamer_->cuttingVolume() || bone_->current().empty()) return;
+  std::unique_ptr<ContactBackend> contact = plugins_.collision() ? plugins_.collision()->createContactBackend() : nullptr;
+  CutBackendFactory cut = plugins_.csg() && boneCuttable_ ? plugins_.csg()->cutBackendFactory() : CutBackendFactory{};
+  engine_ = std::make_unique<ReamEngine>(reamer_->cuttingVolume(), std::move(contact), std::move(cut));
+}
+
+bool ReamSession::canCollide() const { return engine_ && engine_->canCollide(); }
+bool ReamSession::canCut() const { return engine_ && engine_->canCollide() && engine_->canCut(); }
+
+QString ReamSession::cuttingStatus() const {
+  if (!plugins_.collision()) return tr("no collision plugin: the reamer moves without collision or cutting");
+  if (!plugins_.csg()) return tr("no CSG plugin: collision alerts only, no cutting");
+  if (!boneCuttable_) return tr("the bone is not a closed solid: collision alerts only, no cutting");
+  return tr("collision: %1; cutting: %2").arg(plugins_.collision()->engineName(), plugins_.csg()->engineName());
+}
+
+void ReamSession::moveReamer(const Pose& pose) {
+  reamer_->setPose(pose);  // the view follows at once; the step itself is computed on the worker
+  if (!engine_) return;
+  if (!queued_.empty()) {  // a move by hand interrupts a feed sequence
+    queued_.clear();
+    sequenceDone_ = sequenceTotal_ = 0;
+    Q_EMIT progress(0, 0);
+  }
+  latestUserPose_ = pose;
+  startNext();
+}
+
+void ReamSession::runSteps(const std::vector<Pose>& poses) {
+  if (!engine_ || poses.empty()) return;
+  if (latestUserPose_) {  // keep the order: the pending move by hand first
+    queued_.push_back(*latestUserPose_);
+    latestUserPose_.reset();
+  }
+  queued_.insert(queued_.end(), poses.begin(), poses.end());
+  sequenceTotal_ += static_cast<int>(poses.size());
+  Q_EMIT progress(sequenceDone_, sequenceTotal_);
+  startNext();
+}
+
+void ReamSession::cancelQueued() {
+  queued_.clear();
+  latestUserPose_.reset();
+  sequenceDone_ = sequenceTotal_ = 0;
+  Q_EMIT progress(0, 0);
+  if (!running_) Q_EMIT busyChanged(false);
+}
+
+Pose ReamSession::targetPose() const {
+  if (latestUserPose_) return *latestUserPose_;
+  if (!queued_.empty()) return queued_.back();
+  if (running_ && lastComputedPose_) return *lastComputedPose_;
+  return reamer_->pose();
+}
+
+bool ReamSession::busy() const { return running_ || !queued_.empty() || latestUserPose_.has_value(); }
+
+bool ReamSession::waitIdle(int timeoutMs) {
+  if (!busy()) return true;
+  QEventLoop loop;
+  auto c = connect(this, &ReamSession::busyChanged, &loop, [&](bool b) {
+    if (!b) loop.quit();
+  });
+  QTimer::singleShot(timeoutMs, &loop, &QEventLoop::quit);
+  loop.exec();
+  disconnect(c);
+  return !busy();
+}
+
+void ReamSession::startNext() {
+  if (running_) return;
+  if (!engine_ || (queued_.empty() && !latestUserPose_)) {
+    sequenceDone_ = sequenceTotal_ = 0;
+    Q_EMIT busyChanged(false);
+    return;
+  }
+  Pose pose;
+  if (!queued_.empty()) {
+    pose = queued_.front();
+    queued_.pop_front();
+  } else {
+    pose = *latestUserPose_;
+    latestUserPose_.reset();
+  }
+  const double stepMm = lastComputedPose_ ? norm(pose.tip - lastComputedPose_->tip) : 0.0;
+  lastComputedPose_ = pose;
+  running_ = true;
+  Q_EMIT busyChanged(true);
+  ReamEngine* engine = engine_.get();
+  const BoneState state = bone_->current();  // immutable value: safe on the worker
+  const std::uint64_t revision = bone_->currentRevision();
+  watcher_.setFuture(QtConcurrent::run([engine, state, revision, pose, stepMm] {
+    StepResult r;
+    QElapsedTimer timer;
+    timer.start();
+    try {
+      r.computation = engine->compute(state, revision, pose, stepMm);
+    } catch (const std::exception& e) {
+      r.error = QString::fromStdString(e.what());
+    }
+    r.computeMs = timer.nsecsElapsed() / 1e6;
+    return r;
+  }));
+}
+
+void ReamSession::finished() {
+  running_ = false;
+  StepResult r = watcher_.result();
+  if (!r.error.isEmpty()) {
+    Q_EMIT engineError(r.error);
+  } else if (engine_ && r.computation.baseRevision == bone_->currentRevision()) {
+    Document::BatchScope batch(document_);
+    CommitOptions options;
+    options.logEveryStep = false;  // the GUI's log lists cuts
+    options.initialVolumeMm3 = initialVolume_;
+    const CutLogEntry e = commitReamStep(document_, *bone_, *reamer_, *log_, alerts_, r.computation, steps_++, options);
+    if (e.boneStateId != 0) {
+      engine_->adopt(e.boneStateId);
+      ++cuts_;
+      undo_.push(new CutCommand(*bone_, e));
+    }
+    // The step put the reamer where it was computed; a newer user move is where it really is.
+    if (latestUserPose_) reamer_->setPose(*latestUserPose_);
+    lastMinDistance_ = e.minDistanceMm;
+    Q_EMIT stepFinished(e.minDistanceMm, e.contact);
+  }  // else: computed against a bone that has changed since (undo, new bone): dropped
+  if (sequenceTotal_ > 0) {
+    ++sequenceDone_;
+    Q_EMIT progress(sequenceDone_, sequenceTotal_);
+  }
+  startNext();
+}
+
+}  // namespace reamsim::ui

@@ -1,0 +1,105 @@
+#pragma once
+// The live reaming loop of the GUI over the one shared Document.
+//
+// A reamer move sets the pose in the document at once (the view follows in the same frame) and queues a
+// step for the worker. The worker (QtConcurrent, one job at a time) runs the collision query and the
+// Boolean on the session's ReamEngine; the result is committed to the Document on the UI thread
+// (commitReamStep) and pushed on the undo stack. User moves are coalesced (the latest pose wins while a
+// step is running); explicit step sequences (feed, ream to depth, the demo plan) run every step.
+// A result computed against a bone that changed meanwhile (undo, new bone) is dropped.
+#include <QFutureWatcher>
+#include <QObject>
+#include <QString>
+#include <QUndoStack>
+#include <deque>
+#include <memory>
+#include <optional>
+
+#include "reamsim/core/AlertNode.h"
+#include "reamsim/core/BoneNode.h"
+#include "reamsim/core/Document.h"
+#include "reamsim/core/LogNode.h"
+#include "reamsim/core/PlanNode.h"
+#include "reamsim/core/ReamerNode.h"
+#include "reamsim/ream/ReamEngine.h"
+#include "reamsim/ui/PluginInterfaces.h"
+
+namespace reamsim::ui {
+
+class PluginHost;
+
+struct StepResult {
+  ReamComputation computation;
+  QString error;  // the engine threw: nothing was computed
+  double computeMs = 0;
+};
+
+class ReamSession : public QObject {
+  Q_OBJECT
+ public:
+  explicit ReamSession(const PluginHost& plugins, QObject* parent = nullptr);
+  ~ReamSession() override;
+
+  Document& document() { return document_; }
+  BoneNode* bone() const { return bone_; }
+  ReamerNode* reamer() const { return reamer_; }
+  LogNode* log() const { return log_; }
+  AlertNode* alerts() const { return alerts_; }
+  PlanNode* plan() const { return plan_; }
+  QUndoStack* undoStack() { return &undo_; }
+
+  // Replaces the bone (and starts a new log and undo history). `start` is where the reamer goes.
+  void loadBone(ImportedBone bone, const QString& sourceName, const Pose& start);
+  void setReamer(const ReamerSpec& spec);
+
+  bool canCollide() const;
+  bool canCut() const;  // a cutting engine is loaded and the bone is a closed solid
+  QString cuttingStatus() const;  // why cutting is off, or the engines in use
+
+  void moveReamer(const Pose& pose);         // user move: coalesced; cancels a running step sequence
+  void runSteps(const std::vector<Pose>& poses);  // every step runs (feed, ream to depth, plan)
+  void cancelQueued();
+  bool busy() const;
+  Pose targetPose() const;  // where the reamer is once every requested step has run
+  // Processes events until no step is running or queued; false on timeout (tests, demo, benchmark).
+  bool waitIdle(int timeoutMs);
+
+  std::size_t cutsCommitted() const { return cuts_; }
+  double lastMinDistanceMm() const { return lastMinDistance_; }
+  double initialVolumeMm3() const { return initialVolume_; }
+
+ Q_SIGNALS:
+  void busyChanged(bool busy);
+  void progress(int done, int total);  // of the current step sequence
+  void stepFinished(double minDistanceMm, bool contact);
+  void engineError(const QString& message);
+  void boneReplaced();
+
+ private:
+  void startNext();
+  void finished();
+  void rebuildEngine();
+
+  const PluginHost& plugins_;
+  Document document_;
+  BoneNode* bone_ = nullptr;
+  ReamerNode* reamer_ = nullptr;
+  LogNode* log_ = nullptr;
+  AlertNode* alerts_ = nullptr;
+  PlanNode* plan_ = nullptr;
+  QUndoStack undo_;
+  bool boneCuttable_ = false;
+  double initialVolume_ = 0;
+
+  std::unique_ptr<ReamEngine> engine_;
+  QFutureWatcher<StepResult> watcher_;
+  bool running_ = false;
+  std::deque<Pose> queued_;
+  std::optional<Pose> latestUserPose_;
+  std::optional<Pose> lastComputedPose_;
+  int sequenceDone_ = 0, sequenceTotal_ = 0;
+  std::size_t cuts_ = 0, steps_ = 0;
+  double lastMinDistance_ = std::numeric_limits<double>::infinity();
+};
+
+}  // namespace reamsim::ui

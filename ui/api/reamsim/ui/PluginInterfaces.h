@@ -1,0 +1,76 @@
+#pragma once
+// Extension points of the desktop application. A plugin is a QObject implementing one or more of these
+// small interfaces, built as a Qt plugin (Q_PLUGIN_METADATA) and loaded with QPluginLoader from the
+// plugin folder. The application runs reduced without any of them (see docs/GUI.md).
+//
+// Plugins are thin adapters over the headless modules; the engines they hand out are used from the
+// session's worker thread, one call at a time.
+#include <QString>
+#include <QStringList>
+#include <QtPlugin>
+#include <memory>
+#include <string>
+
+#include "reamsim/mesh/TriangleMesh.h"
+#include "reamsim/ream/ReamBackends.h"
+
+class QDockWidget;
+class QWidget;
+
+namespace reamsim {
+class Document;
+}
+
+namespace reamsim::ui {
+
+// A bone as import produced it.
+struct ImportedBone {
+  TriangleMesh mesh;                              // what the document's bone starts from (repaired if asked and possible)
+  std::shared_ptr<const TriangleMesh> original;   // as read, for display and comparison
+  std::string report;                             // what the importer did, in words
+  bool cuttable = false;                          // closed, outward, free of self-intersections
+};
+
+class MeshImportInterface {
+ public:
+  virtual ~MeshImportInterface() = default;
+  virtual QStringList nameFilters() const = 0;  // for file dialogs, e.g. "Meshes (*.stl *.ply)"
+  virtual QStringList extensions() const = 0;   // lower case, without dot
+  // Runs on a worker thread. Throws reamsim::InputError naming the file and the problem.
+  virtual ImportedBone importBone(const std::string& path, bool repair) const = 0;
+  // Format from the extension; throws reamsim::InputError.
+  virtual void exportMesh(const TriangleMesh& mesh, const std::string& path) const = 0;
+};
+
+class CollisionInterface {
+ public:
+  virtual ~CollisionInterface() = default;
+  virtual QString engineName() const = 0;
+  virtual std::unique_ptr<ContactBackend> createContactBackend() const = 0;
+};
+
+class CsgInterface {
+ public:
+  virtual ~CsgInterface() = default;
+  virtual QString engineName() const = 0;
+  virtual CutBackendFactory cutBackendFactory() const = 0;
+};
+
+// A dock panel over the shared document (the log panel). The panel follows the document's nodes
+// itself; it must not outlive the document (the main window deletes panels first).
+class PanelInterface {
+ public:
+  virtual ~PanelInterface() = default;
+  virtual QDockWidget* createPanel(Document& document, QWidget* parent) = 0;
+};
+
+}  // namespace reamsim::ui
+
+#define ReamSimMeshImport_iid "org.reamsim.MeshImportInterface/1.0"
+#define ReamSimCollision_iid "org.reamsim.CollisionInterface/1.0"
+#define ReamSimCsg_iid "org.reamsim.CsgInterface/1.0"
+#define ReamSimPanel_iid "org.reamsim.PanelInterface/1.0"
+Q_DECLARE_INTERFACE(reamsim::ui::MeshImportInterface, ReamSimMeshImport_iid)
+Q_DECLARE_INTERFACE(reamsim::ui::CollisionInterface, ReamSimCollision_iid)
+Q_DECLARE_INTERFACE(reamsim::ui::CsgInterface, ReamSimCsg_iid)
+Q_DECLARE_INTERFACE(reamsim::ui::PanelInterface, ReamSimPanel_iid)

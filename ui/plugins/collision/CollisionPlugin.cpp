@@ -1,0 +1,1 @@
+#include "CollisionPlugin.h"

@@ -1,0 +1,111 @@
+#include "LogPanel.h"
+
+#include <QDateTime>
+#include <QFileDialog>
+#include <QHeaderView>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QSplitter>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+#include "CutPlot.h"
+#include "reamsim/core/LogNode.h"
+#include "reamsim/mesh/MeshError.h"
+#include "reamsim/ream/CutLogIO.h"
+
+namespace reamsim::ui {
+
+LogPanel::LogPanel(Document& document, QWidget* parent) : QDockWidget(tr("Cut log"), parent), document_(document) {
+  setObjectName("LogPanel");
+  auto* body = new QWidget(this);
+  auto* layout = new QVBoxLayout(body);
+  auto* splitter = new QSplitter(Qt::Vertical, body);
+  table_ = new QTableWidget(0, 7, splitter);
+  table_->setObjectName("LogTable");
+  table_->setHorizontalHeaderLabels({tr("time"), tr("removed mm³"), tr("cumulative mm³"), tr("cut ms"), tr("faces"),
+                                     tr("contact point (mm)"), tr("step")});
+  table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  table_->setFocusPolicy(Qt::NoFocus);  // the reamer keys stay with the main window
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->verticalHeader()->setVisible(false);
+  plot_ = new CutPlot(splitter);
+  plot_->setObjectName("CutPlot");
+  exportButton_ = new QPushButton(tr("Export CSV…"), body);
+  exportButton_->setObjectName("ExportCsv");
+  exportButton_->setFocusPolicy(Qt::NoFocus);
+  layout->addWidget(splitter);
+  layout->addWidget(exportButton_);
+  setWidget(body);
+  connect(exportButton_, &QPushButton::clicked, this, &LogPanel::exportCsvInteractive);
+  subscription_ = document_.subscribe([this](const DocumentEvent& e) {
+    if (e.id.kind() == NodeKind::Log) sync();
+  });
+  sync();
+}
+
+int LogPanel::rowCount() const { return table_->rowCount(); }
+
+void LogPanel::sync() {
+  const LogNode* log = document_.firstOf<LogNode>();
+  if (!log || log->id() != logId_) {  // another log (new bone) or none: start over
+    table_->setRowCount(0);
+    shown_ = 0;
+    logId_ = log ? log->id() : NodeId{};
+  }
+  if (!log) {
+    plot_->setData({}, {});
+    return;
+  }
+  const auto& entries = log->entries();
+  if (entries.size() == shown_) return;
+  const QString now = QTime::currentTime().toString("HH:mm:ss.zzz");
+  for (std::size_t i = shown_; i < entries.size(); ++i) {
+    const CutLogEntry& e = entries[i];
+    const int row = table_->rowCount();
+    table_->insertRow(row);
+    auto cell = [&](int col, const QString& text) { table_->setItem(row, col, new QTableWidgetItem(text)); };
+    cell(0, now);
+    cell(1, QString::number(e.removedMm3, 'f', 3));
+    cell(2, QString::number(e.cumulativeMm3, 'f', 3));
+    cell(3, QString::number(e.cutMs, 'f', 1));
+    cell(4, QString::number(e.faces));
+    cell(5, e.contactPoint ? QStringLiteral("%1, %2, %3")
+                                 .arg(e.contactPoint->x, 0, 'f', 2)
+                                 .arg(e.contactPoint->y, 0, 'f', 2)
+                                 .arg(e.contactPoint->z, 0, 'f', 2)
+                           : QStringLiteral("–"));
+    cell(6, QString::number(e.stepIndex));
+  }
+  shown_ = entries.size();
+  table_->scrollToBottom();
+  std::vector<double> cumulative, ms;
+  for (const CutLogEntry& e : entries) {
+    cumulative.push_back(e.cumulativeMm3);
+    ms.push_back(e.cutMs);
+  }
+  plot_->setData(std::move(cumulative), std::move(ms));
+}
+
+QString LogPanel::exportCsv(const QString& path, bool interactive) {
+  const LogNode* log = document_.firstOf<LogNode>();
+  QString error;
+  try {
+    writeTextFile(path.toStdString(), cutLogCsv(log ? log->entries() : std::vector<CutLogEntry>{}));
+  } catch (const std::exception& e) {
+    error = QString::fromStdString(e.what());
+  }
+  if (!error.isEmpty() && interactive) {
+    auto* box = new QMessageBox(QMessageBox::Critical, tr("Export CSV"), error, QMessageBox::Ok, this);
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->open();
+  }
+  return error;
+}
+
+void LogPanel::exportCsvInteractive() {
+  const QString path = QFileDialog::getSaveFileName(this, tr("Export cut log"), "cut_log.csv", tr("CSV (*.csv)"));
+  if (!path.isEmpty()) exportCsv(path, true);
+}
+
+}  // namespace reamsim::ui

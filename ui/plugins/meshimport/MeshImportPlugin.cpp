@@ -1,0 +1,42 @@
+#include "MeshImportPlugin.h"
+
+#include "reamsim/mesh/MeshIO.h"
+#include "reamsim/mesh/Repair.h"
+#include "reamsim/mesh/Validation.h"
+
+namespace reamsim::ui {
+
+QStringList MeshImportPlugin::extensions() const {
+  QStringList out;
+  for (const std::string& e : supportedMeshExtensions()) out << QString::fromStdString(e).remove('.').toLower();
+  return out;
+}
+
+QStringList MeshImportPlugin::nameFilters() const {
+  QStringList patterns;
+  for (const QString& e : extensions()) patterns << "*." + e;
+  return {QStringLiteral("Meshes (%1)").arg(patterns.join(' ')), QStringLiteral("All files (*)")};
+}
+
+ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair) const {
+  LoadedMesh loaded = readMesh(path);
+  ImportedBone out;
+  for (const std::string& n : loaded.notes) out.report += "note: " + n + "\n";
+  out.original = std::make_shared<const TriangleMesh>(loaded.mesh);
+  if (!repair) {
+    // Display only: the surface is taken as read, and not offered to the cutting engine.
+    out.mesh = std::move(loaded.mesh);
+    out.report += "loaded without repair: cutting disabled\n";
+    return out;
+  }
+  RepairResult r = repairMesh(loaded.mesh);
+  out.report += toText(r.report);
+  out.cuttable = r.report.success();
+  out.mesh = out.cuttable ? std::move(r.mesh) : std::move(loaded.mesh);
+  if (!out.cuttable) out.report += "could not be repaired into a closed solid: shown as read, cutting disabled\n";
+  return out;
+}
+
+void MeshImportPlugin::exportMesh(const TriangleMesh& mesh, const std::string& path) const { writeMesh(mesh, path); }
+
+}  // namespace reamsim::ui
