@@ -68,7 +68,7 @@ TEST(collisionBvhUpdate, DentCutsKeepTheTreeValidAndTheQueriesExact) {
   const ReamerModel reamer = ReamerModel::fromSpec(test::smallSpec(false, 24, 6));
   std::mt19937_64 rng(5);
   std::size_t changed = 0;
-  for (int cut = 0; cut < 60; ++cut) {
+  for (int cut = 0; cut < 40; ++cut) {
     const Snapshot snap = snapshot(state);
     const RigidTransform T = toTransform(test::poseNearSurface(snap.mesh, rng, -1.0, -0.2, 20));
     const OverlapResult touched = collider.overlap(reamer, T);
@@ -84,7 +84,7 @@ TEST(collisionBvhUpdate, DentCutsKeepTheTreeValidAndTheQueriesExact) {
     if (cut % 10 == 9) expectAgreesWithBruteForce(collider, state, reamer, rng, 20);
     if (::testing::Test::HasFailure()) return;
   }
-  EXPECT_GT(changed, 2000u);
+  EXPECT_GT(changed, 1500u);
 }
 
 // Thousands of cuts: the tree stays valid, its SAH cost stays close to a fresh build's, and the rebuild work
@@ -160,7 +160,7 @@ TEST(collisionBvhUpdate, ExactCgalCutsFollowedBySyncTo) {
     // The cut region is where the reamer is: it now touches the new faces, and nothing is left to cut deeper
     // than the cut itself.
     EXPECT_TRUE(collider.overlap(reamer, T, OverlapMode::AnyContact).overlap);
-    expectAgreesWithBruteForce(collider, state, reamer, rng, 25);
+    expectAgreesWithBruteForce(collider, state, reamer, rng, 15);
   }
 }
 
