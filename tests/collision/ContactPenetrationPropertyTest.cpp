@@ -8,33 +8,18 @@
 #include <random>
 
 #include "CollisionFixtures.h"
+#include "PropertyBones.h"
 #include "reamsim/collision/BruteForce.h"
 #include "reamsim/collision/FirstContact.h"
 #include "reamsim/collision/PenetrationQuery.h"
 #include "reamsim/collision/TriangleGeometry.h"
 
 using namespace reamsim;
+using namespace reamsim::test;  // the shared property-test bones (PropertyBones.h)
 
 namespace {
 
 const double kPi = 3.14159265358979323846;
-
-// >= 10,000 queries per query type over the three bones (brute force on the 1.5k scapula is the costly part).
-constexpr std::size_t kSphereQueries = 4000, kSlabQueries = 4000, kScapulaQueries = 2000;
-static_assert(kSphereQueries + kSlabQueries + kScapulaQueries >= 10000);
-
-const TriangleMesh& sphere() {
-  static const TriangleMesh m = test::icosphere(2, 20, {3, -2, 1});
-  return m;
-}
-const TriangleMesh& slab() {
-  static const TriangleMesh m = test::block({-30, -30, 0}, {30, 30, 20}, 4);
-  return m;
-}
-const TriangleMesh& scapula() {
-  static const TriangleMesh m = test::bundledScapula();
-  return m;
-}
 
 // Brute force over all pairs: do the posed reamer surface and the bone surface touch?
 bool surfacesTouch(const TriangleMesh& bone, const ReamerModel& reamer, const RigidTransform& T) {
