@@ -286,7 +286,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   const SurfaceSampler sampler(mesh);
-  std::vector<RigidTransform> poses, from, to;
+  std::vector<RigidTransform> poses, from, to, tickFrom, tickTo;
   std::vector<Vec3> rayOrigin, rayDir;
   for (std::size_t i = 0; i < n; ++i) {
     const Pose p = poseNear(sampler, rng, -1.5, 3.0, 20);
@@ -298,6 +298,23 @@ int runBenchCollision(const std::vector<std::string>& args) {
     t.translation = s.tip + s.axis * (4 * u(rng)) + perpendicular(s.axis) * (0.5 * (u(rng) - 0.5));
     from.push_back(f);
     to.push_back(t);
+    // Haptic tick: one 1 ms step of a hand-held device at up to 100 mm/s and 100 deg/s (<= 0.1 mm of travel,
+    // <= 0.1 degree of turn), starting 0-0.1 mm before the pose where a feed along the axis first touches the
+    // bone: the ticks right before and at contact, where the query has work to do (about half touch).
+    RigidTransform hf, ht;
+    for (int attempt = 0; attempt < 20; ++attempt) {
+      const Pose hs = poseNear(sampler, rng, 0.5, 3.0, 20);
+      RigidTransform far = toTransform(hs);
+      far.translation = hs.tip + hs.axis * 6.0;
+      const FirstContactResult touch = collider.firstContact(rm, toTransform(hs), far);
+      hf = toTransform(hs);
+      hf.translation = hs.tip + hs.axis * std::max(0.0, 6.0 * touch.t - 0.1 * u(rng));
+      ht = turned(hf, normalized(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5}), 0.1 * kPi / 180 * u(rng));
+      ht.translation = hf.translation + hs.axis * (0.1 * u(rng)) + perpendicular(hs.axis) * (0.02 * (u(rng) - 0.5));
+      if (touch.hit && touch.t > 0) break;
+    }
+    tickFrom.push_back(hf);
+    tickTo.push_back(ht);
     // Rays: along the feed from 5 mm behind the tip (the thesis's probe direction) and in random directions.
     rayOrigin.push_back(p.tip - p.axis * 5.0);
     rayDir.push_back(i % 2 ? p.axis : normalized(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5}));
@@ -321,6 +338,12 @@ int runBenchCollision(const std::vector<std::string>& args) {
     positives[3] += r.hit;
     pairs[1] += r.trianglePairs;
   });
+  std::size_t tickHits = 0, tickPairs = 0;
+  const auto tTick = timeEach(n, [&](std::size_t i) {
+    const FirstContactResult r = collider.firstContact(rm, tickFrom[i], tickTo[i]);
+    tickHits += r.hit;
+    tickPairs += r.trianglePairs;
+  });
   const auto tRay = timeEach(n, [&](std::size_t i) { positives[4] += collider.firstHit(rayOrigin[i], rayDir[i]).has_value(); });
   const auto tRayCulled = timeEach(n, [&](std::size_t i) { positives[5] += collider.firstHit(rayOrigin[i], rayDir[i], Culling::BackFaces).has_value(); });
   std::size_t crossings = 0;
@@ -341,6 +364,9 @@ int runBenchCollision(const std::vector<std::string>& args) {
   queries["first_contact"] = summary(tContact);
   queries["first_contact"]["motions_with_contact"] = positives[3];
   queries["first_contact"]["mean_triangle_pairs"] = double(pairs[1]) / double(n);
+  queries["first_contact_haptic_tick"] = summary(tTick);
+  queries["first_contact_haptic_tick"]["motions_with_contact"] = tickHits;
+  queries["first_contact_haptic_tick"]["mean_triangle_pairs"] = double(tickPairs) / double(n);
   queries["ray_first_hit"] = summary(tRay);
   queries["ray_first_hit"]["hits"] = positives[4];
   queries["ray_first_hit_culled"] = summary(tRayCulled);

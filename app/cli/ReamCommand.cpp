@@ -86,7 +86,7 @@ void printRow(const CutLogEntry& e) {
 }  // namespace
 
 int runReam(const std::vector<std::string>& args) {
-  CliArgs a(args, {"bone", "reamer", "plan", "out", "units", "engine"}, {"json", "check"});
+  CliArgs a(args, {"bone", "reamer", "plan", "out", "units", "engine", "collision"}, {"json", "check"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string outDir = a.required("out");
   const std::string planArg = a.value("plan", "default");
@@ -112,8 +112,13 @@ int runReam(const std::vector<std::string>& args) {
   const std::string engineName = a.value("engine", "local");
   if (engineName != "local" && engineName != "reference")
     throw UsageError("--engine must be 'local' or 'reference', not '" + engineName + "'");
+  // Collision engine (issue 3): exact BVH queries, or the thesis's rays.
+  const std::string collisionName = a.value("collision", "bvh");
+  if (collisionName != "bvh" && collisionName != "thesis")
+    throw UsageError("--collision must be 'bvh' or 'thesis', not '" + collisionName + "'");
   ReamController controller(doc, boneNode, reamer, log, &alerts,
-                            engineName == "local" ? localCutBackendFactory() : referenceCutBackendFactory());
+                            engineName == "local" ? localCutBackendFactory() : referenceCutBackendFactory(),
+                            collisionName == "bvh" ? makeBvhContactBackend() : makeThesisContactBackend());
 
   const bool json = a.has("json");
   const double startVolume = boneNode.current().volume();
@@ -129,7 +134,7 @@ int runReam(const std::vector<std::string>& args) {
   for (const Pose& pose : planNode.poses()) {
     const ReamStepOutcome step = controller.moveTo(pose);
     worstBookkeeping = std::max(worstBookkeeping, step.volumeBookkeepingError / std::max(1.0, step.cut.removedMm3));
-    if (step.entry.boxesOverlap) cutTimes.push_back(step.entry.cutMs);
+    if (step.cut.changed) cutTimes.push_back(step.entry.cutMs);
     if (a.has("check") && step.cut.changed) {
       const BoneInvariants inv = controller.checkBone();
       // The engine's exact state is the bone; the rounded copy is what is displayed and exported.
@@ -160,7 +165,9 @@ int runReam(const std::vector<std::string>& args) {
                             {"invariants_held", invariantsHeld},
                             {"rounded_copy_self_intersecting_steps", roundedSelfIntersectingSteps},
                             {"engine", engineName == "local" ? "local-exact (modules/csg LocalSubtractor)"
-                                                             : "cgal-corefinement-epeck (reference)"}};
+                                                             : "cgal-corefinement-epeck (reference)"},
+                            {"collision", collisionName == "bvh" ? "bvh-exact (modules/collision BoneCollider)"
+                                                                 : "thesis rays (reference)"}};
 
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);

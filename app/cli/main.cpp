@@ -25,6 +25,7 @@ const char* kUsageText =
     "      convert between STL, OBJ, PLY, OFF and VTP (the format follows the extension)\n"
     "  ream --bone MESH|default --reamer PRESET|MESH --plan PLAN.json|default --out DIR [--json]\n"
     "       [--engine local|reference] (cutting engine, default local; see docs/CSG.md)\n"
+    "       [--collision bvh|thesis] (collision engine, default bvh; see docs/COLLISION.md)\n"
     "      run a reaming plan; prints one row per step and writes DIR/log.csv, DIR/log.json and\n"
     "      the final bone mesh\n"
     "  bench cut [--bone default|MESH] [--subdivide N] [--steps N] [--peers] [--check-every N] [--table-5-1] [--export-sequence DIR] [--json]\n"

@@ -45,7 +45,7 @@ Placed place(const ReamerSpec& s, const Vec3& tip) {
   for (Vec3& v : p.face) v += tip;
   return p;
 }
-ThesisContactResult query(const ReamerSpec& s, double tipZ, double step) {
+ContactResult query(const ReamerSpec& s, double tipZ, double step) {
   const Placed p = place(s, {0, 0, tipZ});
   return thesisContactQuery(kBone, kBoneBounds, p.solid, p.face, kFeed, step);
 }
@@ -63,7 +63,7 @@ TEST(collisionBroadPhase, ClosedIntervals) {
 }
 
 TEST(collisionThesisContact, GapIsExact) {
-  const ThesisContactResult r = query(flatReamer(), 7.5, 5.0);
+  const ContactResult r = query(flatReamer(), 7.5, 5.0);
   EXPECT_TRUE(r.boxesOverlap);
   EXPECT_FALSE(r.penetrating);
   EXPECT_TRUE(r.contact);  // 2.5 <= 5
@@ -73,14 +73,14 @@ TEST(collisionThesisContact, GapIsExact) {
   EXPECT_NEAR(r.contactPoint->z, 10.0, 1e-9);
   EXPECT_EQ(r.raysCast, cuttingFaceVertices(flatReamer()).size());
 
-  const ThesisContactResult s = query(sphericalReamer(), 6.25, 5.0);
+  const ContactResult s = query(sphericalReamer(), 6.25, 5.0);
   EXPECT_NEAR(s.minDistanceMm, 3.75, 1e-9);  // the apex is the closest point of a convex face
   ASSERT_TRUE(s.contactPoint);
   EXPECT_NEAR(norm(*s.contactPoint - Vec3(0, 0, 10)), 0.0, 1e-9);
 }
 
 TEST(collisionThesisContact, BroadPhaseRejectsFarReamer) {
-  const ThesisContactResult r = query(flatReamer(), 7.5, 1.0);  // reamer box grown by 1 ends at z = 8.5
+  const ContactResult r = query(flatReamer(), 7.5, 1.0);  // reamer box grown by 1 ends at z = 8.5
   EXPECT_FALSE(r.boxesOverlap);
   EXPECT_FALSE(r.contact);
   EXPECT_EQ(r.raysCast, 0u);
@@ -92,7 +92,7 @@ TEST(collisionThesisContact, ContactFlipsAtTheRightStep) {
   const double step = 0.75;
   int firstContact = -1;
   for (int k = 0; k <= 20 && firstContact < 0; ++k) {
-    const ThesisContactResult r = query(flatReamer(), k * step, step);
+    const ContactResult r = query(flatReamer(), k * step, step);
     if (r.contact) {
       firstContact = k;
       EXPECT_NEAR(r.minDistanceMm, 10 - k * step, 1e-9);
@@ -100,14 +100,14 @@ TEST(collisionThesisContact, ContactFlipsAtTheRightStep) {
   }
   EXPECT_EQ(firstContact, 13);
   // Gap exactly equal to the step counts as contact.
-  const ThesisContactResult atStep = query(flatReamer(), 9.0, 1.0);
+  const ContactResult atStep = query(flatReamer(), 9.0, 1.0);
   EXPECT_TRUE(atStep.contact);
   EXPECT_NEAR(atStep.minDistanceMm, 1.0, 1e-9);
   EXPECT_FALSE(query(flatReamer(), 9.0, 0.5).contact);
 }
 
 TEST(collisionThesisContact, TouchingIsContactWithoutPenetration) {
-  const ThesisContactResult r = query(flatReamer(), 10.0, 0.5);
+  const ContactResult r = query(flatReamer(), 10.0, 0.5);
   EXPECT_TRUE(r.contact);
   EXPECT_FALSE(r.penetrating);
   EXPECT_EQ(r.minDistanceMm, 0.0);
@@ -115,7 +115,7 @@ TEST(collisionThesisContact, TouchingIsContactWithoutPenetration) {
 
 TEST(collisionThesisContact, PenetrationDepth) {
   const std::size_t faceVertices = cuttingFaceVertices(flatReamer()).size();
-  const ThesisContactResult r = query(flatReamer(), 13.0, 0.5);
+  const ContactResult r = query(flatReamer(), 13.0, 0.5);
   EXPECT_TRUE(r.contact);
   EXPECT_TRUE(r.penetrating);
   EXPECT_EQ(r.minDistanceMm, 0.0);
@@ -127,7 +127,7 @@ TEST(collisionThesisContact, PenetrationDepth) {
 
   // Spherical face: only the vertices ahead of the bone surface are inside; the apex is deepest.
   const ReamerSpec sph = sphericalReamer();
-  const ThesisContactResult s = query(sph, 12.0, 0.5);
+  const ContactResult s = query(sph, 12.0, 0.5);
   EXPECT_TRUE(s.penetrating);
   EXPECT_NEAR(s.penetrationDepthMm, 2.0, 1e-9);
   EXPECT_GT(s.insideVertices, 0u);
@@ -145,7 +145,7 @@ TEST(collisionThesisContact, OtherFeedAxis) {
   for (Vec3& v : p.solid.vertices) toBone(v);
   for (Vec3& v : p.face) toBone(v);
   ASSERT_GT(signedVolume(p.solid), 0);  // still a proper rotation
-  const ThesisContactResult r = thesisContactQuery(bone, computeBounds(bone), p.solid, p.face, {-2, 0, 0}, 3.0);
+  const ContactResult r = thesisContactQuery(bone, computeBounds(bone), p.solid, p.face, {-2, 0, 0}, 3.0);
   EXPECT_TRUE(r.contact);
   EXPECT_NEAR(r.minDistanceMm, 2.0, 1e-9);
 }
@@ -154,7 +154,7 @@ TEST(collisionThesisContact, RaysThatMissTheBoneGiveNoContact) {
   // Boxes overlap (the bone is beside the reamer), but no ray along +Z meets it.
   const TriangleMesh bone = test::makeBox({15.5, -5, -20}, {30, 5, 20});
   const Placed p = place(flatReamer(), {0, 0, 0});
-  const ThesisContactResult r = thesisContactQuery(bone, computeBounds(bone), p.solid, p.face, kFeed, 1.0);
+  const ContactResult r = thesisContactQuery(bone, computeBounds(bone), p.solid, p.face, kFeed, 1.0);
   EXPECT_TRUE(r.boxesOverlap);
   EXPECT_FALSE(r.contact);
   EXPECT_TRUE(std::isinf(r.minDistanceMm));

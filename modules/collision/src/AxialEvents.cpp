@@ -18,7 +18,13 @@ bool insideTriangle(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c) 
   const double den = d00 * d11 - d01 * d01;
   if (!(den > 1e-24 * d00 * d11)) return false;
   const double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
-  return v >= -kBaryEps && w >= -kBaryEps && v + w <= 1 + kBaryEps;
+  if (!(v >= -kBaryEps && w >= -kBaryEps && v + w <= 1 + kBaryEps)) return false;
+  // A sliver's computed normal can be far off, and a point far outside it then projects inside: the
+  // point must also lie in the triangle's (slightly grown) box.
+  const double tol = 1e-7 * std::max({1.0, std::abs(a.x), std::abs(a.y), std::abs(a.z)});
+  return x.x >= std::min({a.x, b.x, c.x}) - tol && x.x <= std::max({a.x, b.x, c.x}) + tol &&
+         x.y >= std::min({a.y, b.y, c.y}) - tol && x.y <= std::max({a.y, b.y, c.y}) + tol &&
+         x.z >= std::min({a.z, b.z, c.z}) - tol && x.z <= std::max({a.z, b.z, c.z}) + tol;
 }
 
 }  // namespace

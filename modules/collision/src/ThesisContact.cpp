@@ -8,10 +8,10 @@
 
 namespace reamsim {
 
-ThesisContactResult thesisContactQuery(const TriangleMesh& bone, const Bounds& boneBounds,
-                                       const TriangleMesh& cuttingSolidInBoneCoords,
-                                       const std::vector<Vec3>& cuttingFaceVerticesInBoneCoords,
-                                       const Vec3& feedAxis, double stepMm) {
+ContactResult thesisContactQuery(const TriangleMesh& bone, const Bounds& boneBounds,
+                                 const TriangleMesh& cuttingSolidInBoneCoords,
+                                 const std::vector<Vec3>& cuttingFaceVerticesInBoneCoords, const Vec3& feedAxis,
+                                 double stepMm) {
   const double axisLength = norm(feedAxis);
   if (!(axisLength > 0) || !isFinite(feedAxis))
     throw std::invalid_argument("thesisContactQuery: feed axis must be a non-zero finite vector");
@@ -19,7 +19,7 @@ ThesisContactResult thesisContactQuery(const TriangleMesh& bone, const Bounds& b
     throw std::invalid_argument("thesisContactQuery: stepMm must be a finite number >= 0");
   const Vec3 axis = feedAxis / axisLength;
 
-  ThesisContactResult r;
+  ContactResult r;
   // Broad phase. Growing the reamer box by one step in every direction keeps it conservative: a vertex
   // that reaches the bone within stepMm along the axis stays inside the grown box.
   Bounds reamerBox = computeBounds(cuttingSolidInBoneCoords);

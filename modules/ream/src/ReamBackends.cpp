@@ -2,14 +2,15 @@
 // program that brings its own backends (the GUI's plugins) does not link CGAL through this library.
 #include "reamsim/ream/ReamBackends.h"
 
+#include "reamsim/collision/ThesisContact.h"
+
 namespace reamsim {
 namespace {
 
 class ThesisContactBackend final : public ContactBackend {
  public:
-  ThesisContactResult query(const TriangleMesh& bone, const Bounds& boneBounds, const TriangleMesh& tool,
-                            const std::vector<Vec3>& probes, const Vec3& feedAxis, double stepMm) override {
-    return thesisContactQuery(bone, boneBounds, tool, probes, feedAxis, stepMm);
+  ContactResult query(const ContactInput& in) override {
+    return thesisContactQuery(in.boneMesh, in.boneBounds, in.tool, in.probes, in.feedAxis, in.stepMm);
   }
 };
 

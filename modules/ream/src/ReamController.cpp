@@ -3,13 +3,14 @@
 namespace reamsim {
 
 ReamController::ReamController(Document& document, BoneNode& bone, ReamerNode& reamer, LogNode& log,
-                               AlertNode* alerts, CutBackendFactory cut)
+                               AlertNode* alerts, CutBackendFactory cut,
+                               std::unique_ptr<ContactBackend> contact)
     : document_(document),
       bone_(bone),
       reamer_(reamer),
       log_(log),
       alerts_(alerts),
-      engine_(reamer.cuttingVolume(), makeThesisContactBackend(), std::move(cut)) {
+      engine_(reamer.cuttingVolume(), std::move(contact), std::move(cut)) {
   engine_.prepare(bone_.current(), bone_.currentRevision());
 }
 

@@ -65,12 +65,15 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   std::vector<Vec3> probes;
   probes.reserve(localFaceVertices_.size());
   for (const Vec3& p : localFaceVertices_) probes.push_back(toBone.apply(p));
-  out.contact = contact_->query(boneMesh_, bone.bounds(), tool, probes, pose.axis, stepMm);
+  const Bounds boneBounds = bone.bounds();
+  out.contact = contact_->query(
+      {bone, revision, boneMesh_, boneBounds, cuttingVolume_, toBone, tool, probes, normalized(pose.axis), stepMm});
   out.contactChecked = true;
 
-  // Whenever the boxes overlap the exact Boolean runs, so a contact the rays cannot see (bone entering
-  // from the side) is still cut; the rays give the axial gap and the contact point.
-  if (out.contact.boxesOverlap && cutter_) {
+  // An exact engine says whether the cutting volume reaches the bone; with the thesis's rays the Boolean runs
+  // whenever the boxes overlap, so that bone entering from the side (which the rays cannot see) is still cut.
+  const bool mayCut = out.contact.solidOverlapsBone ? *out.contact.solidOverlapsBone : out.contact.boxesOverlap;
+  if (mayCut && cutter_) {
     pendingAdopt_ = true;  // from here the cutter may differ from `revision` (also if subtract throws)
     out.cut = cutter_->subtract(tool);
     if (!out.cut.changed) {

@@ -34,7 +34,8 @@ CutLogEntry commitReamStep(Document& document, BoneNode& bone, ReamerNode& reame
   if (alerts) {
     std::vector<Alert> list;
     if (e.boxesOverlap) list.push_back({AlertKind::BoundsOverlap, reamer.id(), bone.id(), e.minDistanceMm});
-    if (e.contact) list.push_back({AlertKind::Contact, reamer.id(), bone.id(), 0.0});
+    if (e.contact || c.contact.contact)
+      list.push_back({AlertKind::Contact, reamer.id(), bone.id(), c.contact.penetrating ? 0.0 : e.minDistanceMm});
     alerts->setAlerts(std::move(list));
   }
   return e;

@@ -1,5 +1,6 @@
 #pragma once
-// Collision plugin: the thesis's contact query from reamsim::collision.
+// Collision plugin: the exact BVH queries of reamsim::collision (BoneCollider), which follow the bone's cuts
+// with local updates. The thesis's rays stay available to the CLI (--collision thesis) as the reference.
 #include <QObject>
 
 #include "reamsim/ui/PluginInterfaces.h"
@@ -12,8 +13,8 @@ class CollisionPlugin : public QObject, public CollisionInterface {
   Q_INTERFACES(reamsim::ui::CollisionInterface)
 
  public:
-  QString engineName() const override { return QStringLiteral("thesis rays (brute force)"); }
-  std::unique_ptr<ContactBackend> createContactBackend() const override { return makeThesisContactBackend(); }
+  QString engineName() const override { return QStringLiteral("BVH, exact (overlap, distance, depth)"); }
+  std::unique_ptr<ContactBackend> createContactBackend() const override { return makeBvhContactBackend(); }
 };
 
 }  // namespace reamsim::ui

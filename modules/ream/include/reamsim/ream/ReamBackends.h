@@ -1,21 +1,39 @@
 #pragma once
 // The two engines the reaming loop uses, as small interfaces so the GUI can load them from plugins.
-// The defaults are the Foundation's reference paths: thesis ray casts and CGAL exact corefinement.
+// Collision: the BVH queries (default) or the thesis's rays (the reference). Cutting: the local exact engine
+// (LocalCutBackend.h) or CGAL whole-mesh exact corefinement (the reference).
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
 
-#include "reamsim/collision/ThesisContact.h"
+#include "reamsim/collision/ContactResult.h"
+#include "reamsim/core/BoneState.h"
+#include "reamsim/core/Pose.h"
 #include "reamsim/csg/ReferenceSubtractor.h"
+#include "reamsim/mesh/Bounds.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
 namespace reamsim {
 
+// Everything a contact engine may use for one query; all in bone coordinates unless said otherwise.
+struct ContactInput {
+  const BoneState& bone;
+  std::uint64_t revision;        // changes whenever `bone` does: engines that keep a structure resync on it
+  const TriangleMesh& boneMesh;  // `bone` as a plain mesh
+  const Bounds& boneBounds;
+  const std::shared_ptr<const TriangleMesh>& cuttingVolumeLocal;  // reamer-local, the same object every call
+  const RigidTransform& pose;    // reamer-local -> bone
+  const TriangleMesh& tool;      // the cutting volume placed at `pose`
+  const std::vector<Vec3>& probes;  // forward-facing cutting-face vertices placed at `pose` (thesis rays)
+  Vec3 feedAxis;                 // unit
+  double stepMm;                 // tip travel since the previous query
+};
+
 class ContactBackend {
  public:
   virtual ~ContactBackend() = default;
-  virtual ThesisContactResult query(const TriangleMesh& bone, const Bounds& boneBounds, const TriangleMesh& tool,
-                                    const std::vector<Vec3>& probes, const Vec3& feedAxis, double stepMm) = 0;
+  virtual ContactResult query(const ContactInput& input) = 0;
 };
 
 // A cutting engine holding one bone (it may keep its own exact representation between cuts).
@@ -30,6 +48,9 @@ class CutBackend {
 using CutBackendFactory = std::function<std::unique_ptr<CutBackend>(const TriangleMesh& bone)>;
 
 std::unique_ptr<ContactBackend> makeThesisContactBackend();
+// Exact queries on a BVH that follows the bone's cuts locally (BoneCollider): overlap with the touched faces,
+// the cutting face's minimum distance and the axial penetration depth.
+std::unique_ptr<ContactBackend> makeBvhContactBackend();
 CutBackendFactory referenceCutBackendFactory();
 
 }  // namespace reamsim

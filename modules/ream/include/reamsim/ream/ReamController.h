@@ -3,10 +3,8 @@
 // reaches the bone, subtract it → commit a new bone state and a log row → alerts. The CLI and the tests
 // drive cutting through this class; the GUI runs its two halves (ReamEngine, commitReamStep) itself.
 //
-// This is the Foundation's correct path: thesis collision (bounding boxes, then Möller–Trumbore rays
-// from the cutting-face vertices along the axis) and CGAL whole-mesh corefinement with exact
-// constructions. Whenever the boxes overlap the exact Boolean runs, so a contact the rays cannot see
-// (bone entering from the side) is still cut; the rays give the axial gap and the contact point.
+// Collision: the BVH engine by default (exact overlap, distance and depth; the Boolean runs only when the
+// cutting volume reaches the bone) or the thesis's rays (the Boolean runs whenever the boxes overlap).
 #include <memory>
 
 #include "reamsim/ream/ReamEngine.h"
@@ -16,7 +14,7 @@ namespace reamsim {
 
 struct ReamStepOutcome {
   CutLogEntry entry;
-  ThesisContactResult contact;
+  ContactResult contact;
   ReferenceCut cut;
   double volumeBookkeepingError = 0;  // |removed − (V_before − V_after)|
 };
@@ -28,7 +26,8 @@ class ReamController {
   // The reamer node must have its cutting volume set (reamer-local coordinates).
   // `cut` picks the cutting engine (issue 4: referenceCutBackendFactory() or localCutBackendFactory()).
   ReamController(Document& document, BoneNode& bone, ReamerNode& reamer, LogNode& log, AlertNode* alerts = nullptr,
-                 CutBackendFactory cut = referenceCutBackendFactory());
+                 CutBackendFactory cut = referenceCutBackendFactory(),
+                 std::unique_ptr<ContactBackend> contact = makeBvhContactBackend());
   ~ReamController();
 
   ReamStepOutcome moveTo(const Pose& pose);

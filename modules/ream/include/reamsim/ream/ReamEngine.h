@@ -20,7 +20,7 @@ namespace reamsim {
 struct ReamComputation {
   Pose pose;
   std::uint64_t baseRevision = 0;  // bone revision the step was computed against
-  ThesisContactResult contact;
+  ContactResult contact;
   bool contactChecked = false;     // false: no collision backend, nothing was queried
   ReferenceCut cut;                // cut.changed: `next` holds the bone after the cut
   std::optional<BoneState> next;

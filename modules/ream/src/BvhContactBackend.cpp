@@ -1,0 +1,77 @@
+// The BVH contact engine for the reaming loop: a BoneCollider that follows the bone's cuts with local
+// updates (a cut touches a few thousand slots; the tree is not rebuilt), and a ReamerModel built once from
+// the reamer's cutting volume.
+#include <memory>
+
+#include "reamsim/collision/BoneCollider.h"
+#include "reamsim/collision/BroadPhase.h"
+#include "reamsim/ream/ReamBackends.h"
+
+namespace reamsim {
+namespace {
+
+class BvhContactBackend final : public ContactBackend {
+ public:
+  ContactResult query(const ContactInput& in) override {
+    syncReamer(in.cuttingVolumeLocal);
+    syncBone(in.bone, in.revision);
+
+    ContactResult r;
+    Bounds reamerBox = computeBounds(in.tool);
+    r.boxesOverlap = boundsOverlap(in.boneBounds, reamerBox.expanded(in.stepMm));
+    // The distance is cheap on the tree, so it is always known (the status bar shows it live).
+    const DistanceResult distance = collider_->faceDistance(*reamer_, in.pose);
+    if (distance.found) {
+      r.minDistanceMm = distance.distanceMm;
+      r.contactPoint = distance.onBone;  // the closest point, or where the cutting face meets the bone
+    }
+    if (!r.boxesOverlap) {
+      r.solidOverlapsBone = false;  // disjoint boxes
+      return r;
+    }
+    const OverlapResult overlap = collider_->overlap(*reamer_, in.pose);
+    r.solidOverlapsBone = overlap.overlap;
+    r.touchedFaces = overlap.touchedSlots.size();
+    if (overlap.overlap) {
+      r.penetrating = true;
+      r.minDistanceMm = 0;
+      r.penetrationDepthMm = collider_->axialPenetration(*reamer_, in.pose).depthMm;
+    }
+    r.contact = r.penetrating || r.minDistanceMm <= in.stepMm;
+    return r;
+  }
+
+ private:
+  void syncReamer(const std::shared_ptr<const TriangleMesh>& solid) {
+    if (solid == reamerSource_) return;
+    reamer_ = std::make_unique<ReamerModel>(ReamerModel::fromSolid(*solid));
+    reamerSource_ = solid;
+  }
+
+  // A cut changes a small part of the slots: follow it locally. A different bone (import, undo across many
+  // cuts) changes most of them: build afresh, which is faster then and re-derives whether it is closed.
+  void syncBone(const BoneState& bone, std::uint64_t revision) {
+    if (collider_ && revision == revision_) return;
+    if (collider_) {
+      const SlotChanges changes = diffSlots(collider_->bvh(), bone);
+      if (changes.removed.size() + changes.added.size() < bone.liveTriangleCount() / 2) {
+        collider_->update(bone, changes.removed, changes.added);
+        revision_ = revision;
+        return;
+      }
+    }
+    collider_ = std::make_unique<BoneCollider>(bone);
+    revision_ = revision;
+  }
+
+  std::shared_ptr<const TriangleMesh> reamerSource_;
+  std::unique_ptr<ReamerModel> reamer_;
+  std::unique_ptr<BoneCollider> collider_;
+  std::uint64_t revision_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<ContactBackend> makeBvhContactBackend() { return std::make_unique<BvhContactBackend>(); }
+
+}  // namespace reamsim
