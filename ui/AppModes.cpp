@@ -18,6 +18,7 @@
 #include <QtTest/QTest>
 #include <vector>
 
+#include "CachedBoneLayer.h"
 #include "MainWindow.h"
 #include "PluginHost.h"
 #include "reamsim/ream/Plan.h"
@@ -168,8 +169,10 @@ int runLatencyBench(MainWindow& window, const LatencyOptions& o) {
   pump(200);
 
   QWindow* handle = window.windowHandle();
-  std::vector<double> ms;
+  std::vector<double> ms, vtkMs;
   int missed = 0, unmoved = 0;
+  const std::size_t reusedBefore = window.view()->boneCache().reusedFrames();
+  const std::size_t drawnBefore = window.view()->boneCache().drawnFrames();
   const int warmup = 5;
   for (int i = 0; i < warmup + o.presses; ++i) {
     const Qt::Key key = i % 2 ? Qt::Key_Left : Qt::Key_Right;  // back and forth: the scene stays put
@@ -183,7 +186,10 @@ int runLatencyBench(MainWindow& window, const LatencyOptions& o) {
     QTest::keyRelease(handle, key);
     if (session.reamer()->pose().tip.x == xBefore) ++unmoved;
     if (!ok) ++missed;
-    if (i >= warmup && ok) ms.push_back(elapsed);
+    if (i >= warmup && ok) {
+      ms.push_back(elapsed);
+      vtkMs.push_back(window.view()->lastRenderMs());
+    }
     session.waitIdle(60000);  // one press at a time: the worker's step is not part of the next press
     pump(30);
   }
@@ -197,11 +203,15 @@ int runLatencyBench(MainWindow& window, const LatencyOptions& o) {
     std::printf(
         "{\"bench\": \"key_to_frame\", \"bone\": \"%s\", \"faces\": %zu, \"presses\": %zu, \"missed_frames\": %d, "
         "\"median_ms\": %.2f, \"p90_ms\": %.2f, \"min_ms\": %.2f, \"max_ms\": %.2f, \"window\": \"%dx%d\", "
-        "\"view\": \"%dx%d\", \"pose\": \"%s\", \"cuts\": %zu, \"renderer\": \"%s\", \"target\": \"%s\"}\n",
+        "\"view\": \"%dx%d\", \"pose\": \"%s\", \"cuts\": %zu, \"renderer\": \"%s\", \"target\": \"%s\", "
+        "\"vtk_render_median_ms\": %.2f, \"bone_layer_reused_frames\": %zu, \"bone_layer_drawn_frames\": %zu, "
+        "\"bone_cache\": \"%s\"}\n",
         qPrintable(o.bone), session.bone()->current().liveTriangleCount(), ms.size(), missed, median,
         percentile(ms, 0.9), percentile(ms, 0.0), percentile(ms, 1.0), window.width(), window.height(),
         window.view()->width(), window.view()->height(), pose.c_str(), session.cutsCommitted(), qPrintable(renderer),
-        target);
+        target, percentile(vtkMs, 0.5), window.view()->boneCache().reusedFrames() - reusedBefore,
+        window.view()->boneCache().drawnFrames() - drawnBefore,
+        window.view()->boneCache().enabled() ? "on" : window.view()->boneCache().disabledReason().c_str());
   } else {
     std::printf("key-to-frame latency, %s (%zu faces, reamer %s): median %.2f ms, p90 %.2f ms over %zu presses; %s\n",
                 qPrintable(o.bone), session.bone()->current().liveTriangleCount(), pose.c_str(), median,

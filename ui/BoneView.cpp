@@ -1,6 +1,7 @@
 #include "BoneView.h"
 
 #include <vtkActor.h>
+#include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
@@ -16,8 +17,13 @@
 #include <vtkScalarBarActor.h>
 #include <vtkTextProperty.h>
 
+#include <QElapsedTimer>
 #include <QTimer>
 
+#include <algorithm>
+#include <cmath>
+
+#include "CachedBoneLayer.h"
 #include "ReamSession.h"
 #include "ThesisInteractorStyle.h"
 
@@ -51,6 +57,23 @@ BoneView::BoneView(ReamSession& session, QWidget* parent) : QVTKOpenGLNativeWidg
   setRenderWindow(window);
   renderer_ = vtkSmartPointer<vtkRenderer>::New();
   window->AddRenderer(renderer_);
+  // The reamer is drawn over the bone by its own renderer, so that frames where only it moved can reuse the
+  // bone's picture (CachedBoneLayer): same camera and lights, the bone's depth buffer kept.
+  window->SetNumberOfLayers(2);
+  reamerRenderer_ = vtkSmartPointer<vtkRenderer>::New();
+  reamerRenderer_->SetLayer(1);
+  reamerRenderer_->PreserveDepthBufferOn();
+  reamerRenderer_->InteractiveOff();
+  reamerRenderer_->AutomaticLightCreationOff();
+  reamerRenderer_->SetActiveCamera(renderer_->GetActiveCamera());
+  window->AddRenderer(reamerRenderer_);
+  boneCache_ = std::make_unique<CachedBoneLayer>(window, renderer_, reamerRenderer_);
+  beforeFrame_ = vtkSmartPointer<vtkCallbackCommand>::New();
+  beforeFrame_->SetClientData(this);
+  beforeFrame_->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+    static_cast<BoneView*>(self)->prepareFrame();
+  });
+  window->AddObserver(vtkCommand::StartEvent, beforeFrame_);
   renderer_->GetActiveCamera()->ParallelProjectionOn();  // orthographic: true sizes
   renderer_->GradientBackgroundOn();
   renderer_->AutomaticLightCreationOff();
@@ -63,7 +86,7 @@ BoneView::BoneView(ReamSession& session, QWidget* parent) : QVTKOpenGLNativeWidg
   reamerActor_ = vtkSmartPointer<vtkActor>::New();
   reamerActor_->SetMapper(reamerMapper_);
   renderer_->AddActor(boneActor_);
-  renderer_->AddActor(reamerActor_);
+  reamerRenderer_->AddActor(reamerActor_);
 
   depthLut_ = vtkSmartPointer<vtkLookupTable>::New();
   depthLut_->SetHueRange(0.62, 0.0);  // blue (shallow) → red (deep)
@@ -90,8 +113,10 @@ BoneView::BoneView(ReamSession& session, QWidget* parent) : QVTKOpenGLNativeWidg
   point_->SetLightTypeToSceneLight();
   point_->SetPositional(true);
   point_->SetConeAngle(180);  // a point light, not a spot
-  renderer_->AddLight(directional_);
-  renderer_->AddLight(point_);
+  for (vtkRenderer* r : {renderer_.Get(), reamerRenderer_.Get()}) {
+    r->AddLight(directional_);
+    r->AddLight(point_);
+  }
 
   style_ = vtkSmartPointer<ThesisInteractorStyle>::New();
   style_->reamerAxis = [this](Vec3& tip, Vec3& axis) {
@@ -110,14 +135,68 @@ BoneView::BoneView(ReamSession& session, QWidget* parent) : QVTKOpenGLNativeWidg
   onBoneReplaced();
 }
 
-BoneView::~BoneView() = default;
+BoneView::~BoneView() {
+  renderWindow()->RemoveObserver(beforeFrame_);
+  makeCurrent();
+  boneCache_->releaseGraphicsResources();
+  doneCurrent();
+}
 
 vtkRenderer* BoneView::renderer() const { return renderer_; }
 
 void BoneView::render() {
   renderPending_ = false;
-  renderer_->ResetCameraClippingRange();  // the reamer may have moved out of the previous range
+  QElapsedTimer timer;
+  timer.start();
   renderWindow()->Render();
+  if (boneCache_->takeFailedFrame()) renderWindow()->Render();  // the cache switched itself off: draw in full
+  lastRenderMs_ = timer.nsecsElapsed() / 1e6;
+}
+
+void BoneView::setBoneCacheEnabled(bool on) {
+  boneCache_->setEnabled(on);
+  render();
+}
+
+const CachedBoneLayer& BoneView::boneCache() const { return *boneCache_; }
+
+// Before every frame, whoever asked for it (this view, the interactor style, Qt's repaint).
+void BoneView::prepareFrame() {
+  updateClippingRange();
+  boneCache_->prepareFrame();
+}
+
+// The clipping range must hold the bone and the reamer. Resetting it modifies the camera (which would make
+// the bone layer draw again), so it is reset only when the camera changed, the bone changed, or the reamer
+// left a box kept around both with a margin.
+void BoneView::updateClippingRange() {
+  vtkCamera* camera = renderer_->GetActiveCamera();
+  double bone[6], reamer[6];
+  boneActor_->GetBounds(bone);
+  const bool hasReamer = reamerActor_->GetVisibility() && reamerMapper_->GetInput();
+  if (hasReamer) reamerActor_->GetBounds(reamer);
+  bool inside = true;
+  if (hasReamer)
+    for (int i = 0; i < 3; ++i) inside = inside && reamer[2 * i] >= clipBox_[2 * i] && reamer[2 * i + 1] <= clipBox_[2 * i + 1];
+  const bool boneMoved = !std::equal(bone, bone + 6, clipBone_);
+  if (inside && !boneMoved && camera->GetMTime() == clipCameraTime_) return;
+  std::copy(bone, bone + 6, clipBone_);
+  double box[6];
+  std::copy(bone, bone + 6, box);
+  if (hasReamer)
+    for (int i = 0; i < 3; ++i) {
+      box[2 * i] = std::min(box[2 * i], reamer[2 * i]);
+      box[2 * i + 1] = std::max(box[2 * i + 1], reamer[2 * i + 1]);
+    }
+  const double diagonal = std::sqrt((box[1] - box[0]) * (box[1] - box[0]) + (box[3] - box[2]) * (box[3] - box[2]) +
+                                    (box[5] - box[4]) * (box[5] - box[4]));
+  const double margin = std::max(10.0, 0.25 * diagonal);
+  for (int i = 0; i < 3; ++i) {
+    clipBox_[2 * i] = box[2 * i] - margin;
+    clipBox_[2 * i + 1] = box[2 * i + 1] + margin;
+  }
+  renderer_->ResetCameraClippingRange(clipBox_);
+  clipCameraTime_ = camera->GetMTime();
 }
 
 std::size_t BoneView::displayedTriangleCount() const {
@@ -190,6 +269,7 @@ void BoneView::rebuildBone() {
   maxDepthMm_ = r.maxDepthMm;
   boneMapper_->SetInputData(r.polyData);
   applyColouring();
+  boneCache_->invalidate();
 }
 
 void BoneView::rebuildReamer() {
@@ -211,6 +291,7 @@ void BoneView::placeReamer() {
 }
 
 void BoneView::applyColouring() {
+  boneCache_->invalidate();
   boneMapper_->ScalarVisibilityOn();
   if (colourMode_ == ColourMode::Depth) {
     boneMapper_->SetScalarModeToUsePointFieldData();
@@ -253,6 +334,7 @@ void BoneView::setRenderSettings(const RenderSettings& s) {
   setColour(reamerActor_->GetProperty(), s.reamer);
   reamerActor_->GetProperty()->SetOpacity(s.reamerOpacity);
   applyLights();
+  boneCache_->invalidate();
   if (recolour && displayedTriangleCount() > 0) rebuildBone();
   render();
 }
@@ -264,6 +346,7 @@ void BoneView::setWireframe(bool on) {
   } else {
     boneActor_->GetProperty()->SetRepresentationToSurface();
   }
+  boneCache_->invalidate();
   render();
 }
 

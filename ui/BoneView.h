@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 
 #include "BoneSurface.h"
 #include "RenderSettings.h"
@@ -14,6 +15,7 @@
 #include "reamsim/core/Signal.h"
 
 class vtkActor;
+class vtkCallbackCommand;
 class vtkLight;
 class vtkLookupTable;
 class vtkPolyDataMapper;
@@ -22,6 +24,7 @@ class vtkScalarBarActor;
 
 namespace reamsim::ui {
 
+class CachedBoneLayer;
 class ReamSession;
 class ThesisInteractorStyle;
 
@@ -47,6 +50,10 @@ class BoneView : public QVTKOpenGLNativeWidget {
   double maxDepthMm() const { return maxDepthMm_; }
   std::size_t displayedTriangleCount() const;
   vtkRenderer* renderer() const;
+  // Frames where only the reamer moved reuse the bone's picture (see CachedBoneLayer.h); off: full frames.
+  void setBoneCacheEnabled(bool on);
+  const CachedBoneLayer& boneCache() const;
+  double lastRenderMs() const { return lastRenderMs_; }  // VTK's part of the last render() (benchmark)
 
  Q_SIGNALS:
   void reamerDragged(double mm);  // Ctrl + left drag, along the reamer axis
@@ -63,12 +70,19 @@ class BoneView : public QVTKOpenGLNativeWidget {
   void applyColouring();
   void applyLights();
   void onBoneReplaced();
+  void prepareFrame();
+  void updateClippingRange();
 
   ReamSession& session_;
   Subscription subscription_;
   RenderSettings settings_;
   BoneSurfaceBuilder surfaces_;
-  vtkSmartPointer<vtkRenderer> renderer_;
+  vtkSmartPointer<vtkRenderer> renderer_, reamerRenderer_;
+  std::unique_ptr<CachedBoneLayer> boneCache_;
+  vtkSmartPointer<vtkCallbackCommand> beforeFrame_;
+  double clipBox_[6] = {0, -1, 0, -1, 0, -1}, clipBone_[6] = {0, 0, 0, 0, 0, 0};
+  unsigned long clipCameraTime_ = 0;
+  double lastRenderMs_ = 0;
   vtkSmartPointer<vtkActor> boneActor_, reamerActor_;
   vtkSmartPointer<vtkPolyDataMapper> boneMapper_, reamerMapper_;
   vtkSmartPointer<vtkLookupTable> depthLut_;
