@@ -37,7 +37,7 @@ class BvhContactBackend final : public ContactBackend {
       r.minDistanceMm = 0;
       r.penetrationDepthMm = collider_->axialPenetration(*reamer_, in.pose).depthMm;
     }
-    r.contact = r.penetrating || r.minDistanceMm <= in.stepMm;
+    r.contact = r.penetrating;  // exact: touching or entering (not the thesis's "gap within one step")
     return r;
   }
 

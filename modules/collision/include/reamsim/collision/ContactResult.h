@@ -14,7 +14,7 @@ struct ContactResult {
   // Broad phase: bone box vs the reamer's box grown by stepMm (a gap <= stepMm cannot hide outside it).
   // When false nothing else is queried and contact is false.
   bool boxesOverlap = false;
-  bool contact = false;      // the reamer touches or enters the bone, or the smallest gap is <= stepMm
+  bool contact = false;      // the reamer touches or enters the bone (thesis rays: or the gap is <= stepMm)
   bool penetrating = false;  // the cutting volume enters the bone
   double minDistanceMm = std::numeric_limits<double>::infinity();  // 0 when penetrating; +inf: no hit
   double penetrationDepthMm = 0;     // how far the reamer must back out along its axis to leave the bone
