@@ -35,4 +35,28 @@ void BoneNode::setImportReport(std::string text) {
   markModified();
 }
 
+void BoneNode::setPatientFrame(PatientFrame frame) {
+  if (frame == patientFrame_) return;
+  patientFrame_ = frame;
+  markModified();
+}
+
+void BoneNode::setSource(std::string text) {
+  if (text == source_) return;
+  source_ = std::move(text);
+  markModified();
+}
+
+void BoneNode::swapContent(BoneContent& other) {
+  std::string name = this->name();
+  std::swap(history_, other.history);
+  std::swap(originalMesh_, other.originalMesh);
+  std::swap(importReport_, other.importReport);
+  std::swap(patientFrame_, other.patientFrame);
+  std::swap(source_, other.source);
+  setName(std::move(other.name));  // marks the node modified (batched with the rest by the caller)
+  other.name = std::move(name);
+  markModified();
+}
+
 }  // namespace reamsim

@@ -1,6 +1,9 @@
 #pragma once
 // Linear undo/redo history of bone states. States share storage (see BoneState), so keeping every
 // committed cut costs roughly the size of the edits, not of the mesh.
+// Revisions come from one process-wide counter: a bone node whose whole history is swapped for another
+// (BoneNode::swapContent, undoable CT import) never shows a revision that a cache keyed by revision
+// (engine, view) has seen for a different state.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -15,7 +18,7 @@ class BoneHistory {
   struct Entry {
     BoneState state;
     std::string label;
-    std::uint64_t revision;  // unique within this history, increasing, never reused
+    std::uint64_t revision;  // unique in the process (across histories), increasing, never reused
   };
 
   explicit BoneHistory(BoneState initial = {}, std::string label = "initial");
@@ -45,7 +48,6 @@ class BoneHistory {
  private:
   std::vector<Entry> entries_;
   std::size_t cursor_ = 0;
-  std::uint64_t nextRevision_ = 1;
 };
 
 }  // namespace reamsim

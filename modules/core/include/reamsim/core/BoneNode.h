@@ -1,14 +1,28 @@
 #pragma once
 // The bone being reamed: its undoable state history (the current state is what collision and cutting
-// use), plus what import produced: the original, unrepaired mesh for display and the repair report.
+// use), plus what import produced: the original, unrepaired mesh for display, the repair report, where
+// the bone came from and the patient coordinate convention its coordinates are in.
 #include <memory>
 #include <string>
 
 #include "reamsim/core/BoneHistory.h"
 #include "reamsim/core/Node.h"
+#include "reamsim/core/PatientFrame.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
 namespace reamsim {
+
+// Everything a bone is, as one value. BoneNode::swapContent exchanges it with a node's own, so an undo
+// command can take a whole bone out of the document and put it back exactly (history and cursor
+// included) without copying meshes: the states share storage.
+struct BoneContent {
+  std::string name;
+  BoneHistory history;
+  std::shared_ptr<const TriangleMesh> originalMesh;
+  std::string importReport;
+  PatientFrame patientFrame = PatientFrame::Unspecified;
+  std::string source;
+};
 
 class BoneNode : public Node {
  public:
@@ -31,10 +45,23 @@ class BoneNode : public Node {
   const std::string& importReport() const { return importReport_; }
   void setImportReport(std::string text);
 
+  // The convention of the coordinates (LPS, RAS, or unspecified for a mesh that names none).
+  PatientFrame patientFrame() const { return patientFrame_; }
+  void setPatientFrame(PatientFrame frame);
+  // Where the bone came from, in words: "CT volume /data/head.nrrd", a mesh file path, "bundled default scapula".
+  const std::string& source() const { return source_; }
+  void setSource(std::string text);
+
+  // Exchanges name, history, original mesh, report, frame and source with `other` (reported as modified;
+  // wrap in a Document::BatchScope for a single notification).
+  void swapContent(BoneContent& other);
+
  private:
   BoneHistory history_;
   std::shared_ptr<const TriangleMesh> originalMesh_;
   std::string importReport_;
+  PatientFrame patientFrame_ = PatientFrame::Unspecified;
+  std::string source_;
 };
 
 }  // namespace reamsim
