@@ -107,6 +107,23 @@ INSTANTIATE_TEST_SUITE_P(AllFormats, io_RoundTrip,
 
 class io_MeshIO : public TempDir {};
 
+// PLY keeps comment lines (the GUI stores the bone's patient frame there); a line break cannot end one early.
+TEST_F(io_MeshIO, PlyCommentsRoundTripInBothEncodings) {
+  for (bool binary : {true, false}) {
+    WriteOptions o;
+    o.binary = binary;
+    o.comments = {"reamsim patient_frame LPS", "reamsim source CT volume\nhead.nrrd"};
+    const std::string file = path(binary ? "c_bin.ply" : "c_ascii.ply");
+    writeMesh(octahedron(1, {}), file, o);
+    const LoadedMesh m = readMesh(file, ReadOptions{Units::Millimetres});
+    EXPECT_EQ(m.mesh.triangles.size(), 8u);
+    ASSERT_EQ(m.comments.size(), 3u);
+    EXPECT_EQ(m.comments[0], "written by ReamSim");
+    EXPECT_EQ(m.comments[1], "reamsim patient_frame LPS");
+    EXPECT_EQ(m.comments[2], "reamsim source CT volume head.nrrd");
+  }
+}
+
 TEST_F(io_MeshIO, UppercaseExtensionIsAccepted) {
   const std::string file = path("MESH.STL");
   writeMesh(octahedron(10, {}), file);

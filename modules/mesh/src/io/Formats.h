@@ -13,6 +13,7 @@ struct RawMesh {
   TriangleMesh mesh;
   std::string format;
   std::vector<std::string> notes;
+  std::vector<std::string> comments;  // PLY 'comment' lines
 };
 
 RawMesh readStl(const std::string& path, std::string_view data);
@@ -24,7 +25,8 @@ RawMesh readVtp(const std::string& path, std::string_view data);
 // Writers return the file contents; MeshIO.cpp writes them (VTP writes the file itself).
 std::string writeStl(const TriangleMesh& mesh, const std::string& path, bool binary);
 std::string writeObj(const TriangleMesh& mesh);
-std::string writePly(const TriangleMesh& mesh, const std::string& path, bool binary);
+std::string writePly(const TriangleMesh& mesh, const std::string& path, bool binary,
+                     const std::vector<std::string>& comments);
 std::string writeOff(const TriangleMesh& mesh);
 void writeVtp(const TriangleMesh& mesh, const std::string& path);
 

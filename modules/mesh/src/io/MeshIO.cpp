@@ -61,6 +61,7 @@ LoadedMesh readMesh(const std::string& path, const ReadOptions& options) {
   out.mesh = std::move(raw.mesh);
   out.format = std::move(raw.format);
   out.notes = std::move(raw.notes);
+  out.comments = std::move(raw.comments);
   double scale = 1.0;
   if (options.units == Units::Metres) {
     scale = 1000.0;
@@ -87,7 +88,7 @@ void writeMesh(const TriangleMesh& mesh, const std::string& path, const WriteOpt
         throw InputError(path, "cannot write: a triangle refers to vertex " + std::to_string(i) + " but the mesh has " +
                                    std::to_string(mesh.vertices.size()) + " vertices");
   if (ext == ".stl") io::writeFileBytes(path, io::writeStl(mesh, path, options.binary));
-  else if (ext == ".ply") io::writeFileBytes(path, io::writePly(mesh, path, options.binary));
+  else if (ext == ".ply") io::writeFileBytes(path, io::writePly(mesh, path, options.binary, options.comments));
   else if (ext == ".obj") io::writeFileBytes(path, io::writeObj(mesh));
   else if (ext == ".off") io::writeFileBytes(path, io::writeOff(mesh));
   else if (ext == ".vtp") io::writeVtp(mesh, path);

@@ -64,6 +64,7 @@ struct Header {
   std::vector<Element> elements;
   std::size_t dataOffset = 0;
   long lastLine = 0;
+  std::vector<std::string> comments;  // text of the 'comment' lines, in order
 };
 
 Header parseHeader(const std::string& path, std::string_view data) {
@@ -76,7 +77,11 @@ Header parseHeader(const std::string& path, std::string_view data) {
   for (;;) {
     if (!s.nextLine()) s.fail("unexpected end of file in the PLY header (no 'end_header')");
     if (!s.token(tok)) continue;
-    if (tok == "comment" || tok == "obj_info") continue;
+    if (tok == "comment") {
+      h.comments.emplace_back(s.restOfLine());
+      continue;
+    }
+    if (tok == "obj_info") continue;
     if (tok == "end_header") {
       s.expectLineEnd("'end_header'");
       break;
@@ -317,10 +322,17 @@ void readElements(const std::string& path, const Header& h, const Layout& l, Val
   }
 }
 
-void appendHeader(std::string& out, const TriangleMesh& mesh, const char* format) {
+void appendHeader(std::string& out, const TriangleMesh& mesh, const char* format,
+                  const std::vector<std::string>& comments) {
   out += "ply\nformat ";
   out += format;
-  out += " 1.0\ncomment written by ReamSim\nelement vertex " + std::to_string(mesh.vertices.size()) +
+  out += " 1.0\ncomment written by ReamSim\n";
+  for (std::string c : comments) {  // one line each: a line break would end the comment early
+    for (char& ch : c)
+      if (ch == '\n' || ch == '\r') ch = ' ';
+    out += "comment " + c + "\n";
+  }
+  out += "element vertex " + std::to_string(mesh.vertices.size()) +
          "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
          std::to_string(mesh.triangles.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
 }
@@ -349,15 +361,17 @@ RawMesh readPly(const std::string& path, std::string_view data) {
       out.notes.push_back("PLY: " + std::to_string(src.remaining()) + " bytes after the last element were ignored");
   }
   out.mesh = b.finish(out.notes);
+  out.comments = h.comments;
   return out;
 }
 
-std::string writePly(const TriangleMesh& mesh, const std::string& path, bool binary) {
+std::string writePly(const TriangleMesh& mesh, const std::string& path, bool binary,
+                     const std::vector<std::string>& comments) {
   if (mesh.vertices.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
     throw InputError(path, "too many vertices for PLY 'int' indices");
   std::string out;
   if (binary) {
-    appendHeader(out, mesh, "binary_little_endian");
+    appendHeader(out, mesh, "binary_little_endian", comments);
     out.reserve(out.size() + mesh.vertices.size() * 24 + mesh.triangles.size() * 13);
     for (const Vec3& p : mesh.vertices)
       for (double v : {p.x, p.y, p.z}) appendLittleEndian(out, v);
@@ -367,7 +381,7 @@ std::string writePly(const TriangleMesh& mesh, const std::string& path, bool bin
     }
     return out;
   }
-  appendHeader(out, mesh, "ascii");
+  appendHeader(out, mesh, "ascii", comments);
   for (const Vec3& p : mesh.vertices) {
     appendTriple(out, p.x, p.y, p.z);
     out += '\n';
