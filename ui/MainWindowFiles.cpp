@@ -9,6 +9,7 @@
 #include <QStatusBar>
 #include <QtConcurrent/QtConcurrentRun>
 
+#include "BonePlacement.h"
 #include "MainWindow.h"
 #include "PluginHost.h"
 #include "reamsim/ream/DefaultCase.h"
@@ -19,13 +20,6 @@ namespace reamsim::ui {
 namespace {
 
 constexpr int kMaxRecent = 8;
-constexpr const char* kDefaultReamer = "glenoid-36-R30";
-
-// Where the reamer waits over a freshly imported bone: above its lateral (+Z) side, feeding along -Z.
-Pose startPoseFor(const Bounds& b) {
-  const Vec3 c = b.center();
-  return Pose{{c.x, c.y, b.max.z + 10.0}, {0, 0, -1}, 0};
-}
 
 }  // namespace
 
@@ -33,12 +27,13 @@ bool MainWindow::loadDefaultCase() {
   try {
     DefaultBone d = loadDefaultBone();
     const ReamPlan plan = loadPlan(defaultPlanPath());
-    session_->setReamer(loadPreset(plan.reamer.empty() ? kDefaultReamer : plan.reamer, reamerPresetsPath()));
+    session_->setReamer(loadPreset(plan.reamer.empty() ? kDefaultReamerPreset : plan.reamer, reamerPresetsPath()));
     ImportedBone bone;
     bone.report = "bundled default scapula: " + d.meshPath;
     bone.original = std::make_shared<const TriangleMesh>(d.mesh);
     bone.mesh = std::move(d.mesh);
     bone.cuttable = true;  // the bundled bone is stored repaired (closed, outward, no self-intersections)
+    bone.source = "bundled default scapula (OpenSim bone frame)";
     const std::vector<Pose> poses = plan.expandedPoses();
     const Pose start = plan.feed ? plan.feed->start : (poses.empty() ? startPoseFor(Bounds{}) : poses.front());
     session_->plan()->setReamerSpecName(plan.reamer);
@@ -93,7 +88,7 @@ void MainWindow::importFinished() {
     showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), importPath_ + ": the mesh has no triangles");
     return;
   }
-  if (!session_->reamer()->cuttingVolume()) session_->setReamer(loadPreset(kDefaultReamer, reamerPresetsPath()));
+  if (!session_->reamer()->cuttingVolume()) session_->setReamer(loadPreset(kDefaultReamerPreset, reamerPresetsPath()));
   const Bounds b = BoneState::fromMesh(out.bone.mesh).bounds();
   session_->plan()->setPoses({});
   installBone(std::move(out.bone), QFileInfo(importPath_).fileName(), importPath_);
@@ -103,7 +98,11 @@ void MainWindow::importFinished() {
 
 void MainWindow::installBone(ImportedBone bone, const QString& name, const QString& recentPath) {
   const Pose start = session_->reamer()->pose();
+  const PatientFrame frame = bone.frame;
+  std::string source = bone.source;
   session_->loadBone(std::move(bone), name, start);
+  session_->bone()->setPatientFrame(frame);  // loadBone predates the frame: set here (docs/CT_IMPORT.md)
+  session_->bone()->setSource(std::move(source));
   boneName_ = name;
   if (!recentPath.isEmpty()) addRecent(recentPath);
   updateTitle();
@@ -116,7 +115,8 @@ void MainWindow::saveBoneAs(const QString& path) {
     return;
   }
   try {
-    plugins_.meshImport()->exportMesh(session_->bone()->current().toMesh(), path.toStdString());
+    plugins_.meshImport()->exportMesh(session_->bone()->current().toMesh(), path.toStdString(),
+                                      session_->bone()->patientFrame());
     statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
   } catch (const std::exception& e) {
     showError(tr("Cannot save %1").arg(QFileInfo(path).fileName()), QString::fromStdString(e.what()));

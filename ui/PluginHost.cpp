@@ -42,6 +42,7 @@ void PluginHost::loadFrom(const QString& dir) {
     if (auto* p = qobject_cast<CollisionInterface*>(instance)) { collision_ = p; provides << "collision"; }
     if (auto* p = qobject_cast<CsgInterface*>(instance)) { csg_ = p; provides << "CSG subtraction"; }
     if (auto* p = qobject_cast<PanelInterface*>(instance)) { panels_.push_back(p); provides << "panel"; }
+    if (auto* p = qobject_cast<VolumeImportInterface*>(instance)) { volumeImport_ = p; provides << "CT import"; }
     r.loaded = !provides.isEmpty();
     r.provides = provides.join(", ");
     r.detail = r.loaded ? meta.value("description").toString() : QStringLiteral("implements no ReamSim interface");

@@ -21,7 +21,7 @@ struct PluginRecord {
 class PluginHost {
  public:
   // The plugins the application is built with; a missing one is listed as "not found".
-  static QStringList expectedPlugins() { return {"meshimport", "collision", "csg", "logpanel"}; }
+  static QStringList expectedPlugins() { return {"meshimport", "collision", "csg", "logpanel", "ctimport"}; }
   // $REAMSIM_PLUGIN_DIR, then <exe>/plugins (build tree), then <exe>/../lib/reamsim/plugins (installed).
   static QString defaultPluginDir();
 
@@ -35,6 +35,7 @@ class PluginHost {
   CollisionInterface* collision() const { return collision_; }
   CsgInterface* csg() const { return csg_; }
   const std::vector<PanelInterface*>& panels() const { return panels_; }
+  VolumeImportInterface* volumeImport() const { return volumeImport_; }
 
  private:
   QString dir_;
@@ -43,6 +44,7 @@ class PluginHost {
   CollisionInterface* collision_ = nullptr;
   CsgInterface* csg_ = nullptr;
   std::vector<PanelInterface*> panels_;
+  VolumeImportInterface* volumeImport_ = nullptr;
 };
 
 }  // namespace reamsim::ui

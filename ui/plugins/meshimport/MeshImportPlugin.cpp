@@ -5,6 +5,19 @@
 #include "reamsim/mesh/Validation.h"
 
 namespace reamsim::ui {
+namespace {
+
+// The PLY comment lines ReamSim writes to keep the bone's patient frame (docs/CT_IMPORT.md).
+constexpr const char* kFrameComment = "reamsim patient_frame ";
+
+PatientFrame frameFromComments(const std::vector<std::string>& comments) {
+  for (const std::string& c : comments)
+    if (c.rfind(kFrameComment, 0) == 0)
+      if (auto f = parsePatientFrame(c.substr(std::string(kFrameComment).size()))) return *f;
+  return PatientFrame::Unspecified;
+}
+
+}  // namespace
 
 QStringList MeshImportPlugin::extensions() const {
   QStringList out;
@@ -21,7 +34,11 @@ QStringList MeshImportPlugin::nameFilters() const {
 ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair) const {
   LoadedMesh loaded = readMesh(path);
   ImportedBone out;
+  out.source = path;
+  out.frame = frameFromComments(loaded.comments);
   for (const std::string& n : loaded.notes) out.report += "note: " + n + "\n";
+  if (out.frame != PatientFrame::Unspecified)
+    out.report += std::string("patient frame from the file: ") + toString(out.frame) + "\n";
   out.original = std::make_shared<const TriangleMesh>(loaded.mesh);
   if (!repair) {
     // Display only: the surface is taken as read, and not offered to the cutting engine.
@@ -37,6 +54,10 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair) 
   return out;
 }
 
-void MeshImportPlugin::exportMesh(const TriangleMesh& mesh, const std::string& path) const { writeMesh(mesh, path); }
+void MeshImportPlugin::exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame) const {
+  WriteOptions o;
+  if (frame != PatientFrame::Unspecified) o.comments.push_back(kFrameComment + std::string(toString(frame)));
+  writeMesh(mesh, path, o);
+}
 
 }  // namespace reamsim::ui

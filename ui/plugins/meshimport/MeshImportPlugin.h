@@ -15,7 +15,7 @@ class MeshImportPlugin : public QObject, public MeshImportInterface {
   QStringList nameFilters() const override;
   QStringList extensions() const override;
   ImportedBone importBone(const std::string& path, bool repair) const override;
-  void exportMesh(const TriangleMesh& mesh, const std::string& path) const override;
+  void exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame) const override;
 };
 
 }  // namespace reamsim::ui

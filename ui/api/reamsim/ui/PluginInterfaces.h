@@ -8,12 +8,15 @@
 #include <QString>
 #include <QStringList>
 #include <QtPlugin>
+#include <functional>
 #include <memory>
 #include <string>
 
+#include "reamsim/core/PatientFrame.h"
 #include "reamsim/mesh/TriangleMesh.h"
 #include "reamsim/ream/ReamBackends.h"
 
+class QDialog;
 class QDockWidget;
 class QWidget;
 
@@ -29,6 +32,8 @@ struct ImportedBone {
   std::shared_ptr<const TriangleMesh> original;   // as read, for display and comparison
   std::string report;                             // what the importer did, in words
   bool cuttable = false;                          // closed, outward, free of self-intersections
+  PatientFrame frame = PatientFrame::Unspecified;  // convention of the coordinates (kept in the BoneNode)
+  std::string source;                             // where it came from, in words (kept in the BoneNode)
 };
 
 class MeshImportInterface {
@@ -36,10 +41,31 @@ class MeshImportInterface {
   virtual ~MeshImportInterface() = default;
   virtual QStringList nameFilters() const = 0;  // for file dialogs, e.g. "Meshes (*.stl *.ply)"
   virtual QStringList extensions() const = 0;   // lower case, without dot
-  // Runs on a worker thread. Throws reamsim::InputError naming the file and the problem.
+  // Runs on a worker thread. Throws reamsim::InputError naming the file and the problem. The frame is
+  // read back where the format keeps it (PLY written by ReamSim), else Unspecified.
   virtual ImportedBone importBone(const std::string& path, bool repair) const = 0;
-  // Format from the extension; throws reamsim::InputError.
-  virtual void exportMesh(const TriangleMesh& mesh, const std::string& path) const = 0;
+  // Format from the extension; throws reamsim::InputError. `frame` is stored where the format allows (PLY).
+  virtual void exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame) const = 0;
+};
+
+// What the CT import dialog hands to the main window (on the UI thread).
+struct VolumeImportResult {
+  ImportedBone bone;    // frame: the mesh's patient frame; source: "CT volume PATH"
+  QString name;         // for the title and the history, e.g. "quarter.nhdr (CT)"
+  bool beside = false;  // add as another bone of the document instead of replacing the current one
+};
+
+// CT (or other volume) import: a dialog that opens a volume, shows orthogonal slices with the threshold
+// overlaid and a live surface preview, and builds the bone off the UI thread (docs/CT_IMPORT.md).
+class VolumeImportInterface {
+ public:
+  virtual ~VolumeImportInterface() = default;
+  virtual QStringList nameFilters() const = 0;  // for file dialogs (a DICOM series: any slice file, or its folder)
+  // A non-modal dialog, deleted when closed. It starts loading `path` (a file or a DICOM folder) at once;
+  // an empty path leaves the choice to the user in the dialog. On Import it calls `deliver` on the UI
+  // thread with the bone and closes. Errors (bad volume, nothing in range) are shown in the dialog.
+  virtual QDialog* createImportDialog(const QString& path, std::function<void(VolumeImportResult)> deliver,
+                                      QWidget* parent) = 0;
 };
 
 class CollisionInterface {
@@ -66,11 +92,14 @@ class PanelInterface {
 
 }  // namespace reamsim::ui
 
-#define ReamSimMeshImport_iid "org.reamsim.MeshImportInterface/1.0"
+// 1.1: ImportedBone carries the patient frame and source; exportMesh takes the frame.
+#define ReamSimMeshImport_iid "org.reamsim.MeshImportInterface/1.1"
 #define ReamSimCollision_iid "org.reamsim.CollisionInterface/1.0"
 #define ReamSimCsg_iid "org.reamsim.CsgInterface/1.0"
 #define ReamSimPanel_iid "org.reamsim.PanelInterface/1.0"
+#define ReamSimVolumeImport_iid "org.reamsim.VolumeImportInterface/1.0"
 Q_DECLARE_INTERFACE(reamsim::ui::MeshImportInterface, ReamSimMeshImport_iid)
 Q_DECLARE_INTERFACE(reamsim::ui::CollisionInterface, ReamSimCollision_iid)
 Q_DECLARE_INTERFACE(reamsim::ui::CsgInterface, ReamSimCsg_iid)
 Q_DECLARE_INTERFACE(reamsim::ui::PanelInterface, ReamSimPanel_iid)
+Q_DECLARE_INTERFACE(reamsim::ui::VolumeImportInterface, ReamSimVolumeImport_iid)
