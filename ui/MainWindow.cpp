@@ -16,6 +16,7 @@
 #include <QUndoView>
 #include <cmath>
 
+#include "OtherBonesLayer.h"
 #include "PluginHost.h"
 
 namespace reamsim::ui {
@@ -35,6 +36,7 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   buildMenus();
   buildDocks();
   buildStatusBar();
+  buildVolumeImport();
   loadKeyBindings();
   setAcceptDrops(true);
   view_->setFocusPolicy(Qt::StrongFocus);
@@ -64,6 +66,8 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
 MainWindow::~MainWindow() {
   // Views and panels observe the session's document: they go first.
   alertSubscription_.reset();
+  boneFrameSubscription_.reset();
+  otherBones_.reset();
   if (importWatcher_.isRunning()) importWatcher_.waitForFinished();
   for (QDockWidget* d : panels_) delete d;
   panels_.clear();

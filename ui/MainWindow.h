@@ -13,6 +13,7 @@
 #include "ReamSession.h"
 
 class QAction;
+class QDialog;
 class QDoubleSpinBox;
 class QLabel;
 class QMenu;
@@ -21,6 +22,7 @@ class QDockWidget;
 
 namespace reamsim::ui {
 
+class OtherBonesLayer;
 class PluginHost;
 
 struct ImportOutcome {
@@ -61,6 +63,17 @@ class MainWindow : public QMainWindow {
   void dragReamer(double mm);
   void showPluginsDialog();
   void showError(const QString& title, const QString& message);
+  // CT import (MainWindowCtImport.cpp): the plugin's dialog for `path` (empty: the user picks one in
+  // it), non-modal; nullptr without the plugin. The result is placed by placeImportedVolume.
+  QDialog* importVolume(const QString& path = {});
+  // Replaces the bone (undoable) or adds it beside the current one (undoable; shown, not cut).
+  void placeImportedVolume(VolumeImportResult result);
+  void removeOtherBones();  // undoable
+  void showBoneInfo();
+
+ public:
+  QString boneFrameText() const;  // the status bar's patient frame and source of the bone
+  const OtherBonesLayer* otherBones() const { return otherBones_.get(); }
 
  protected:
   void dragEnterEvent(QDragEnterEvent* e) override;
@@ -82,6 +95,8 @@ class MainWindow : public QMainWindow {
   void editRenderSettings();
   void askReamToDepth();
   Pose targetPose() const;
+  void buildVolumeImport();  // menu actions, status label, other bones (MainWindowCtImport.cpp)
+  void updateBoneFrame();
 
   const PluginHost& plugins_;
   const bool persistent_;
@@ -105,6 +120,10 @@ class MainWindow : public QMainWindow {
   QString importPath_;
   QString boneName_;
   QString lastError_;
+  // CT import (MainWindowCtImport.cpp)
+  std::unique_ptr<OtherBonesLayer> otherBones_;
+  QLabel* frameLabel_ = nullptr;
+  Subscription boneFrameSubscription_;
 };
 
 }  // namespace reamsim::ui

@@ -50,6 +50,10 @@ class ReamSession : public QObject {
 
   // Replaces the bone (and starts a new log and undo history). `start` is where the reamer goes.
   void loadBone(ImportedBone bone, const QString& sourceName, const Pose& start);
+  // Exchanges the whole bone (history and cursor included) and its cuttability with `other`: the
+  // undoable replace of the CT import (BoneCommands.h); calling it twice restores the bone exactly.
+  // Unlike loadBone, the undo stack and the log are kept. Defined in BoneExchange.cpp.
+  void exchangeBone(BoneContent& other, bool& otherCuttable);
   void setReamer(const ReamerSpec& spec);
 
   bool canCollide() const;

@@ -1,0 +1,59 @@
+#pragma once
+// Undo commands that put a whole bone into the document (CT import). Like CutCommand they copy no mesh:
+// a replaced bone's content (history included) is held by value, and its states share storage.
+#include <QUndoCommand>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "reamsim/core/BoneNode.h"
+#include "reamsim/core/Pose.h"
+
+namespace reamsim {
+class Document;
+class PlanNode;
+}  // namespace reamsim
+
+namespace reamsim::ui {
+
+class ReamSession;
+
+// Replaces the session's bone (the one that is cut) and back. The plan's poses go with the bone: a plan
+// made for the previous bone does not apply to the new one, and comes back with it on undo.
+class ReplaceBoneCommand : public QUndoCommand {
+ public:
+  ReplaceBoneCommand(ReamSession& session, BoneContent incoming, bool cuttable, const QString& text);
+  void redo() override { exchange(); }
+  void undo() override { exchange(); }
+
+ private:
+  void exchange();
+  ReamSession& session_;
+  BoneContent other_;
+  bool otherCuttable_;
+  std::vector<Pose> otherPoses_;
+  std::optional<std::string> otherFeed_;
+};
+
+// Adds bones to the document beside the session's bone (shown, not cut), or removes them: `add` says
+// which of the two redo does; undo does the other. Node ids are never reused, so a bone added back
+// gets a new id.
+class OtherBonesCommand : public QUndoCommand {
+ public:
+  // Adding: `nodes` are detached nodes. Removing: `ids` are bones of the document.
+  OtherBonesCommand(Document& document, std::vector<std::unique_ptr<BoneNode>> nodes, const QString& text);
+  OtherBonesCommand(Document& document, const std::vector<NodeId>& ids, const QString& text);
+  void redo() override { add_ ? attach() : detach(); }
+  void undo() override { add_ ? detach() : attach(); }
+
+ private:
+  void attach();
+  void detach();
+  Document& document_;
+  bool add_;
+  std::vector<std::unique_ptr<BoneNode>> detached_;
+  std::vector<NodeId> attached_;
+};
+
+}  // namespace reamsim::ui

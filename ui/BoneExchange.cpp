@@ -1,0 +1,24 @@
+// ReamSession::exchangeBone: the session's half of the undoable bone replacement (CT import). Kept out of
+// ReamSession.cpp so that the reaming loop's file stays about the loop.
+#include "ReamSession.h"
+
+namespace reamsim::ui {
+
+void ReamSession::exchangeBone(BoneContent& other, bool& otherCuttable) {
+  cancelQueued();
+  if (running_) watcher_.waitForFinished();  // its result is dropped: revisions never repeat (BoneHistory)
+  {
+    Document::BatchScope batch(document_);
+    bone_->swapContent(other);
+    alerts_->clear();
+  }
+  std::swap(boneCuttable_, otherCuttable);
+  // As loadBone: the log's cumulative volume is measured against the bone as it was imported.
+  initialVolume_ = bone_->history().entries().front().state.volume();
+  lastComputedPose_.reset();
+  lastMinDistance_ = std::numeric_limits<double>::infinity();
+  rebuildEngine();
+  Q_EMIT boneReplaced();
+}
+
+}  // namespace reamsim::ui
