@@ -1,0 +1,373 @@
+// CT import through the real window and the real ctimport plugin: a phantom volume written by the test
+// (tests/ctimport/Phantom.h) is opened in the dialog, its slices follow the threshold, the preview has a
+// surface, and the bone goes into the document — replacing the bone (undo restores the previous one
+// exactly) or beside it (undo removes it) — with its patient frame. Bad volumes end in an error dialog;
+// Cancel stops an import; the real headsq scan of ../shared/data becomes a closed mesh.
+#include <QAction>
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDialog>
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QFile>
+#include <QImage>
+#include <QMessageBox>
+#include <QPointer>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QRadioButton>
+#include <QSemaphore>
+#include <QTemporaryDir>
+#include <QThreadPool>
+#include <QUndoStack>
+#include <QtTest/QTest>
+#include <filesystem>
+
+#include "../ctimport/Phantom.h"
+#include "GuiEnvironment.h"
+#include "OtherBonesLayer.h"
+#include "reamsim/mesh/Validation.h"
+
+namespace reamsim::ui::test {
+namespace {
+
+constexpr int kWaitMs = 180000;  // a generous bound on waiting, not a timing check
+
+// The phantom of the CT import tests (a sphere pierced by a cylinder of bone in soft tissue) on an oblique,
+// anisotropic grid, written once per test run as an attached NRRD in LPS.
+struct PhantomVolume {
+  phantom::SphereAndCylinder shape;
+  phantom::Grid grid;
+  std::string path;
+};
+
+const PhantomVolume& phantomVolume() {
+  static const PhantomVolume p = [] {
+    PhantomVolume v;
+    v.grid = phantom::gridAround(v.shape.center, 26, {0.9, 0.8, 1.0}, phantom::rotation({1, 2, 3}, 30));
+    const auto dir = std::filesystem::temp_directory_path() / ("reamsim_gui_ct_" + std::to_string(QCoreApplication::applicationPid()));
+    std::filesystem::create_directories(dir);
+    v.path = (dir / "phantom.nrrd").string();
+    phantom::writeNrrd(v.path, v.grid, phantom::sample(v.grid, [&](const Vec3& p) { return v.shape.inside(p); }));
+    return v;
+  }();
+  return p;
+}
+
+bool waitIdle(QDialog* d) {
+  bool idle = false;
+  EXPECT_TRUE(QMetaObject::invokeMethod(d, "waitIdle", Q_RETURN_ARG(bool, idle), Q_ARG(int, kWaitMs)));
+  return idle;
+}
+
+int maskPixels(QDialog* d, int axis) {
+  int n = -1;
+  EXPECT_TRUE(QMetaObject::invokeMethod(d, "maskPixels", Q_RETURN_ARG(int, n), Q_ARG(int, axis)));
+  return n;
+}
+
+// Pixels drawn in the overlay colour (orange: red well above blue); grey pixels have r = g = b.
+int overlayPixels(QDialog* d, int axis) {
+  QImage image;
+  EXPECT_TRUE(QMetaObject::invokeMethod(d, "sliceImage", Q_RETURN_ARG(QImage, image), Q_ARG(int, axis)));
+  int n = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const QRgb c = image.pixel(x, y);
+      if (qRed(c) > qBlue(c) + 60) ++n;
+    }
+  return n;
+}
+
+void setLower(QDialog* d, double hu) {
+  auto* lower = d->findChild<QDoubleSpinBox*>("LowerThreshold");
+  ASSERT_NE(lower, nullptr);
+  lower->setValue(hu);
+}
+
+QDialog* openInDialog(MainWindow& w, const std::string& path) {
+  QDialog* d = w.importVolume(QString::fromStdString(path));
+  EXPECT_NE(d, nullptr) << w.lastError().toStdString();
+  if (!d) return nullptr;
+  EXPECT_TRUE(waitIdle(d));
+  EXPECT_TRUE(d->property("volumeLoaded").toBool()) << d->property("lastError").toString().toStdString();
+  return d;
+}
+
+// Clicks Import and waits until the dialog has delivered the bone (and closed) or stopped.
+void clickImport(QDialog* d, bool beside) {
+  auto* place = d->findChild<QRadioButton*>(beside ? "PlaceBeside" : "PlaceReplace");
+  ASSERT_NE(place, nullptr);
+  place->setChecked(true);
+  auto* button = d->findChild<QPushButton*>("ImportButton");
+  ASSERT_NE(button, nullptr);
+  ASSERT_TRUE(button->isEnabled());
+  QPointer<QDialog> dialog(d);
+  button->click();
+  if (dialog) {
+    EXPECT_TRUE(waitIdle(dialog));
+  }
+}
+
+bool sameMesh(const TriangleMesh& a, const TriangleMesh& b) {
+  if (a.vertices.size() != b.vertices.size() || a.triangles.size() != b.triangles.size()) return false;
+  for (std::size_t i = 0; i < a.vertices.size(); ++i)
+    if (!(a.vertices[i] == b.vertices[i])) return false;
+  return a.triangles == b.triangles;
+}
+
+TEST(GuiCtImport, SlicesFollowTheThresholdAndImportReplacesTheBoneWithUndo) {
+  REAMSIM_REQUIRE_DISPLAY();
+  const PhantomVolume& ph = phantomVolume();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const std::uint64_t revisionBefore = s.bone()->currentRevision();
+  const TriangleMesh meshBefore = s.bone()->current().toMesh();
+  const std::string nameBefore = s.bone()->name();
+  const std::string sourceBefore = s.bone()->source();
+  const QString titleBefore = w.windowTitle();
+  EXPECT_EQ(s.bone()->patientFrame(), PatientFrame::Unspecified);
+  EXPECT_TRUE(w.boneFrameText().contains("unspecified")) << w.boneFrameText().toStdString();
+  ASSERT_TRUE(w.action("import_ct")->isEnabled());
+
+  QDialog* d = openInDialog(w, ph.path);
+  ASSERT_NE(d, nullptr);
+  EXPECT_TRUE(d->isVisible());
+  EXPECT_FALSE(d->isModal());
+  // The middle slices cut through the phantom: bone under the overlay at the default 250 HU.
+  const int at250 = maskPixels(d, 2);
+  EXPECT_GT(at250, 50);
+  EXPECT_EQ(overlayPixels(d, 2), at250);
+  EXPECT_GT(d->property("previewFaces").toInt(), 100);
+  setLower(d, 900);  // partial-volume voxels drop out
+  const int at900 = maskPixels(d, 2);
+  EXPECT_LT(at900, at250);
+  EXPECT_GT(at900, 0);
+  EXPECT_EQ(overlayPixels(d, 2), at900);
+  auto* upperOn = d->findChild<QCheckBox*>("UpperThresholdOn");
+  auto* upper = d->findChild<QDoubleSpinBox*>("UpperThreshold");
+  ASSERT_TRUE(upperOn && upper);
+  upper->setValue(1000);
+  upperOn->setChecked(true);  // 900…1000 HU: only the partial-volume rim of the bone
+  const int band = maskPixels(d, 2);
+  EXPECT_GT(band, 0);
+  EXPECT_LT(band, at900);
+  upper->setValue(800);  // below the lower threshold: no mask, no surface, no import
+  EXPECT_EQ(maskPixels(d, 2), 0);
+  EXPECT_EQ(overlayPixels(d, 2), 0);
+  ASSERT_TRUE(waitIdle(d));
+  EXPECT_EQ(d->property("previewFaces").toInt(), 0);
+  EXPECT_FALSE(d->findChild<QPushButton*>("ImportButton")->isEnabled());
+  upperOn->setChecked(false);
+  setLower(d, 1200);
+  setLower(d, 250);  // the 1200 HU preview, if it ran, is stale: only the newest is shown
+  ASSERT_TRUE(waitIdle(d));
+  EXPECT_EQ(maskPixels(d, 2), at250);
+  EXPECT_GT(d->property("previewFaces").toInt(), 100);
+  // Half way between tissue (40 HU) and bone (1200 HU): the 50 % partial-volume surface, whose volume is
+  // the phantom's (as in tests/ctimport/PhantomFormatsTest.cpp).
+  setLower(d, 620);
+  ASSERT_TRUE(waitIdle(d));
+
+  clickImport(d, false);
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  const BoneNode& bone = *s.bone();
+  EXPECT_EQ(bone.patientFrame(), PatientFrame::LPS);
+  EXPECT_EQ(bone.source(), "CT volume " + QDir::cleanPath(QString::fromStdString(ph.path)).toStdString());
+  EXPECT_NEAR(bone.current().volume(), ph.shape.mainVolume(), 0.01 * ph.shape.mainVolume());
+  const ValidationReport v = validateMesh(bone.current().toMesh());
+  EXPECT_TRUE(v.closed && v.consistentlyOriented && v.outwardOriented);
+  EXPECT_TRUE(s.canCut()) << s.cuttingStatus().toStdString();
+  EXPECT_TRUE(w.boneFrameText().contains("LPS")) << w.boneFrameText().toStdString();
+  EXPECT_TRUE(w.windowTitle().contains("phantom.nrrd (CT)")) << w.windowTitle().toStdString();
+  EXPECT_EQ(w.view()->displayedTriangleCount(), bone.current().liveTriangleCount());
+  ASSERT_EQ(s.undoStack()->count(), 1);
+  const std::uint64_t ctRevision = bone.currentRevision();
+  const double ctVolume = bone.current().volume();
+
+  s.undoStack()->undo();  // the previous bone, exactly
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  EXPECT_EQ(s.bone()->currentRevision(), revisionBefore);
+  EXPECT_TRUE(sameMesh(s.bone()->current().toMesh(), meshBefore));
+  EXPECT_EQ(s.bone()->name(), nameBefore);
+  EXPECT_EQ(s.bone()->source(), sourceBefore);
+  EXPECT_EQ(s.bone()->patientFrame(), PatientFrame::Unspecified);
+  EXPECT_EQ(w.windowTitle(), titleBefore);
+  EXPECT_TRUE(s.canCut());
+  EXPECT_EQ(w.view()->displayedTriangleCount(), meshBefore.triangles.size());
+
+  s.undoStack()->redo();
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  EXPECT_EQ(s.bone()->currentRevision(), ctRevision);
+  EXPECT_EQ(s.bone()->current().volume(), ctVolume);
+  EXPECT_EQ(s.bone()->patientFrame(), PatientFrame::LPS);
+}
+
+TEST(GuiCtImport, BesideAddsASecondBoneThatUndoRemoves) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const std::uint64_t revision = s.bone()->currentRevision();
+  QDialog* d = openInDialog(w, phantomVolume().path);
+  ASSERT_NE(d, nullptr);
+  setLower(d, 620);  // the 50 % partial-volume surface (see above)
+  clickImport(d, true);
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+
+  const auto bones = s.document().nodesOf<BoneNode>();
+  ASSERT_EQ(bones.size(), 2u);
+  EXPECT_EQ(s.bone()->currentRevision(), revision);  // the cut bone is untouched
+  const BoneNode* added = bones[0] == s.bone() ? bones[1] : bones[0];
+  EXPECT_EQ(added->patientFrame(), PatientFrame::LPS);
+  EXPECT_NEAR(added->current().volume(), phantomVolume().shape.mainVolume(), 0.01 * phantomVolume().shape.mainVolume());
+  ASSERT_NE(w.otherBones(), nullptr);
+  EXPECT_EQ(w.otherBones()->shownBones(), 1u);
+  EXPECT_EQ(w.otherBones()->shownTriangles(), added->current().liveTriangleCount());
+  EXPECT_TRUE(w.boneFrameText().contains("1 bone beside")) << w.boneFrameText().toStdString();
+
+  s.undoStack()->undo();
+  EXPECT_EQ(s.document().nodesOf<BoneNode>().size(), 1u);
+  EXPECT_EQ(w.otherBones()->shownBones(), 0u);
+  s.undoStack()->redo();
+  EXPECT_EQ(s.document().nodesOf<BoneNode>().size(), 2u);
+  EXPECT_EQ(w.otherBones()->shownBones(), 1u);
+  w.removeOtherBones();
+  EXPECT_EQ(s.document().nodesOf<BoneNode>().size(), 1u);
+  s.undoStack()->undo();
+  EXPECT_EQ(s.document().nodesOf<BoneNode>().size(), 2u);
+  EXPECT_EQ(s.bone()->currentRevision(), revision);
+}
+
+TEST(GuiCtImport, BadVolumesEndInAnErrorDialogNamingTheFile) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  const std::uint64_t revision = f.session().bone()->currentRevision();
+  QTemporaryDir dir;
+  const std::string bytes = phantom::readBytes(phantomVolume().path);
+  const QString cut = dir.filePath("cut.nrrd");
+  phantom::writeBytes(cut.toStdString(), bytes.substr(0, bytes.size() - 100));
+  const QString garbage = dir.filePath("garbage.nrrd");
+  phantom::writeBytes(garbage.toStdString(), "NRRX" + bytes.substr(4));
+
+  for (const auto& [path, problem] : {std::pair{cut, "file truncated"}, std::pair{garbage, "not a NRRD file"}}) {
+    QDialog* d = w.importVolume(path);
+    ASSERT_NE(d, nullptr);
+    ASSERT_TRUE(waitIdle(d));
+    EXPECT_FALSE(d->property("volumeLoaded").toBool());
+    const QString error = d->property("lastError").toString();
+    EXPECT_TRUE(error.contains(QFileInfo(path).fileName())) << error.toStdString();
+    EXPECT_TRUE(error.contains(problem)) << error.toStdString();
+    auto* box = d->findChild<QMessageBox*>("CtImportError");
+    ASSERT_NE(box, nullptr);
+    EXPECT_TRUE(box->isVisible());
+    EXPECT_EQ(box->text(), error);
+    EXPECT_FALSE(d->findChild<QPushButton*>("ImportButton")->isEnabled());
+    box->close();
+    d->close();
+  }
+  EXPECT_EQ(f.session().bone()->currentRevision(), revision);
+  EXPECT_EQ(f.session().undoStack()->count(), 0);
+}
+
+// Cancel is made deterministic by holding the worker pool: the import is queued, cancelled, then let run,
+// so it stops at its first progress check — no race with a fast import.
+TEST(GuiCtImport, CancelStopsTheImportAndKeepsTheBone) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  const std::uint64_t revision = f.session().bone()->currentRevision();
+  QDialog* d = openInDialog(w, phantomVolume().path);
+  ASSERT_NE(d, nullptr);
+  ASSERT_TRUE(f.session().waitIdle(kWaitMs));
+
+  QThreadPool* pool = QThreadPool::globalInstance();
+  QSemaphore release;
+  const int held = pool->maxThreadCount();
+  for (int i = 0; i < held; ++i) pool->start([&release] { release.acquire(); });
+  d->findChild<QPushButton*>("ImportButton")->click();
+  EXPECT_TRUE(d->findChild<QProgressBar*>("ImportProgress")->isVisible());
+  EXPECT_FALSE(d->findChild<QPushButton*>("ImportButton")->isEnabled());
+  auto* cancel = d->findChild<QPushButton*>("CancelButton");
+  ASSERT_TRUE(cancel->isEnabled());
+  cancel->click();
+  release.release(held);
+  ASSERT_TRUE(waitIdle(d));
+  EXPECT_TRUE(d->property("status").toString().contains("cancelled")) << d->property("status").toString().toStdString();
+  EXPECT_TRUE(d->isVisible());
+  EXPECT_TRUE(d->findChild<QPushButton*>("ImportButton")->isEnabled());
+  EXPECT_EQ(f.session().bone()->currentRevision(), revision);
+  EXPECT_EQ(f.session().undoStack()->count(), 0);
+  d->close();
+}
+
+TEST(GuiCtImport, HeadsqFromSharedDataImportsToAClosedMesh) {
+  REAMSIM_REQUIRE_DISPLAY();
+  const QString headsq = QStringLiteral(REAMSIM_SHARED_DATA_DIR) + "/ct_headsq/quarter.nhdr";
+  if (!QFile::exists(headsq)) GTEST_SKIP() << "no " << headsq.toStdString();
+  GuiFixture f(REAMSIM_GUI_PLUGIN_DIR, false);
+  MainWindow& w = *f.window;
+  QDialog* d = openInDialog(w, headsq.toStdString());
+  ASSERT_NE(d, nullptr);
+  setLower(d, 1150);  // headsq is not in HU (docs/CT_IMPORT.md)
+  ASSERT_TRUE(waitIdle(d));
+  EXPECT_GT(maskPixels(d, 2), 0);
+  EXPECT_GT(d->property("previewFaces").toInt(), 1000);
+  clickImport(d, false);
+  ASSERT_TRUE(f.session().waitIdle(kWaitMs));
+  const BoneNode& bone = *f.session().bone();
+  EXPECT_GT(bone.current().liveTriangleCount(), 10000u);
+  const ValidationReport v = validateMesh(bone.current().toMesh());
+  EXPECT_TRUE(v.closed && v.consistentlyOriented && v.outwardOriented) << toText(v);
+  EXPECT_EQ(v.selfIntersectingPairs, 0u);
+  EXPECT_TRUE(f.session().canCut()) << f.session().cuttingStatus().toStdString();
+  EXPECT_TRUE(QString::fromStdString(bone.source()).endsWith("quarter.nhdr"));
+}
+
+TEST(GuiCtImport, WithoutThePluginTheActionIsOffAndListed) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  for (const char* name : {"meshimport", "collision", "csg", "logpanel"}) {
+    const QString file = QStringLiteral("libreamsim_%1.so").arg(name);
+    ASSERT_TRUE(QFile::copy(QDir(REAMSIM_GUI_PLUGIN_DIR).filePath(file), dir.filePath(file)));
+  }
+  GuiFixture f(dir.path(), false);
+  EXPECT_EQ(f.plugins->volumeImport(), nullptr);
+  EXPECT_FALSE(f.window->action("import_ct")->isEnabled());
+  EXPECT_FALSE(f.window->action("import_ct_dicom")->isEnabled());
+  bool listed = false;
+  for (const PluginRecord& r : f.plugins->records())
+    if (r.name == "ctimport") listed = !r.loaded && r.detail.contains("not found");
+  EXPECT_TRUE(listed) << f.plugins->summaryText().toStdString();
+  EXPECT_EQ(f.window->importVolume("/nowhere/head.nrrd"), nullptr);
+  EXPECT_TRUE(f.window->lastError().contains("no CT import plugin")) << f.window->lastError().toStdString();
+}
+
+// The patient frame is kept through Save as PLY (the one format with room for it) and read back.
+TEST(GuiCtImport, PatientFrameSurvivesSaveAsPly) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f(REAMSIM_GUI_PLUGIN_DIR, false);
+  MainWindow& w = *f.window;
+  QDialog* d = openInDialog(w, phantomVolume().path);
+  ASSERT_NE(d, nullptr);
+  d->findChild<QComboBox*>("MeshFrame")->setCurrentIndex(1);  // RAS
+  clickImport(d, false);
+  ASSERT_TRUE(f.session().waitIdle(kWaitMs));
+  ASSERT_EQ(f.session().bone()->patientFrame(), PatientFrame::RAS);
+  QTemporaryDir out;
+  w.saveBoneAs(out.filePath("bone.ply"));
+  w.saveBoneAs(out.filePath("bone.stl"));
+  ASSERT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  w.openFile(out.filePath("bone.ply"));
+  w.waitImport();
+  EXPECT_EQ(f.session().bone()->patientFrame(), PatientFrame::RAS);
+  EXPECT_TRUE(w.boneFrameText().contains("RAS"));
+  w.openFile(out.filePath("bone.stl"));  // STL has no place for it
+  w.waitImport();
+  EXPECT_EQ(f.session().bone()->patientFrame(), PatientFrame::Unspecified);
+}
+
+}  // namespace
+}  // namespace reamsim::ui::test
