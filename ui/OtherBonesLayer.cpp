@@ -70,7 +70,7 @@ std::size_t OtherBonesLayer::shownTriangles() const {
 void OtherBonesLayer::sync() {
   if (!view_) return;
   vtkRenderer* renderer = view_->renderer();
-  bool changed = false;
+  bool changed = false, removed = false;
   for (auto it = shown_.begin(); it != shown_.end();) {  // removed from the document
     if (document_.findAs<BoneNode>(it->first)) {
       ++it;
@@ -78,19 +78,25 @@ void OtherBonesLayer::sync() {
     }
     renderer->RemoveActor(it->second.actor);
     it = shown_.erase(it);
-    changed = true;
+    changed = removed = true;
   }
   for (BoneNode* bone : document_.nodesOf<BoneNode>()) {
     if (bone->id() == mainBone_) continue;
     Shown& s = shown_[bone->id()];
     if (s.actor && s.revision == bone->currentRevision()) continue;
-    if (s.actor) renderer->RemoveActor(s.actor);
+    if (s.actor) {
+      renderer->RemoveActor(s.actor);
+      removed = true;
+    }
     s.actor = makeActor(bone->current());
     s.revision = bone->currentRevision();
     s.triangles = bone->current().liveTriangleCount();
     renderer->AddActor(s.actor);
     changed = true;
   }
+  // BoneView reuses the bone layer's last picture while nothing in it has a newer modification time
+  // (CachedBoneLayer); a removed actor leaves no such trace, so mark the layer's camera as changed.
+  if (removed) renderer->GetActiveCamera()->Modified();
   if (changed) view_->requestRender();
 }
 

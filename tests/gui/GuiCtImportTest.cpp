@@ -25,6 +25,7 @@
 
 #include "../ctimport/Phantom.h"
 #include "GuiEnvironment.h"
+#include "CachedBoneLayer.h"
 #include "OtherBonesLayer.h"
 #include "reamsim/mesh/Validation.h"
 
@@ -107,6 +108,31 @@ void clickImport(QDialog* d, bool beside) {
   if (dialog) {
     EXPECT_TRUE(waitIdle(dialog));
   }
+}
+
+// Pixels that differ between two pictures of the view (more than 1 in a channel).
+int differingPixels(const QImage& a, const QImage& b) {
+  if (a.size() != b.size()) return a.width() * a.height() + 1;
+  const QImage x = a.convertToFormat(QImage::Format_RGB32), y = b.convertToFormat(QImage::Format_RGB32);
+  int n = 0;
+  for (int r = 0; r < x.height(); ++r)
+    for (int c = 0; c < x.width(); ++c) {
+      const QRgb p = x.pixel(c, r), q = y.pixel(c, r);
+      if (std::abs(qRed(p) - qRed(q)) > 1 || std::abs(qGreen(p) - qGreen(q)) > 1 || std::abs(qBlue(p) - qBlue(q)) > 1) ++n;
+    }
+  return n;
+}
+
+// The view as drawn now (the bone layer may be reused, CachedBoneLayer.h) and drawn in full.
+QImage cachedFrame(BoneView& view) {
+  view.render();
+  return view.grabFramebuffer();
+}
+QImage fullFrame(BoneView& view) {
+  view.setBoneCacheEnabled(false);
+  const QImage image = view.grabFramebuffer();
+  view.setBoneCacheEnabled(true);
+  return image;
 }
 
 bool sameMesh(const TriangleMesh& a, const TriangleMesh& b) {
@@ -238,6 +264,30 @@ TEST(GuiCtImport, BesideAddsASecondBoneThatUndoRemoves) {
   s.undoStack()->undo();
   EXPECT_EQ(s.document().nodesOf<BoneNode>().size(), 2u);
   EXPECT_EQ(s.bone()->currentRevision(), revision);
+}
+
+// A bone beside that is removed leaves the picture even when nothing else changes: the view reuses its
+// bone layer while nothing in it is newer (CachedBoneLayer.h), and the same bone twice keeps the bounds,
+// so neither the camera nor the clipping range moves.
+TEST(GuiCtImport, ARemovedBoneBesideLeavesThePicture) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f(REAMSIM_GUI_PLUGIN_DIR, false);
+  MainWindow& w = *f.window;
+  for (bool beside : {false, true}) {
+    QDialog* d = openInDialog(w, phantomVolume().path);
+    ASSERT_NE(d, nullptr);
+    clickImport(d, beside);
+    ASSERT_TRUE(f.session().waitIdle(kWaitMs));
+  }
+  ASSERT_EQ(w.otherBones()->shownBones(), 1u);
+  BoneView& view = *w.view();
+  view.setStandardView(BoneView::StandardView::Anterior);
+  const QImage both = cachedFrame(view);
+  f.session().undoStack()->undo();
+  ASSERT_EQ(w.otherBones()->shownBones(), 0u);
+  const QImage one = cachedFrame(view);
+  EXPECT_GT(differingPixels(both, one), 0);
+  EXPECT_EQ(differingPixels(one, fullFrame(view)), 0);
 }
 
 TEST(GuiCtImport, BadVolumesEndInAnErrorDialogNamingTheFile) {
