@@ -54,9 +54,11 @@ vtkMTimeType CachedBoneLayer::boneSignature() const {
   vtkMTimeType t = 0;
   if (vtkCamera* c = bone_->GetActiveCamera()) t = std::max(t, c->GetMTime());
   vtkLightCollection* lights = bone_->GetLights();
+  t = std::max(t, lights->GetMTime());  // a collection is modified when an item is added or removed
   lights->InitTraversal();
   while (vtkLight* l = lights->GetNextItem()) t = std::max(t, l->GetMTime());
   vtkPropCollection* props = bone_->GetViewProps();
+  t = std::max(t, props->GetMTime());
   props->InitTraversal();
   while (vtkProp* p = props->GetNextProp()) t = std::max(t, p->GetRedrawMTime());
   return t;

@@ -70,7 +70,7 @@ std::size_t OtherBonesLayer::shownTriangles() const {
 void OtherBonesLayer::sync() {
   if (!view_) return;
   vtkRenderer* renderer = view_->renderer();
-  bool changed = false, removed = false;
+  bool changed = false;
   for (auto it = shown_.begin(); it != shown_.end();) {  // removed from the document
     if (document_.findAs<BoneNode>(it->first)) {
       ++it;
@@ -78,25 +78,21 @@ void OtherBonesLayer::sync() {
     }
     renderer->RemoveActor(it->second.actor);
     it = shown_.erase(it);
-    changed = removed = true;
+    changed = true;
   }
   for (BoneNode* bone : document_.nodesOf<BoneNode>()) {
     if (bone->id() == mainBone_) continue;
     Shown& s = shown_[bone->id()];
     if (s.actor && s.revision == bone->currentRevision()) continue;
-    if (s.actor) {
-      renderer->RemoveActor(s.actor);
-      removed = true;
-    }
+    if (s.actor) renderer->RemoveActor(s.actor);
     s.actor = makeActor(bone->current());
     s.revision = bone->currentRevision();
     s.triangles = bone->current().liveTriangleCount();
     renderer->AddActor(s.actor);
     changed = true;
   }
-  // BoneView reuses the bone layer's last picture while nothing in it has a newer modification time
-  // (CachedBoneLayer); a removed actor leaves no such trace, so mark the layer's camera as changed.
-  if (removed) renderer->GetActiveCamera()->Modified();
+  // Adding or removing an actor modifies the renderer's prop collection, which makes BoneView's reused bone
+  // picture (CachedBoneLayer) draw again.
   if (changed) view_->requestRender();
 }
 
