@@ -95,13 +95,13 @@ int runDemo(MainWindow& window, const QString& screenshotPath) {
     return 1;
   }
   session.waitIdle(60000);
-  // The default plan is a feed along the start pose's axis: run it as a user would, "Ream to depth".
+  // The default plan is a feed along the start pose's axis: run it as a user would, "Feed along the axis by".
   const ReamPlan plan = loadPlan(defaultPlanPath());
   window.setSteps(0.5, 2.0, plan.feed ? plan.feed->stepMm : 0.2);
   const double depth = plan.feed ? plan.feed->stepMm * plan.feed->count : 5.0;
   QElapsedTimer timer;
   timer.start();
-  window.reamToDepth(depth);
+  window.feedBy(depth);
   if (!session.waitIdle(600000)) {
     std::fprintf(stderr, "reamsim --demo: the plan did not finish in 10 minutes\n");
     return 1;

@@ -207,12 +207,7 @@ std::size_t BoneView::displayedTriangleCount() const {
 void BoneView::onBoneReplaced() {
   shownBoneChange_ = UINT64_MAX;
   onDocumentEvent();
-  const Bounds b = session_.bone()->current().bounds();
-  if (!b.empty()) {
-    const Vec3 c = b.center(), s = b.size();
-    point_->SetPosition(c.x, c.y + s.y, c.z + s.z);  // above and in front of the bone
-    point_->SetFocalPoint(c.x, c.y, c.z);
-  }
+  placePointLight();
   resetView();
 }
 
@@ -312,9 +307,24 @@ void BoneView::applyColouring() {
   }
 }
 
+// The point light sits one bone diagonal from the bone's centre, in the direction the settings give.
+void BoneView::placePointLight() {
+  if (!session_.bone()) return;
+  const Bounds b = session_.bone()->current().bounds();
+  if (b.empty()) return;
+  const double az = settings_.pointAzimuthDeg * M_PI / 180, el = settings_.pointElevationDeg * M_PI / 180;
+  const Vec3 c = b.center(), d{std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
+  const Vec3 p = c + d * std::max(1.0, b.diagonal());
+  point_->SetPosition(p.x, p.y, p.z);
+  point_->SetFocalPoint(c.x, c.y, c.z);
+}
+
 void BoneView::applyLights() {
   directional_->SetIntensity(settings_.directionalIntensity);
   point_->SetIntensity(settings_.pointIntensity);
+  placePointLight();
+  const QColor& a = settings_.ambientLight;
+  for (vtkRenderer* r : {renderer_.Get(), reamerRenderer_.Get()}) r->SetAmbient(a.redF(), a.greenF(), a.blueF());
   for (vtkActor* a : {boneActor_.Get(), reamerActor_.Get()}) {
     vtkProperty* p = a->GetProperty();
     p->SetAmbient(settings_.ambient);

@@ -69,6 +69,7 @@ class BoneView : public QVTKOpenGLNativeWidget {
   void placeReamer();
   void applyColouring();
   void applyLights();
+  void placePointLight();
   void onBoneReplaced();
   void prepareFrame();
   void updateClippingRange();

@@ -57,6 +57,7 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
     if (!busy) progress_->setVisible(false);
   });
   connect(&importWatcher_, &QFutureWatcher<ImportOutcome>::finished, this, &MainWindow::importFinished);
+  connect(&contactSearch_, &QFutureWatcher<std::optional<double>>::finished, this, &MainWindow::contactSearchFinished);
   alertSubscription_ = session_->document().observeNode(session_->alerts()->id(), [this] { updateStatus(); });
   updateStatus();
   updateTitle();
@@ -157,7 +158,9 @@ void MainWindow::buildMenus() {
   QMenu* reamer = menuBar()->addMenu(tr("&Reamer"));
   for (const MoveInfo& m : reamerMoves()) reamer->addAction(moveActions_.value(static_cast<int>(m.move)));
   reamer->addSeparator();
-  add(reamer, "ream_to_depth", tr("Ream to &depth…"), QKeySequence("Ctrl+D"), [this] { askReamToDepth(); });
+  add(reamer, "ream_to_depth", tr("Ream to &depth below first contact…"), QKeySequence("Ctrl+D"),
+      [this] { askReamToDepth(); });
+  add(reamer, "feed_by", tr("&Feed along the axis by…"), QKeySequence("Ctrl+F"), [this] { askFeedBy(); });
   add(reamer, "stop", tr("&Stop queued steps"), QKeySequence("Esc"), [this] { session_->cancelQueued(); });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));

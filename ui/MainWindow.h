@@ -7,6 +7,7 @@
 #include <QMap>
 #include <QStringList>
 #include <memory>
+#include <optional>
 
 #include "BoneView.h"
 #include "ReamerMotion.h"
@@ -58,7 +59,12 @@ class MainWindow : public QMainWindow {
   bool importRunning() const { return importWatcher_.isRunning(); }
   void waitImport();
   void saveBoneAs(const QString& path);
+  // Depth below the first contact along the axis (searched on a worker, then fed in feed steps).
   void reamToDepth(double depthMm);
+  bool contactSearchRunning() const { return contactSearch_.isRunning() || pendingDepth_.has_value(); }
+  double lastApproachMm() const { return lastApproachMm_; }  // of the last reamToDepth (tests)
+  // Feed along the axis by `mm` from where the last queued step ends, in feed steps.
+  void feedBy(double mm);
   void applyMove(ReamerMove move);
   void dragReamer(double mm);
   void showPluginsDialog();
@@ -94,6 +100,8 @@ class MainWindow : public QMainWindow {
   void editKeyBindings();
   void editRenderSettings();
   void askReamToDepth();
+  void askFeedBy();
+  void contactSearchFinished();
   Pose targetPose() const;
   void buildVolumeImport();  // menu actions, status label, other bones (MainWindowCtImport.cpp)
   void updateBoneFrame();
@@ -117,6 +125,15 @@ class MainWindow : public QMainWindow {
   QProgressBar* progress_ = nullptr;
   Subscription alertSubscription_;
   QFutureWatcher<ImportOutcome> importWatcher_;
+  static constexpr double kContactSearchMm = 100;
+  struct PendingDepth {
+    Pose start;
+    double depthMm;
+    std::uint64_t boneRevision;
+  };
+  QFutureWatcher<std::optional<double>> contactSearch_;
+  std::optional<PendingDepth> pendingDepth_;
+  double lastApproachMm_ = -1;
   QString importPath_;
   QString boneName_;
   QString lastError_;

@@ -88,11 +88,16 @@ void MainWindow::importFinished() {
     showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), importPath_ + ": the mesh has no triangles");
     return;
   }
-  if (!session_->reamer()->cuttingVolume()) session_->setReamer(loadPreset(kDefaultReamerPreset, reamerPresetsPath()));
-  const Bounds b = BoneState::fromMesh(out.bone.mesh).bounds();
-  session_->plan()->setPoses({});
-  installBone(std::move(out.bone), QFileInfo(importPath_).fileName(), importPath_);
-  session_->moveReamer(startPoseFor(b));
+  try {
+    if (!session_->reamer()->cuttingVolume()) session_->setReamer(loadPreset(kDefaultReamerPreset, reamerPresetsPath()));
+    const Bounds b = BoneState::fromMesh(out.bone.mesh).bounds();
+    session_->plan()->setPoses({});
+    installBone(std::move(out.bone), QFileInfo(importPath_).fileName(), importPath_);
+    session_->moveReamer(startPoseFor(b));
+  } catch (const std::exception& e) {  // e.g. the reamer presets file is missing or broken
+    showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), QString::fromStdString(e.what()));
+    return;
+  }
   statusBar()->showMessage(tr("Opened %1").arg(importPath_), 5000);
 }
 

@@ -3,10 +3,14 @@
 #include <QDoubleSpinBox>
 #include <QInputDialog>
 #include <QSettings>
+#include <QStatusBar>
+#include <QtConcurrent>
 #include <cmath>
+#include <utility>
 
 #include "MainWindow.h"
 #include "SettingsDialogs.h"
+#include "reamsim/ream/Approach.h"
 
 namespace reamsim::ui {
 
@@ -15,34 +19,79 @@ Pose MainWindow::targetPose() const { return session_->targetPose(); }
 
 void MainWindow::applyMove(ReamerMove move) {
   const bool feed = move == ReamerMove::FeedForward || move == ReamerMove::FeedBack;
-  const Pose next = reamsim::ui::applyMove(targetPose(), move, feed ? feedStep_->value() : moveStep_->value(),
-                                           rotateStep_->value());
   if (feed) {
-    session_->runSteps({next});  // every feed step is cut, none is skipped
+    // Every feed step is cut, none is skipped: it continues from the last queued pose.
+    session_->runSteps({reamsim::ui::applyMove(targetPose(), move, feedStep_->value(), rotateStep_->value())});
   } else {
-    session_->moveReamer(next);  // coalesced: the latest pose wins while a step runs
+    // A move by hand starts where the reamer is shown (not at the end of a queued feed, which it interrupts);
+    // coalesced: the latest pose wins while a step runs.
+    session_->moveReamer(reamsim::ui::applyMove(session_->reamer()->pose(), move, moveStep_->value(), rotateStep_->value()));
   }
 }
 
-void MainWindow::dragReamer(double mm) { session_->moveReamer(advancedAlongAxis(targetPose(), mm)); }
+void MainWindow::dragReamer(double mm) { session_->moveReamer(advancedAlongAxis(session_->reamer()->pose(), mm)); }
 
+void MainWindow::feedBy(double mm) {
+  if (!(mm > 0)) return;
+  session_->runSteps(reamToDepthPoses(targetPose(), 0.0, mm, feedStep_->value()));
+}
+
+// Depth below the first contact: the contact is searched on a worker (it builds a BVH of the bone), then
+// the reamer moves to it and feeds in feed steps.
 void MainWindow::reamToDepth(double depthMm) {
-  if (!(depthMm > 0)) return;
-  const double step = feedStep_->value();
+  if (!(depthMm > 0) || contactSearch_.isRunning()) return;
+  const auto volume = session_->reamer()->cuttingVolume();
+  if (!volume || session_->bone()->current().empty()) {
+    showError(tr("Ream to depth"), tr("There is no bone or no reamer to ream with."));
+    return;
+  }
   const Pose start = targetPose();
-  std::vector<Pose> poses;
-  const int n = static_cast<int>(std::ceil(depthMm / step - 1e-9));
-  for (int i = 1; i <= n; ++i) poses.push_back(advancedAlongAxis(start, std::min(depthMm, i * step)));
-  session_->runSteps(poses);
+  const BoneState bone = session_->bone()->current();
+  const std::uint64_t revision = session_->bone()->currentRevision();
+  statusBar()->showMessage(tr("Searching the first contact along the reamer axis…"));
+  contactSearch_.setFuture(QtConcurrent::run([bone, volume, start]() -> std::optional<double> {
+    return advanceToContactMm(bone, *volume, start, kContactSearchMm);
+  }));
+  pendingDepth_ = {start, depthMm, revision};
+}
+
+void MainWindow::contactSearchFinished() {
+  statusBar()->clearMessage();
+  const std::optional<PendingDepth> pending = std::exchange(pendingDepth_, std::nullopt);
+  std::optional<double> approach;
+  try {
+    approach = contactSearch_.result();
+  } catch (const std::exception& e) {
+    showError(tr("Ream to depth"), QString::fromStdString(e.what()));
+    return;
+  }
+  if (!pending || session_->bone()->currentRevision() != pending->boneRevision) return;  // the bone changed
+  if (!approach) {
+    showError(tr("Ream to depth"),
+              tr("The reamer meets no bone within %1 mm along its axis: aim it at the bone first.").arg(kContactSearchMm));
+    return;
+  }
+  lastApproachMm_ = *approach;
+  session_->runSteps(reamToDepthPoses(pending->start, *approach, pending->depthMm, feedStep_->value()));
 }
 
 void MainWindow::askReamToDepth() {
   bool ok = false;
   const double depth = QInputDialog::getDouble(this, tr("Ream to depth"),
-                                               tr("Feed along the reamer axis by (mm), in steps of %1 mm:")
+                                               tr("Ream to this depth below the first contact along the reamer axis "
+                                                  "(mm), in feed steps of %1 mm:")
                                                    .arg(feedStep_->value()),
-                                               2.0, 0.01, 50.0, 2, &ok);
+                                               1.0, 0.01, 50.0, 2, &ok);
   if (ok) reamToDepth(depth);
+}
+
+void MainWindow::askFeedBy() {
+  bool ok = false;
+  const double mm = QInputDialog::getDouble(this, tr("Feed by"),
+                                            tr("Feed along the reamer axis by (mm), in steps of %1 mm:")
+                                                .arg(feedStep_->value()),
+                                            2.0, 0.01, 50.0, 2, &ok);
+  if (ok) feedBy(mm);
 }
 
 void MainWindow::setSteps(double moveMm, double rotateDeg, double feedMm) {

@@ -172,6 +172,10 @@ void ReamSession::finished() {
   running_ = false;
   StepResult r = watcher_.result();
   if (!r.error.isEmpty()) {
+    // Stop the rest of a queued sequence: its steps would meet the same problem (one message, not one per step).
+    queued_.clear();
+    sequenceDone_ = sequenceTotal_ = 0;
+    Q_EMIT progress(0, 0);
     Q_EMIT engineError(r.error);
   } else if (engine_ && r.computation.baseRevision == bone_->currentRevision()) {
     Document::BatchScope batch(document_);

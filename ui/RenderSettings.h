@@ -14,12 +14,15 @@ struct RenderSettings {
   QColor reamer{150, 160, 175};
   QColor freshCut{220, 70, 50};     // the surface made by the last cut
   double reamerOpacity = 1.0;
-  double ambient = 0.15;            // material ambient coefficient (ambient light)
+  QColor ambientLight{255, 255, 255};  // colour of the ambient light (the renderers' ambient)
+  double ambient = 0.15;            // how much of the ambient light the materials reflect
   double diffuse = 0.85;
   double specular = 0.15;
   double specularPower = 20;
   double directionalIntensity = 0.75;  // light along the view direction (camera light)
-  double pointIntensity = 0.45;        // positional light above-front of the bone
+  double pointIntensity = 0.45;        // positional light, placed around the bone:
+  double pointAzimuthDeg = 0;          //   about the bone's +Y (superior) axis, 0 = lateral (+Z)
+  double pointElevationDeg = 45;       //   above the XZ plane; one bone diagonal from its centre
   bool smoothShading = true;
 
   static RenderSettings load(QSettings& settings);

@@ -43,9 +43,9 @@ RenderSettingsDialog::RenderSettingsDialog(const RenderSettings& initial, QWidge
     });
     form->addRow(label, b);
   };
-  auto number = [&](const QString& label, double RenderSettings::*member, double max) {
+  auto number = [&](const QString& label, double RenderSettings::*member, double max, double min = 0) {
     auto* s = new QDoubleSpinBox(this);
-    s->setRange(0, max);
+    s->setRange(min, max);
     s->setSingleStep(max > 2 ? 1 : 0.05);
     s->setValue(settings_.*member);
     connect(s, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this, member](double v) {
@@ -60,12 +60,15 @@ RenderSettingsDialog::RenderSettingsDialog(const RenderSettings& initial, QWidge
   number(tr("Reamer opacity"), &RenderSettings::reamerOpacity, 1);
   colour(tr("Background (bottom)"), &RenderSettings::background);
   colour(tr("Background (top)"), &RenderSettings::background2);
+  colour(tr("Ambient light colour"), &RenderSettings::ambientLight);
   number(tr("Ambient light"), &RenderSettings::ambient, 1);
   number(tr("Diffuse"), &RenderSettings::diffuse, 1);
   number(tr("Specular"), &RenderSettings::specular, 1);
   number(tr("Specular power"), &RenderSettings::specularPower, 128);
   number(tr("Directional light"), &RenderSettings::directionalIntensity, 2);
   number(tr("Point light"), &RenderSettings::pointIntensity, 2);
+  number(tr("Point light azimuth (°)"), &RenderSettings::pointAzimuthDeg, 180, -180);
+  number(tr("Point light elevation (°)"), &RenderSettings::pointElevationDeg, 90, -90);
   auto* smooth = new QCheckBox(tr("Smooth shading"), this);
   smooth->setChecked(settings_.smoothShading);
   connect(smooth, &QCheckBox::toggled, this, [this](bool on) {

@@ -102,7 +102,7 @@ TEST(GuiFrameCache, CameraColourAndBoneChangesRedrawTheBone) {
   // A cut changes the bone: the next frame draws it, and shows the cut.
   const QImage before = frame(view);
   const std::size_t drawn = view.boneCache().drawnFrames();
-  w.reamToDepth(2.0);
+  w.feedBy(2.0);
   ASSERT_TRUE(f.session().waitIdle(120000));
   ASSERT_GT(f.session().log()->size(), 0u);
   const QImage after = frame(view);

@@ -47,7 +47,7 @@ TEST(GuiScreenshot, ReamedGlenoidMatchesTheBaseline) {
   BoneView* view = w.view();
   view->setFixedSize(640, 480);
   w.setSteps(0.5, 2.0, 0.5);
-  w.reamToDepth(3.5);  // 7 feed steps of 0.5 mm from 2 mm lateral: about 1.5 mm into the glenoid
+  w.feedBy(3.5);  // 7 feed steps of 0.5 mm from 2 mm lateral: about 1.5 mm into the glenoid
   ASSERT_TRUE(f.session().waitIdle(120000));
   ASSERT_GE(f.session().cutsCommitted(), 2u);
   f.session().moveReamer(advancedAlongAxis(f.session().reamer()->pose(), -14.0));

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -18,12 +19,24 @@ std::string num(double v, const char* fmt = "%.6f") {
 nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 }  // namespace
 
+std::string isoTimeUtc(std::int64_t unixMs) {
+  if (unixMs <= 0) return "";
+  const std::time_t seconds = static_cast<std::time_t>(unixMs / 1000);
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char buf[40];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S", &utc);
+  char out[48];
+  std::snprintf(out, sizeof out, "%s.%03dZ", buf, static_cast<int>(unixMs % 1000));
+  return out;
+}
+
 std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
   std::string out =
-      "step,tip_x,tip_y,tip_z,axis_x,axis_y,axis_z,boxes_overlap,contact,min_distance_mm,removed_mm3,"
+      "step,time_utc,tip_x,tip_y,tip_z,axis_x,axis_y,axis_z,boxes_overlap,contact,min_distance_mm,removed_mm3,"
       "cumulative_mm3,cut_ms,faces,contact_x,contact_y,contact_z,bone_state\n";
   for (const CutLogEntry& e : entries) {
-    out += std::to_string(e.stepIndex);
+    out += std::to_string(e.stepIndex) + "," + isoTimeUtc(e.timeUnixMs);
     for (double v : {e.pose.tip.x, e.pose.tip.y, e.pose.tip.z, e.pose.axis.x, e.pose.axis.y, e.pose.axis.z})
       out += "," + num(v);
     out += std::string(",") + (e.boxesOverlap ? "1" : "0") + "," + (e.contact ? "1" : "0");
@@ -40,6 +53,7 @@ std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::strin
   nlohmann::json rows = nlohmann::json::array();
   for (const CutLogEntry& e : entries) {
     nlohmann::json r = {{"step", e.stepIndex},
+                        {"time_utc", isoTimeUtc(e.timeUnixMs)},
                         {"tip", {e.pose.tip.x, e.pose.tip.y, e.pose.tip.z}},
                         {"axis", {e.pose.axis.x, e.pose.axis.y, e.pose.axis.z}},
                         {"boxes_overlap", e.boxesOverlap},

@@ -1,5 +1,6 @@
 #include "reamsim/ream/ReamStep.h"
 
+#include <chrono>
 #include <stdexcept>
 #include <string>
 
@@ -14,6 +15,9 @@ CutLogEntry commitReamStep(Document& document, BoneNode& bone, ReamerNode& reame
 
   CutLogEntry e;
   e.stepIndex = stepIndex;
+  e.timeUnixMs = std::chrono::duration_cast<std::chrono::milliseconds>(
+                     std::chrono::system_clock::now().time_since_epoch())
+                     .count();
   e.pose = c.pose;
   e.boxesOverlap = c.contact.boxesOverlap;
   e.minDistanceMm = c.contact.minDistanceMm;

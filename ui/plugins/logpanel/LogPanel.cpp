@@ -59,13 +59,13 @@ void LogPanel::sync() {
   }
   const auto& entries = log->entries();
   if (entries.size() == shown_) return;
-  const QString now = QTime::currentTime().toString("HH:mm:ss.zzz");
   for (std::size_t i = shown_; i < entries.size(); ++i) {
     const CutLogEntry& e = entries[i];
     const int row = table_->rowCount();
     table_->insertRow(row);
     auto cell = [&](int col, const QString& text) { table_->setItem(row, col, new QTableWidgetItem(text)); };
-    cell(0, now);
+    // The time the step was committed, in local time (the CSV has it in UTC).
+    cell(0, e.timeUnixMs > 0 ? QDateTime::fromMSecsSinceEpoch(e.timeUnixMs).toString("HH:mm:ss.zzz") : QString());
     cell(1, QString::number(e.removedMm3, 'f', 3));
     cell(2, QString::number(e.cumulativeMm3, 'f', 3));
     cell(3, QString::number(e.cutMs, 'f', 1));

@@ -11,6 +11,7 @@ namespace reamsim {
 
 struct CutLogEntry {
   std::size_t stepIndex = 0;
+  std::int64_t timeUnixMs = 0;    // wall-clock time the step was committed (ms since 1970-01-01 UTC)
   Pose pose;
   bool boxesOverlap = false;
   bool contact = false;

@@ -1,0 +1,76 @@
+// Reaming actions through the real window: "Ream to depth" measures from the first contact; a move by hand
+// during a queued feed starts where the reamer is shown (it interrupts the feed, it does not jump to its end).
+#include <QtTest/QTest>
+
+#include "GuiEnvironment.h"
+#include "reamsim/ream/Approach.h"
+
+namespace reamsim::ui::test {
+namespace {
+
+TEST(GuiReaming, ReamToDepthStartsAtTheFirstContact) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const Pose start = s.plan()->poses().front();  // in front of the glenoid, not touching
+  s.moveReamer(start);
+  ASSERT_TRUE(s.waitIdle(60000));
+  const double expectedApproach =
+      *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100);
+  ASSERT_GT(expectedApproach, 0.2);
+  const double volumeBefore = s.bone()->current().volume();
+  w.setSteps(0.5, 2.0, 0.25);
+
+  w.reamToDepth(1.0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !w.contactSearchRunning(); }, 60000));
+  ASSERT_TRUE(s.waitIdle(120000));
+  EXPECT_NEAR(w.lastApproachMm(), expectedApproach, 1e-9);
+  // The reamer ends 1 mm past the first contact, along its axis.
+  const Pose end = s.reamer()->pose();
+  EXPECT_NEAR(dot(end.tip - start.tip, normalized(start.axis)), expectedApproach + 1.0, 1e-9);
+  EXPECT_LT(s.bone()->current().volume(), volumeBefore - 10.0);
+  // How deep the surface went, measured on the bone (the depth colouring's numbers): about 1 mm.
+  EXPECT_GT(w.view()->maxDepthMm(), 0.8);
+  EXPECT_LT(w.view()->maxDepthMm(), 1.05);
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+}
+
+TEST(GuiReaming, ReamToDepthWithNoBoneAheadSaysSo) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  const Bounds b = f.session().bone()->current().bounds();
+  f.session().moveReamer(Pose{{b.center().x, b.center().y, b.max.z + 50}, {0, 0, 1}, 0});  // above, pointing away
+  ASSERT_TRUE(f.session().waitIdle(60000));
+  const std::size_t cuts = f.session().log()->size();
+  w.reamToDepth(1.0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !w.contactSearchRunning(); }, 60000));
+  ASSERT_TRUE(f.session().waitIdle(60000));
+  EXPECT_TRUE(w.lastError().contains("meets no bone")) << w.lastError().toStdString();
+  EXPECT_EQ(f.session().log()->size(), cuts);
+}
+
+TEST(GuiReaming, HandMoveDuringAFeedStartsWhereTheReamerIsShown) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const Pose start = s.plan()->poses().front();
+  s.moveReamer(start);
+  ASSERT_TRUE(s.waitIdle(60000));
+  w.setSteps(0.5, 2.0, 0.2);
+  w.feedBy(4.0);  // 20 feed steps queued
+  const Pose shown = s.reamer()->pose();
+  QTest::keyClick(w.windowHandle(), Qt::Key_Up);  // +0.5 mm in Y, by hand
+  const Pose moved = s.reamer()->pose();
+  EXPECT_NEAR(moved.tip.y - shown.tip.y, 0.5, 1e-9);
+  EXPECT_NEAR(moved.tip.x, shown.tip.x, 1e-9);
+  EXPECT_NEAR(moved.tip.z, shown.tip.z, 1e-9);
+  ASSERT_TRUE(s.waitIdle(120000));
+  // The rest of the feed was interrupted: the reamer did not travel the 4 mm.
+  EXPECT_LT(dot(s.reamer()->pose().tip - start.tip, normalized(start.axis)), 1.0);
+}
+
+}  // namespace
+}  // namespace reamsim::ui::test

@@ -1,0 +1,51 @@
+// "Ream to depth" measures the depth from the first contact: how far the reamer can advance along its axis
+// (exact first contact on the BVH) and the feed poses from there.
+#include <gtest/gtest.h>
+
+#include "reamsim/ream/Approach.h"
+#include "reamsim/tools/Primitives.h"
+#include "reamsim/tools/ReamerGeometry.h"
+
+namespace reamsim {
+namespace {
+
+ReamerSpec flat20() {
+  ReamerSpec spec;
+  spec.name = "flat-20";
+  spec.diameterMm = 20;
+  spec.bodyLengthMm = 10;
+  spec.segments = 32;
+  return spec;
+}
+
+TEST(Approach, DistanceToTheFirstContactAlongTheAxis) {
+  const BoneState block = BoneState::fromMesh(buildBox(Bounds{{-40, -40, -30}, {40, 40, 0}}, 4));
+  const TriangleMesh tool = buildCuttingSolid(flat20());
+  const auto down = [](double z) { return Pose{{3, -2, z}, {0, 0, -1}, 0}; };
+  EXPECT_NEAR(*advanceToContactMm(block, tool, down(2.0), 100), 2.0, 1e-9);
+  EXPECT_NEAR(*advanceToContactMm(block, tool, down(37.25), 100), 37.25, 1e-9);
+  EXPECT_EQ(*advanceToContactMm(block, tool, down(0.0), 100), 0.0);   // touching
+  EXPECT_EQ(*advanceToContactMm(block, tool, down(-1.0), 100), 0.0);  // already inside
+  EXPECT_FALSE(advanceToContactMm(block, tool, down(150.0), 100).has_value());  // out of reach
+  EXPECT_FALSE(advanceToContactMm(block, tool, Pose{{0, 0, 15}, {0, 0, 1}, 0}, 100).has_value());  // away (body behind the tip clear)
+  // Tilted 30 degrees: the rim reaches the top first, at z = 10 sin(30) = 5 above the tip's contact.
+  const Vec3 axis = normalized(Vec3{std::sin(M_PI / 6), 0, -std::cos(M_PI / 6)});
+  const double start = 20;  // tip height
+  const double rimDrop = 10 * std::sin(M_PI / 6);
+  const double expected = (start - rimDrop) / std::cos(M_PI / 6);
+  EXPECT_NEAR(*advanceToContactMm(block, tool, Pose{{0, 0, start}, axis, 0}, 100), expected, 1e-6);
+}
+
+TEST(Approach, PosesMoveToContactThenFeedInSteps) {
+  const Pose start{{0, 0, 10}, {0, 0, -1}, 0};
+  const std::vector<Pose> p = reamToDepthPoses(start, 2.0, 1.0, 0.4);
+  ASSERT_EQ(p.size(), 4u);
+  const double z[] = {8.0, 7.6, 7.2, 7.0};
+  for (std::size_t i = 0; i < p.size(); ++i) EXPECT_NEAR(p[i].tip.z, z[i], 1e-12) << i;
+  EXPECT_EQ(reamToDepthPoses(start, 0.0, 1.0, 0.5).size(), 2u);  // touching: no approach move
+  EXPECT_TRUE(reamToDepthPoses(start, -1.0, 1.0, 0.5).empty());
+  EXPECT_TRUE(reamToDepthPoses(start, 1.0, 0.0, 0.5).empty());
+}
+
+}  // namespace
+}  // namespace reamsim
