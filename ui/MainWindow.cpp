@@ -10,6 +10,7 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QProgressBar>
+#include <QPushButton>
 #include <QSettings>
 #include <QStatusBar>
 #include <QToolBar>
@@ -229,6 +230,17 @@ void MainWindow::buildStatusBar() {
   distanceLabel_->setMinimumWidth(170);
   engineLabel_ = new QLabel(this);
   engineLabel_->setObjectName("EngineLabel");
+  importBusy_ = new QProgressBar(this);
+  importBusy_->setObjectName("ImportProgress");
+  importBusy_->setRange(0, 0);  // busy: the importer reports no fraction
+  importBusy_->setMaximumWidth(120);
+  importBusy_->setVisible(false);
+  importCancel_ = new QPushButton(tr("Cancel import"), this);
+  importCancel_->setObjectName("CancelImport");
+  importCancel_->setVisible(false);
+  connect(importCancel_, &QPushButton::clicked, this, &MainWindow::cancelImport);
+  statusBar()->addPermanentWidget(importBusy_);
+  statusBar()->addPermanentWidget(importCancel_);
   progress_ = new QProgressBar(this);
   progress_->setObjectName("StepProgress");
   progress_->setMaximumWidth(160);

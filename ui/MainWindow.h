@@ -19,6 +19,7 @@ class QDoubleSpinBox;
 class QLabel;
 class QMenu;
 class QProgressBar;
+class QPushButton;
 class QDockWidget;
 
 namespace reamsim::ui {
@@ -58,6 +59,7 @@ class MainWindow : public QMainWindow {
   void openFile(const QString& path, bool repair = true);
   bool importRunning() const { return importWatcher_.isRunning(); }
   void waitImport();
+  void cancelImport();  // the window is free at once; the worker's result is discarded
   void saveBoneAs(const QString& path);
   // Depth below the first contact along the axis (searched on a worker, then fed in feed steps).
   void reamToDepth(double depthMm);
@@ -125,6 +127,9 @@ class MainWindow : public QMainWindow {
   QProgressBar* progress_ = nullptr;
   Subscription alertSubscription_;
   QFutureWatcher<ImportOutcome> importWatcher_;
+  QProgressBar* importBusy_ = nullptr;
+  QPushButton* importCancel_ = nullptr;
+  bool importCancelled_ = false;
   static constexpr double kContactSearchMm = 100;
   struct PendingDepth {
     Pose start;

@@ -5,9 +5,12 @@
 #include <QFileInfo>
 #include <QMenu>
 #include <QMimeData>
+#include <QProgressBar>
+#include <QPushButton>
 #include <QSettings>
 #include <QStatusBar>
 #include <QtConcurrent/QtConcurrentRun>
+#include <utility>
 
 #include "BonePlacement.h"
 #include "MainWindow.h"
@@ -59,7 +62,10 @@ void MainWindow::openFile(const QString& path, bool repair) {
     return;
   }
   importPath_ = path;
+  importCancelled_ = false;
   statusBar()->showMessage(tr("Importing %1…").arg(path));
+  importBusy_->setVisible(true);
+  importCancel_->setVisible(true);
   const MeshImportInterface* importer = plugins_.meshImport();
   const std::string file = path.toStdString();
   importWatcher_.setFuture(QtConcurrent::run([importer, file, repair] {
@@ -78,7 +84,20 @@ void MainWindow::waitImport() {
   QCoreApplication::processEvents();  // delivers finished()
 }
 
+// Reading and repair cannot be interrupted inside the importer: Cancel gives the window back at once and the
+// result, when the worker is done, is discarded.
+void MainWindow::cancelImport() {
+  if (!importWatcher_.isRunning()) return;
+  importCancelled_ = true;
+  importBusy_->setVisible(false);
+  importCancel_->setVisible(false);
+  statusBar()->showMessage(tr("Import of %1 cancelled").arg(QFileInfo(importPath_).fileName()), 5000);
+}
+
 void MainWindow::importFinished() {
+  importBusy_->setVisible(false);
+  importCancel_->setVisible(false);
+  if (std::exchange(importCancelled_, false)) return;
   ImportOutcome out = importWatcher_.result();
   if (!out.error.isEmpty()) {
     showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), out.error);

@@ -4,6 +4,7 @@
 #include <QFile>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QPushButton>
 #include <QTemporaryDir>
 #include <QUrl>
 #include <QtTest/QTest>
@@ -33,6 +34,29 @@ TEST(GuiFiles, MalformedFileShowsTheImporterMessageAndKeepsTheBone) {
   box->close();
   EXPECT_EQ(f.session().bone()->currentRevision(), revision);
   EXPECT_TRUE(w.recentFiles().isEmpty());
+}
+
+TEST(GuiFiles, CancelledImportGivesTheWindowBackAndDiscardsTheResult) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  const std::uint64_t revision = f.session().bone()->currentRevision();
+  // The bundled OpenSim scapula with repair: a volumetric remesh, seconds of work on the worker.
+  w.openFile(QString(REAMSIM_RESOURCE_DIR) + "/bones/scapula_R_opensim.vtp", true);
+  ASSERT_TRUE(w.importRunning());
+  auto* cancel = w.findChild<QPushButton*>("CancelImport");
+  ASSERT_NE(cancel, nullptr);
+  EXPECT_TRUE(cancel->isVisible());
+  QTest::mouseClick(cancel, Qt::LeftButton);
+  EXPECT_FALSE(cancel->isVisible());
+  w.waitImport();
+  EXPECT_EQ(f.session().bone()->currentRevision(), revision);  // the result was discarded
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_TRUE(w.recentFiles().isEmpty());
+  // The next import works as usual.
+  w.openFile(kData + "/malformed/stl_ascii_bad_number.stl");
+  w.waitImport();
+  EXPECT_TRUE(w.lastError().contains("stl_ascii_bad_number.stl"));
 }
 
 TEST(GuiFiles, OpenSaveRecentDropAndCsvExport) {
