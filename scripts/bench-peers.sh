@@ -2,7 +2,8 @@
 # The cutting benchmark with every peer (docs/BENCHMARKS.md): installs the npm peers (bench/peers:
 # manifold-3d, csg.js) with `npm ci` when they are missing or older than the lockfile, then runs
 #   reamsim-cli bench cut --bone default --peers --json [extra options]
-# Extra options go to bench cut (e.g. --steps 100 --subdivide 1 --peers-budget-ms 120000).
+# Extra options go to bench cut (e.g. --steps 100 --subdivide 1 --peers-budget-ms 120000; a later
+# --bone MESH replaces the default).
 # reamsim-cli: $REAMSIM_CLI, else build/app/cli/reamsim-cli (scripts/build.sh builds it).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
