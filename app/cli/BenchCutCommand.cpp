@@ -1,17 +1,21 @@
 // bench cut: the local CSG engine on a realistic reaming path, timed per cut, with optional peers
-// (in-process: the CGAL whole-mesh reference), invariant checks, sequence export and the thesis's
-// Table 5-1 experiment. Prints one JSON object (see docs/BENCHMARKS.md).
+// (in-process: the CGAL whole-mesh reference; with node: manifold-3d and csg.js from bench/peers, on the
+// exported sequence), invariant checks, sequence export and the thesis's Table 5-1 experiment. Prints one
+// JSON object (see docs/BENCHMARKS.md).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include "CliArgs.h"
 #include "Commands.h"
+#include "NodePeers.h"
 #include "reamsim/csg/LocalSubtractor.h"
 #include "reamsim/csg/ReferenceSubtractor.h"
 #include "reamsim/mesh/MeshError.h"
@@ -111,6 +115,54 @@ nlohmann::json transformJson(const Pose& p) {
                                 t.translation.z, 0, 0, 0, 1});
 }
 
+// bone.ply, tool.ply (reamer-local) and steps.json (one row-major 4x4 per step): the sequence the npm
+// peers run (bench/peers/run_peer.mjs), and anyone can rerun elsewhere.
+void exportSequence(const std::string& dir, const TriangleMesh& bone, const TriangleMesh& localTool,
+                    const std::vector<Pose>& poses) {
+  std::filesystem::create_directories(dir);
+  writeMesh(bone, dir + "/bone.ply");
+  writeMesh(localTool, dir + "/tool.ply");
+  nlohmann::json seq = {{"frame", "tool.ply is in reamer-local coordinates; each step's 4x4 row-major matrix "
+                                  "maps it into bone coordinates; subtract in order"},
+                        {"steps", nlohmann::json::array()}};
+  for (const Pose& p : poses) seq["steps"].push_back(transformJson(p));
+  writeTextFile(dir + "/steps.json", seq.dump(1) + "\n");
+}
+
+// One npm peer's entry in "peers": its runner's figures, the ratio of its median to ReamSim's over the
+// same steps (all of them, or the first `steps_completed` when a budget stopped it) and its end volume
+// against ReamSim's. Refusals, budget stops and errors are carried over as the runner reported them.
+nlohmann::json peerEntry(const nlohmann::json& r, const std::vector<double>& reamsimPerStep, double reamsimVolumeEnd) {
+  nlohmann::json e = nlohmann::json::object();
+  for (const char* key : {"package", "algorithm", "refused", "error", "stopped", "coordinates", "input_checks",
+                          "setup_ms", "steps", "steps_completed", "median_ms", "p95_ms", "convert_median_ms",
+                          "faces_start", "faces_end", "polygons_end", "volume_end_mm3", "volume_after_completed_mm3"})
+    if (r.contains(key)) e[key] = r[key];
+  if (r.contains("input") && r["input"].contains("bone")) e["input_bone_edges"] = r["input"]["bone"];
+  if (r.contains("median_ms") && r["median_ms"].is_number() && r.contains("steps_completed")) {
+    const std::size_t k = std::min<std::size_t>(r["steps_completed"].get<std::size_t>(), reamsimPerStep.size());
+    std::vector<double> same;
+    for (std::size_t i = 0; i < k; ++i)
+      if (!std::isnan(reamsimPerStep[i])) same.push_back(reamsimPerStep[i]);
+    if (!same.empty()) {
+      e["ratio_to_reamsim"] = r["median_ms"].get<double>() / std::max(1e-9, percentile(same, 0.5));
+      if (k < reamsimPerStep.size()) {
+        e["ratio_over_first_steps"] = k;
+        e["reamsim_median_ms_same_steps"] = percentile(same, 0.5);
+      }
+    }
+    const bool stoppedEarly = k < reamsimPerStep.size();
+    if (stoppedEarly && r.contains("faces_per_step")) e["faces_per_step"] = r["faces_per_step"];
+  }
+  // A volume is only defined for a closed bone: no comparison for an open one (csg.js runs on anything).
+  const bool openBone = e.contains("input_bone_edges") && e["input_bone_edges"].value("border_edges", 0) > 0;
+  if (openBone)
+    e["volume_note"] = "the bone is open: volumes are not comparable";
+  else if (r.contains("volume_end_mm3") && r["volume_end_mm3"].is_number())
+    e["volume_end_diff_rel"] = std::abs(r["volume_end_mm3"].get<double>() - reamsimVolumeEnd) / reamsimVolumeEnd;
+  return e;
+}
+
 // The thesis's Table 5-1: the reamer translated along X into the bone in four increments; vertices,
 // faces and time after each subtraction, for the local engine and the reference.
 nlohmann::json table51(const TriangleMesh& bone, const TriangleMesh& localTool, const Spot& spot) {
@@ -142,7 +194,9 @@ nlohmann::json table51(const TriangleMesh& bone, const TriangleMesh& localTool, 
 }  // namespace
 
 int runBenchCut(const std::vector<std::string>& args) {
-  CliArgs a(args, {"bone", "units", "subdivide", "steps", "depth", "tilt", "reamer", "check-every", "export-sequence"},
+  CliArgs a(args,
+            {"bone", "units", "subdivide", "steps", "depth", "tilt", "reamer", "check-every", "export-sequence",
+             "peers-dir", "peers-budget-ms"},
             {"json", "peers", "table-5-1"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string boneArg = a.value("bone", "default");
@@ -166,22 +220,15 @@ int runBenchCut(const std::vector<std::string>& args) {
   const TriangleMesh localTool = buildCuttingSolid(spec);
   const std::vector<Pose> poses = reamingPath(spot, steps, a.number("depth", 3.0), a.number("tilt", 3.0));
 
-  if (a.has("export-sequence")) {
-    const std::string dir = a.value("export-sequence");
-    std::filesystem::create_directories(dir);
-    writeMesh(bone, dir + "/bone.ply");
-    writeMesh(localTool, dir + "/tool.ply");
-    nlohmann::json seq = {{"frame", "tool.ply is in reamer-local coordinates; each step's 4x4 row-major matrix "
-                                    "maps it into bone coordinates; subtract in order"},
-                          {"steps", nlohmann::json::array()}};
-    for (const Pose& p : poses) seq["steps"].push_back(transformJson(p));
-    writeTextFile(dir + "/steps.json", seq.dump(1) + "\n");
-  }
+  const double peersBudgetMs = a.number("peers-budget-ms", 60000);
+  if (peersBudgetMs <= 0) throw UsageError("--peers-budget-ms > 0");
+  if (a.has("export-sequence")) exportSequence(a.value("export-sequence"), bone, localTool, poses);
 
   const auto t0 = std::chrono::steady_clock::now();
   LocalSubtractor engine(bone);
   const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::vector<double> times, cutTimes;
+  std::vector<double> perStep;  // one per step, NaN for a failed one (the peers' ratios over the same steps)
   std::size_t failures = 0, cuts = 0, checks = 0, exactSI = 0, roundedSI = 0, notClosed = 0;
   std::map<std::string, std::size_t> failureKinds;
   double worstBookkeeping = 0, worstPiece = 0, removedTotal = 0;
@@ -199,6 +246,7 @@ int runBenchCut(const std::vector<std::string>& args) {
     try {
       const LocalCut c = engine.subtract(tool);
       times.push_back(c.milliseconds);
+      perStep.push_back(c.milliseconds);
       if (c.changed) {
         ++cuts;
         cutTimes.push_back(c.milliseconds);
@@ -210,6 +258,7 @@ int runBenchCut(const std::vector<std::string>& args) {
     } catch (const CutError& e) {
       ++failures;
       ++failureKinds[toString(e.kind())];
+      perStep.push_back(std::numeric_limits<double>::quiet_NaN());
     }
     if (checkEvery > 0 && (i + 1) % checkEvery == 0) check();
   }
@@ -264,8 +313,24 @@ int runBenchCut(const std::vector<std::string>& args) {
     } catch (const std::exception& e) {
       peers["cgal_corefinement_epeck"] = {{"refused", e.what()}};
     }
-    peers["manifold_3d"] = {{"not_run", "the npm peer runner (bench/peers) is not written yet"}};
-    peers["csgjs_bsp"] = {{"not_run", "the npm peer runner (bench/peers) is not written yet"}};
+    // The npm peers (node, bench/peers) run the exported sequence: --export-sequence DIR, else a scratch dir.
+    const std::string peersDir = a.value("peers-dir", defaultPeersDir());
+    const std::string why = nodePeersUnavailable(peersDir);
+    if (!why.empty()) {
+      peers["manifold_3d"] = {{"not_run", why}};
+      peers["csgjs_bsp"] = {{"not_run", why}};
+    } else {
+      namespace fs = std::filesystem;
+      const bool scratch = !a.has("export-sequence");
+      const std::string seqDir = scratch ? (fs::temp_directory_path() / ("reamsim_bench_seq_" + std::to_string(::getpid()))).string()
+                                         : a.value("export-sequence");
+      if (scratch) exportSequence(seqDir, bone, localTool, poses);
+      const double volumeEnd = engine.volumeMm3();
+      peers["manifold_3d"] = peerEntry(runNodePeer(peersDir, "manifold-3d", seqDir, peersBudgetMs), perStep, volumeEnd);
+      peers["csgjs_bsp"] = peerEntry(runNodePeer(peersDir, "csgjs-bsp", seqDir, peersBudgetMs), perStep, volumeEnd);
+      std::error_code ec;
+      if (scratch) fs::remove_all(seqDir, ec);
+    }
     out["peers"] = peers;
   }
   if (a.has("table-5-1")) out["table_5_1"] = table51(bone, localTool, spot);
