@@ -21,6 +21,7 @@
 #include "CachedBoneLayer.h"
 #include "MainWindow.h"
 #include "PluginHost.h"
+#include "reamsim/ream/Approach.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/ream/DefaultCase.h"
 
@@ -159,10 +160,18 @@ int runLatencyBench(MainWindow& window, const LatencyOptions& o) {
   }
   session.waitIdle(60000);
   const Bounds b = session.bone()->current().bounds();
-  if (!o.atGlenoid) {
-    // Beside the bone, outside its bounding box: every move runs the (broad phase) collision query only.
-    session.moveReamer(Pose{{b.center().x, b.center().y, b.max.z + 30.0}, {0, 0, -1}, 0});
+  // Beside the bone, outside its bounding box, pointing down at it: every move runs the collision query only.
+  Pose start{{b.center().x, b.center().y, b.max.z + 30.0}, {0, 0, -1}, 0};
+  if (o.inContact) {
+    if (o.bone == "default" && session.plan() && !session.plan()->poses().empty()) start = session.plan()->poses().front();
+    const auto approach = advanceToContactMm(session.bone()->current(), *session.reamer()->cuttingVolume(), start, 200);
+    if (!approach) {
+      std::fprintf(stderr, "reamsim --bench-latency: the reamer meets no bone along its axis\n");
+      return 1;
+    }
+    start.tip = start.tip + normalized(start.axis) * (*approach + 0.5);
   }
+  session.moveReamer(start);
   session.waitIdle(60000);
   window.view()->resetView();
   window.setSteps(0.5, 2.0, 0.2);
@@ -198,7 +207,8 @@ int runLatencyBench(MainWindow& window, const LatencyOptions& o) {
   const double median = percentile(ms, 0.5);
   const QString renderer = glRenderer(window.view());
   const char* target = session.bone()->current().liveTriangleCount() >= 100000 ? "<= 33 ms at 400k faces" : "";
-  const std::string pose = o.atGlenoid ? "glenoid (collision + cuts on the worker)" : "outside bounding box (broad phase only)";
+  const std::string pose = o.inContact ? "0.5 mm into the bone (collision + a cut on the worker per press)"
+                                       : "outside bounding box (collision only)";
   if (o.json) {
     std::printf(
         "{\"bench\": \"key_to_frame\", \"bone\": \"%s\", \"faces\": %zu, \"presses\": %zu, \"missed_frames\": %d, "

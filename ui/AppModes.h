@@ -16,7 +16,8 @@ int runDemo(MainWindow& window, const QString& screenshotPath);
 struct LatencyOptions {
   QString bone = "default";  // "default" or a mesh path (loaded without repair: display + collision)
   int presses = 40;
-  bool atGlenoid = false;    // default bone only: start at the plan's pose (boxes overlap, cuts run)
+  bool inContact = false;    // start 0.5 mm past the first contact (glenoid for the default bone, else from
+                             // above the bone): every press then cuts on the worker
   bool json = false;
 };
 int runLatencyBench(MainWindow& window, const LatencyOptions& options);

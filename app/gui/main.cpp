@@ -1,7 +1,7 @@
 // reamsim: the desktop application.
 //   reamsim [MESH]                              open a bone (or the default case)
 //   reamsim --demo [--screenshot FILE.png]      default case + default plan through the GUI, screenshot, exit
-//   reamsim --bench-latency [--bone default|MESH] [--presses N] [--at-glenoid] [--json]
+//   reamsim --bench-latency [--bone default|MESH] [--presses N] [--in-contact] [--json]
 //                                              median key-press-to-frame latency on the real window
 //   --plugin-dir DIR                            load plugins from DIR (default: next to the executable)
 #include <QApplication>
@@ -31,9 +31,10 @@ int main(int argc, char** argv) {
   const QCommandLineOption bench("bench-latency", "Measure key-press-to-frame latency, then exit.");
   const QCommandLineOption bone("bone", "With --bench-latency: default or a mesh file.", "BONE", "default");
   const QCommandLineOption presses("presses", "With --bench-latency: number of key presses.", "N", "40");
-  const QCommandLineOption atGlenoid("at-glenoid", "With --bench-latency: start at the plan's pose (cuts run).");
+  const QCommandLineOption inContact("in-contact",
+                                     "With --bench-latency: start 0.5 mm into the bone (every press cuts).");
   const QCommandLineOption json("json", "With --bench-latency: print one JSON object.");
-  parser.addOptions({pluginDir, demo, screenshot, bench, bone, presses, atGlenoid, json});
+  parser.addOptions({pluginDir, demo, screenshot, bench, bone, presses, inContact, json});
   parser.process(app);
 
   reamsim::ui::PluginHost plugins;
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "reamsim: --presses must be a positive integer, not '%s'\n", qPrintable(parser.value(presses)));
       return 2;
     }
-    o.atGlenoid = parser.isSet(atGlenoid);
+    o.inContact = parser.isSet(inContact);
     o.json = parser.isSet(json);
     return reamsim::ui::runLatencyBench(window, o);
   }
