@@ -52,7 +52,9 @@ class MainWindow : public QMainWindow {
 
   void setSteps(double moveMm, double rotateDeg, double feedMm);
   double feedStepMm() const;
-  void setKeyBinding(ReamerMove move, const QKeySequence& keys);
+  // Refused (false, with an error dialog) when another action already has `keys`.
+  bool setKeyBinding(ReamerMove move, const QKeySequence& keys);
+  QString shortcutOwner(const QKeySequence& keys, const QList<const QAction*>& ignored) const;
 
  public Q_SLOTS:
   bool loadDefaultCase();

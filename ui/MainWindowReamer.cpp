@@ -102,13 +102,29 @@ void MainWindow::setSteps(double moveMm, double rotateDeg, double feedMm) {
 
 double MainWindow::feedStepMm() const { return feedStep_->value(); }
 
-void MainWindow::setKeyBinding(ReamerMove move, const QKeySequence& keys) {
+// The text of another action of this window bound to `keys` ("" when none): a key bound twice works for
+// neither action (Qt reports an ambiguous shortcut), so such a binding is refused.
+QString MainWindow::shortcutOwner(const QKeySequence& keys, const QList<const QAction*>& ignored) const {
+  if (keys.isEmpty()) return {};
+  for (const QAction* a : findChildren<QAction*>())
+    if (!ignored.contains(a) && a->shortcut() == keys) return a->text().remove('&');
+  return {};
+}
+
+bool MainWindow::setKeyBinding(ReamerMove move, const QKeySequence& keys) {
   QAction* a = moveAction(move);
-  if (!a) return;
+  if (!a) return false;
+  const QString owner = shortcutOwner(keys, {a});
+  if (!owner.isEmpty()) {
+    showError(tr("Key bindings"), tr("%1 is already bound to \"%2\"; the binding was not changed.")
+                                      .arg(keys.toString(QKeySequence::NativeText), owner));
+    return false;
+  }
   a->setShortcut(keys);
-  if (!persistent_) return;
-  for (const MoveInfo& m : reamerMoves())
-    if (m.move == move) QSettings().setValue(QString("keys/") + m.id, keys.toString());
+  if (persistent_)
+    for (const MoveInfo& m : reamerMoves())
+      if (m.move == move) QSettings().setValue(QString("keys/") + m.id, keys.toString());
+  return true;
 }
 
 void MainWindow::loadKeyBindings() {
@@ -124,6 +140,25 @@ void MainWindow::editKeyBindings() {
   KeyBindingsDialog dialog(this);
   for (const MoveInfo& m : reamerMoves()) dialog.addRow(m.id, tr(m.label), moveAction(m.move)->shortcut(), QKeySequence(m.defaultKey));
   if (dialog.exec() != QDialog::Accepted) return;
+  // Check the whole new set first: twice within it, or taken by an action that is not a reamer move.
+  QList<const QAction*> moves;
+  for (const MoveInfo& m : reamerMoves()) moves << moveAction(m.move);
+  QMap<QString, QString> seen;
+  QStringList clashes;
+  for (const MoveInfo& m : reamerMoves()) {
+    const QKeySequence keys = dialog.keys(m.id);
+    if (keys.isEmpty()) continue;
+    const QString text = keys.toString(QKeySequence::NativeText);
+    if (seen.contains(text)) clashes << tr("%1: \"%2\" and \"%3\"").arg(text, seen[text], tr(m.label));
+    seen[text] = tr(m.label);
+    const QString owner = shortcutOwner(keys, moves);
+    if (!owner.isEmpty()) clashes << tr("%1: \"%2\" and \"%3\"").arg(text, tr(m.label), owner);
+  }
+  if (!clashes.isEmpty()) {
+    showError(tr("Key bindings"), tr("Each key can do one thing; nothing was changed:\n") + clashes.join('\n'));
+    return;
+  }
+  for (const MoveInfo& m : reamerMoves()) moveAction(m.move)->setShortcut({});  // no transient clashes
   for (const MoveInfo& m : reamerMoves()) setKeyBinding(m.move, dialog.keys(m.id));
 }
 

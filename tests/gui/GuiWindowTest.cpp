@@ -4,6 +4,7 @@
 
 #include <QAction>
 #include <QDockWidget>
+#include <QMessageBox>
 #include <QTableWidget>
 #include <QUndoView>
 #include <QtTest/QTest>
@@ -59,8 +60,16 @@ TEST(GuiWindow, ThesisKeysMoveAndRotateTheReamer) {
   EXPECT_NEAR(angleDeg(a0, reamer.pose().axis), 2.0, 1e-9);
   EXPECT_NEAR(reamer.pose().axis.y, a0.y, 1e-12);
 
+  // A key another action has is refused (W toggles the wireframe; a shared key would work for neither).
+  EXPECT_FALSE(w.setKeyBinding(ReamerMove::XPlus, QKeySequence("W")));
+  EXPECT_TRUE(w.lastError().contains("Wireframe")) << w.lastError().toStdString();
+  EXPECT_EQ(w.moveAction(ReamerMove::XPlus)->shortcut(), QKeySequence(Qt::Key_Right));
+  EXPECT_FALSE(w.setKeyBinding(ReamerMove::XPlus, QKeySequence("Left")));  // the -X move's key
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
+  w.activateWindow();
+  ASSERT_TRUE(QTest::qWaitForWindowActive(&w));
   // Remapped: L now moves +X, the right arrow does nothing.
-  w.setKeyBinding(ReamerMove::XPlus, QKeySequence("L"));
+  EXPECT_TRUE(w.setKeyBinding(ReamerMove::XPlus, QKeySequence("L")));
   const double x = reamer.pose().tip.x;
   QTest::keyClick(w.windowHandle(), Qt::Key_Right);
   EXPECT_EQ(reamer.pose().tip.x, x);

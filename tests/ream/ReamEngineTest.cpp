@@ -26,8 +26,9 @@ ReamerSpec flat20() {
 
 Pose at(double z) { return Pose{{0, 0, z}, {0, 0, -1}, 0}; }
 
+// The controller's engines (ReamScene): BVH collision, CGAL reference cutting.
 ReamEngine referenceEngine(const ReamerNode& reamer) {
-  return ReamEngine(reamer.cuttingVolume(), makeThesisContactBackend(), referenceCutBackendFactory());
+  return ReamEngine(reamer.cuttingVolume(), makeBvhContactBackend(), referenceCutBackendFactory());
 }
 
 TEST(ReamEngine, WorkerThreadStepsMatchTheController) {
