@@ -59,6 +59,24 @@ TEST(GuiFiles, CancelledImportGivesTheWindowBackAndDiscardsTheResult) {
   EXPECT_TRUE(w.lastError().contains("stl_ascii_bad_number.stl"));
 }
 
+TEST(GuiFiles, WithoutRepairAClosedOutwardBoneIsCuttableAnOpenOneIsNot) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f(REAMSIM_GUI_PLUGIN_DIR, false);
+  MainWindow& w = *f.window;
+  w.openFile(kData + "/good/cube_quads_comments.off", false);  // closed and outward as read
+  w.waitImport();
+  ASSERT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_TRUE(f.session().canCut()) << f.session().cuttingStatus().toStdString();
+  EXPECT_NE(f.session().bone()->importReport().find("closed and outward"), std::string::npos)
+      << f.session().bone()->importReport();
+  w.openFile(kData + "/good/strip_and_quad.vtp", false);  // an open strip
+  w.waitImport();
+  ASSERT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_FALSE(f.session().canCut());
+  EXPECT_NE(f.session().bone()->importReport().find("cutting disabled"), std::string::npos)
+      << f.session().bone()->importReport();
+}
+
 TEST(GuiFiles, OpenSaveRecentDropAndCsvExport) {
   REAMSIM_REQUIRE_DISPLAY();
   GuiFixture f(REAMSIM_GUI_PLUGIN_DIR, false);

@@ -41,9 +41,20 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair) 
     out.report += std::string("patient frame from the file: ") + toString(out.frame) + "\n";
   out.original = std::make_shared<const TriangleMesh>(loaded.mesh);
   if (!repair) {
-    // Display only: the surface is taken as read, and not offered to the cutting engine.
+    // Taken as read. A closed, outward surface is offered to the cutting engine even with a few
+    // self-intersections: the local engine cuts away from defects and refuses a cut that reaches one.
+    const ValidationReport v = validateMesh(loaded.mesh);
     out.mesh = std::move(loaded.mesh);
-    out.report += "loaded without repair: cutting disabled\n";
+    out.cuttable = v.closed && v.outwardOriented && v.topology.degenerateFaces == 0;
+    const std::size_t si = v.selfIntersectingPairs.value_or(0);
+    if (out.cuttable)
+      out.report += "loaded without repair: closed and outward" +
+                    (si ? ", " + std::to_string(si) + " self-intersecting face pairs (cuts that reach them are refused)"
+                        : std::string()) +
+                    "\n";
+    else
+      out.report += "loaded without repair: not a closed, outward surface (" + toText(v) +
+                    "); shown as read, cutting disabled\n";
     return out;
   }
   RepairResult r = repairMesh(loaded.mesh);
