@@ -133,6 +133,7 @@ class MainWindow : public QMainWindow {
   QPushButton* importCancel_ = nullptr;
   bool importCancelled_ = false;
   static constexpr double kContactSearchMm = 100;
+  static constexpr std::size_t kMaxQueuedFeedSteps = 4;  // feed key presses beyond this are ignored
   struct PendingDepth {
     Pose start;
     double depthMm;

@@ -20,7 +20,13 @@ Pose MainWindow::targetPose() const { return session_->targetPose(); }
 void MainWindow::applyMove(ReamerMove move) {
   const bool feed = move == ReamerMove::FeedForward || move == ReamerMove::FeedBack;
   if (feed) {
-    // Every feed step is cut, none is skipped: it continues from the last queued pose.
+    // Every feed step is cut, none is skipped: it continues from the last queued pose. A held key repeats
+    // faster than cuts finish: beyond a few queued steps the press is ignored rather than queued without end.
+    if (session_->queuedSteps() >= kMaxQueuedFeedSteps) {
+      statusBar()->showMessage(tr("Feed: %1 steps are still queued; press Esc to stop them").arg(session_->queuedSteps()),
+                               2000);
+      return;
+    }
     session_->runSteps({reamsim::ui::applyMove(targetPose(), move, feedStep_->value(), rotateStep_->value())});
   } else {
     // A move by hand starts where the reamer is shown (not at the end of a queued feed, which it interrupts);

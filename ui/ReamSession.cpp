@@ -19,6 +19,11 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
   log_ = &document_.create<LogNode>("Log");
   alerts_ = &document_.create<AlertNode>("Alerts");
   undo_.setUndoLimit(0);  // unlimited: the states share storage (see CutCommand)
+  // Undo or redo (menu, keys, history view) stops a queued sequence: its remaining steps were planned on
+  // the bone being left, and the step in flight is dropped (computed against the old bone).
+  connect(&undo_, &QUndoStack::indexChanged, this, [this] {
+    if (!pushingCut_ && (!queued_.empty() || running_)) cancelQueued();
+  });
   connect(&watcher_, &QFutureWatcher<StepResult>::finished, this, &ReamSession::finished);
 }
 
@@ -186,7 +191,9 @@ void ReamSession::finished() {
     if (e.boneStateId != 0) {
       engine_->adopt(e.boneStateId);
       ++cuts_;
+      pushingCut_ = true;  // our own push is not an undo
       undo_.push(new CutCommand(*bone_, e));
+      pushingCut_ = false;
     }
     // The step put the reamer where it was computed; a newer user move is where it really is.
     if (latestUserPose_) reamer_->setPose(*latestUserPose_);

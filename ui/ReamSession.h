@@ -63,6 +63,7 @@ class ReamSession : public QObject {
   void moveReamer(const Pose& pose);         // user move: coalesced; cancels a running step sequence
   void runSteps(const std::vector<Pose>& poses);  // every step runs (feed, ream to depth, plan)
   void cancelQueued();
+  std::size_t queuedSteps() const { return queued_.size(); }
   bool busy() const;
   Pose targetPose() const;  // where the reamer is once every requested step has run
   // Processes events until no step is running or queued; false on timeout (tests, demo, benchmark).
@@ -92,6 +93,7 @@ class ReamSession : public QObject {
   AlertNode* alerts_ = nullptr;
   PlanNode* plan_ = nullptr;
   QUndoStack undo_;
+  bool pushingCut_ = false;
   bool boneCuttable_ = false;
   double initialVolume_ = 0;
 

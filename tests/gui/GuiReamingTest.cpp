@@ -1,5 +1,7 @@
 // Reaming actions through the real window: "Ream to depth" measures from the first contact; a move by hand
 // during a queued feed starts where the reamer is shown (it interrupts the feed, it does not jump to its end).
+#include <QAction>
+#include <QUndoStack>
 #include <QtTest/QTest>
 
 #include "GuiEnvironment.h"
@@ -70,6 +72,48 @@ TEST(GuiReaming, HandMoveDuringAFeedStartsWhereTheReamerIsShown) {
   ASSERT_TRUE(s.waitIdle(120000));
   // The rest of the feed was interrupted: the reamer did not travel the 4 mm.
   EXPECT_LT(dot(s.reamer()->pose().tip - start.tip, normalized(start.axis)), 1.0);
+}
+
+TEST(GuiReaming, HeldFeedKeyQueuesOnlyAFewSteps) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  // Already in the bone, so that every feed step cuts (~0.1 s each).
+  Pose start = s.plan()->poses().front();
+  start.tip = start.tip + normalized(start.axis) *
+                              (*advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.3);
+  s.moveReamer(start);
+  ASSERT_TRUE(s.waitIdle(60000));
+  w.setSteps(0.5, 2.0, 0.2);
+  std::size_t maxQueued = 0;
+  for (int i = 0; i < 12; ++i) {  // faster than cuts finish
+    QTest::keyClick(w.windowHandle(), Qt::Key_PageDown);
+    maxQueued = std::max(maxQueued, s.queuedSteps());
+  }
+  EXPECT_LE(maxQueued, 4u);
+  ASSERT_TRUE(s.waitIdle(120000));
+  const double advanced = dot(s.reamer()->pose().tip - start.tip, normalized(start.axis));
+  EXPECT_GE(advanced, 0.2 - 1e-9);
+  EXPECT_LT(advanced, 12 * 0.2 - 1e-9);  // some presses were ignored
+}
+
+TEST(GuiReaming, UndoStopsAQueuedSequence) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  s.moveReamer(s.plan()->poses().front());
+  ASSERT_TRUE(s.waitIdle(60000));
+  w.setSteps(0.5, 2.0, 0.2);
+  w.reamToDepth(3.0);  // the approach, then 15 feed steps
+  ASSERT_TRUE(QTest::qWaitFor([&] { return s.cutsCommitted() >= 2; }, 120000));
+  ASSERT_GT(s.queuedSteps(), 0u);
+  w.action("undo")->trigger();
+  EXPECT_EQ(s.queuedSteps(), 0u);
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_LT(s.cutsCommitted(), 16u);
+  EXPECT_TRUE(s.undoStack()->canRedo());  // nothing was cut after the undo
 }
 
 }  // namespace
