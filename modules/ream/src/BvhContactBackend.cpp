@@ -12,6 +12,8 @@ namespace {
 
 class BvhContactBackend final : public ContactBackend {
  public:
+  explicit BvhContactBackend(bool axialDepth) : axialDepth_(axialDepth) {}
+
   ContactResult query(const ContactInput& in) override {
     syncReamer(in.cuttingVolumeLocal);
     syncBone(in.bone, in.revision);
@@ -35,7 +37,7 @@ class BvhContactBackend final : public ContactBackend {
     if (overlap.overlap) {
       r.penetrating = true;
       r.minDistanceMm = 0;
-      r.penetrationDepthMm = collider_->axialPenetration(*reamer_, in.pose).depthMm;
+      if (axialDepth_) r.penetrationDepthMm = collider_->axialPenetration(*reamer_, in.pose).depthMm;
     }
     r.contact = r.penetrating;  // exact: touching or entering (not the thesis's "gap within one step")
     return r;
@@ -68,10 +70,13 @@ class BvhContactBackend final : public ContactBackend {
   std::unique_ptr<ReamerModel> reamer_;
   std::unique_ptr<BoneCollider> collider_;
   std::uint64_t revision_ = 0;
+  bool axialDepth_;
 };
 
 }  // namespace
 
-std::unique_ptr<ContactBackend> makeBvhContactBackend() { return std::make_unique<BvhContactBackend>(); }
+std::unique_ptr<ContactBackend> makeBvhContactBackend(bool axialDepth) {
+  return std::make_unique<BvhContactBackend>(axialDepth);
+}
 
 }  // namespace reamsim

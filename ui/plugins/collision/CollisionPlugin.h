@@ -13,8 +13,9 @@ class CollisionPlugin : public QObject, public CollisionInterface {
   Q_INTERFACES(reamsim::ui::CollisionInterface)
 
  public:
-  QString engineName() const override { return QStringLiteral("BVH, exact (overlap, distance, depth)"); }
-  std::unique_ptr<ContactBackend> createContactBackend() const override { return makeBvhContactBackend(); }
+  QString engineName() const override { return QStringLiteral("BVH, exact (overlap, distance)"); }
+  // The axial depth is not shown in the GUI: left out, it would cost milliseconds per move at 400k faces.
+  std::unique_ptr<ContactBackend> createContactBackend() const override { return makeBvhContactBackend(false); }
 };
 
 }  // namespace reamsim::ui
