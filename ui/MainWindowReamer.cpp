@@ -31,11 +31,14 @@ void MainWindow::applyMove(ReamerMove move) {
   } else {
     // A move by hand starts where the reamer is shown (not at the end of a queued feed, which it interrupts);
     // coalesced: the latest pose wins while a step runs.
-    session_->moveReamer(reamsim::ui::applyMove(session_->reamer()->pose(), move, moveStep_->value(), rotateStep_->value()));
+    session_->moveReamer(reamsim::ui::applyMove(session_->reamer()->pose(), move, moveStep_->value(), rotateStep_->value()),
+                         true);
   }
 }
 
-void MainWindow::dragReamer(double mm) { session_->moveReamer(advancedAlongAxis(session_->reamer()->pose(), mm)); }
+void MainWindow::dragReamer(double mm) {
+  session_->moveReamer(advancedAlongAxis(session_->reamer()->pose(), mm), true);
+}
 
 void MainWindow::feedBy(double mm) {
   if (!(mm > 0)) return;

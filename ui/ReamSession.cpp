@@ -84,7 +84,7 @@ QString ReamSession::cuttingStatus() const {
   return tr("collision: %1; cutting: %2").arg(plugins_.collision()->engineName(), plugins_.csg()->engineName());
 }
 
-void ReamSession::moveReamer(const Pose& pose) {
+void ReamSession::moveReamer(const Pose& pose, bool moved) {
   reamer_->setPose(pose);  // the view follows at once; the step itself is computed on the worker
   if (!engine_) return;
   if (!queued_.empty()) {  // a move by hand interrupts a feed sequence
@@ -92,6 +92,8 @@ void ReamSession::moveReamer(const Pose& pose) {
     sequenceDone_ = sequenceTotal_ = 0;
     Q_EMIT progress(0, 0);
   }
+  // Coalesced moves sweep from the last computed pose only if every one of them was a travel.
+  latestUserMoved_ = (latestUserPose_ ? latestUserMoved_ : true) && moved;
   latestUserPose_ = pose;
   startNext();
 }
@@ -145,26 +147,29 @@ void ReamSession::startNext() {
     return;
   }
   Pose pose;
+  bool moved = true;  // queued steps (feeds, ream to depth, plans) follow a path
   if (!queued_.empty()) {
     pose = queued_.front();
     queued_.pop_front();
   } else {
     pose = *latestUserPose_;
+    moved = latestUserMoved_;
     latestUserPose_.reset();
   }
   const double stepMm = lastComputedPose_ ? norm(pose.tip - lastComputedPose_->tip) : 0.0;
+  const std::optional<Pose> sweptFrom = moved ? lastComputedPose_ : std::nullopt;
   lastComputedPose_ = pose;
   running_ = true;
   Q_EMIT busyChanged(true);
   ReamEngine* engine = engine_.get();
   const BoneState state = bone_->current();  // immutable value: safe on the worker
   const std::uint64_t revision = bone_->currentRevision();
-  watcher_.setFuture(QtConcurrent::run([engine, state, revision, pose, stepMm] {
+  watcher_.setFuture(QtConcurrent::run([engine, state, revision, pose, stepMm, sweptFrom] {
     StepResult r;
     QElapsedTimer timer;
     timer.start();
     try {
-      r.computation = engine->compute(state, revision, pose, stepMm);
+      r.computation = engine->compute(state, revision, pose, stepMm, sweptFrom ? &*sweptFrom : nullptr);
     } catch (const std::exception& e) {
       r.error = QString::fromStdString(e.what());
     }
@@ -198,6 +203,7 @@ void ReamSession::finished() {
     // The step put the reamer where it was computed; a newer user move is where it really is.
     if (latestUserPose_) reamer_->setPose(*latestUserPose_);
     lastMinDistance_ = e.minDistanceMm;
+    lastStepSwept_ = r.computation.swept;
     Q_EMIT stepFinished(e.minDistanceMm, e.contact);
   }  // else: computed against a bone that has changed since (undo, new bone): dropped
   if (sequenceTotal_ > 0) {

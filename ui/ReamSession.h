@@ -60,10 +60,13 @@ class ReamSession : public QObject {
   bool canCut() const;  // a cutting engine is loaded and the bone is a closed solid
   QString cuttingStatus() const;  // why cutting is off, or the engines in use
 
-  void moveReamer(const Pose& pose);         // user move: coalesced; cancels a running step sequence
+  // User move: coalesced; cancels a running step sequence. `moved`: the reamer travelled here from where it
+  // was (keys, drag), so a sideways translation cuts the volume it swept; false: it was placed here.
+  void moveReamer(const Pose& pose, bool moved = false);
   void runSteps(const std::vector<Pose>& poses);  // every step runs (feed, ream to depth, plan)
   void cancelQueued();
   std::size_t queuedSteps() const { return queued_.size(); }
+  bool lastStepSwept() const { return lastStepSwept_; }  // the last committed step cut a swept volume
   bool busy() const;
   Pose targetPose() const;  // where the reamer is once every requested step has run
   // Processes events until no step is running or queued; false on timeout (tests, demo, benchmark).
@@ -102,6 +105,8 @@ class ReamSession : public QObject {
   bool running_ = false;
   std::deque<Pose> queued_;
   std::optional<Pose> latestUserPose_;
+  bool latestUserMoved_ = false;
+  bool lastStepSwept_ = false;  // every coalesced move since the last step was a travel (see moveReamer)
   std::optional<Pose> lastComputedPose_;
   int sequenceDone_ = 0, sequenceTotal_ = 0;
   std::size_t cuts_ = 0, steps_ = 0;

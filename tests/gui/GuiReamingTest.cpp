@@ -116,5 +116,25 @@ TEST(GuiReaming, UndoStopsAQueuedSequence) {
   EXPECT_TRUE(s.undoStack()->canRedo());  // nothing was cut after the undo
 }
 
+TEST(GuiReaming, KeyMovesSweepPlacementsDoNot) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  Pose start = s.plan()->poses().front();
+  start.tip = start.tip + normalized(start.axis) *
+                              (*advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.5);
+  s.moveReamer(start);  // placed: nothing swept
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_FALSE(s.lastStepSwept());
+  w.setSteps(3.0, 2.0, 0.2);
+  QTest::keyClick(w.windowHandle(), Qt::Key_Up);  // 3 mm sideways, in the bone: the sweep is cut
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_TRUE(s.lastStepSwept());
+  QTest::keyClick(w.windowHandle(), Qt::Key_A);  // a turn: not swept
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_FALSE(s.lastStepSwept());
+}
+
 }  // namespace
 }  // namespace reamsim::ui::test

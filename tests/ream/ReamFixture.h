@@ -16,13 +16,13 @@ struct ReamScene {
   AlertNode* alerts = nullptr;
   std::unique_ptr<ReamController> controller;
 
-  ReamScene(const TriangleMesh& boneMesh, const ReamerSpec& spec) {
+  ReamScene(const TriangleMesh& boneMesh, const ReamerSpec& spec, CutBackendFactory cut = referenceCutBackendFactory()) {
     bone = &doc.create<BoneNode>("Bone", BoneState::fromMesh(boneMesh));
     reamer = &doc.create<ReamerNode>("Reamer", spec);
     reamer->setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(spec)));
     log = &doc.create<LogNode>("Log");
     alerts = &doc.create<AlertNode>("Alerts");
-    controller = std::make_unique<ReamController>(doc, *bone, *reamer, *log, alerts);
+    controller = std::make_unique<ReamController>(doc, *bone, *reamer, *log, alerts, std::move(cut));
   }
 };
 

@@ -17,12 +17,16 @@ ReamController::ReamController(Document& document, BoneNode& bone, ReamerNode& r
 ReamController::~ReamController() = default;
 
 ReamStepOutcome ReamController::moveTo(const Pose& pose) {
-  const double stepMm = log_.empty() ? 0.0 : norm(pose.tip - log_.entries().back().pose.tip);
-  ReamComputation c = engine_.compute(bone_.current(), bone_.currentRevision(), pose, stepMm);
+  // A plan is a path: each step moves from the previous pose, and a sideways move cuts what it sweeps.
+  const double stepMm = previous_ ? norm(pose.tip - previous_->tip) : 0.0;
+  ReamComputation c =
+      engine_.compute(bone_.current(), bone_.currentRevision(), pose, stepMm, previous_ ? &*previous_ : nullptr);
+  previous_ = pose;
   ReamStepOutcome out;
   out.contact = c.contact;
   out.cut = c.cut;
   out.volumeBookkeepingError = c.volumeBookkeepingError;
+  out.swept = c.swept;
   out.entry = commitReamStep(document_, bone_, reamer_, log_, alerts_, c, steps_++);
   if (out.entry.boneStateId != 0) engine_.adopt(out.entry.boneStateId);
   return out;

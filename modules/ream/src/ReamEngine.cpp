@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "reamsim/csg/SweptVolume.h"
+
 namespace reamsim {
 namespace {
 
@@ -31,6 +33,7 @@ ReamEngine::ReamEngine(std::shared_ptr<const TriangleMesh> cuttingVolumeLocal, s
     : cuttingVolume_(std::move(cuttingVolumeLocal)), contact_(std::move(contact)), cutFactory_(std::move(cut)) {
   if (!cuttingVolume_) throw std::invalid_argument("the reamer has no cutting volume");
   localFaceVertices_ = forwardFacingVertices(*cuttingVolume_);
+  convexSolid_ = isConvexSolid(*cuttingVolume_);
 }
 
 ReamEngine::~ReamEngine() = default;
@@ -53,7 +56,22 @@ void ReamEngine::sync(const BoneState& bone, std::uint64_t revision) {
   pendingAdopt_ = false;
 }
 
-ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm) {
+namespace {
+
+// A sweep is cut for a pure translation that moves sideways (an axial feed shorter than the reamer body is
+// already covered by the end pose's solid, and leaves the result unchanged).
+bool needsSweep(const RigidTransform& from, const RigidTransform& to, const Vec3& axis) {
+  for (int i = 0; i < 9; ++i)
+    if (from.rotation[i] != to.rotation[i]) return false;
+  const Vec3 d = to.translation - from.translation;
+  const Vec3 sideways = d - axis * dot(d, axis);
+  return norm(sideways) > 1e-9;
+}
+
+}  // namespace
+
+ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm,
+                                    const Pose* sweptFrom) {
   sync(bone, revision);
   ReamComputation out;
   out.pose = pose;
@@ -61,7 +79,7 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   if (!contact_) return out;
 
   const RigidTransform toBone = toTransform(pose);
-  const TriangleMesh tool = transformed(*cuttingVolume_, toBone);
+  TriangleMesh tool = transformed(*cuttingVolume_, toBone);
   std::vector<Vec3> probes;
   probes.reserve(localFaceVertices_.size());
   for (const Vec3& p : localFaceVertices_) probes.push_back(toBone.apply(p));
@@ -72,7 +90,16 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
 
   // An exact engine says whether the cutting volume reaches the bone; with the thesis's rays the Boolean runs
   // whenever the boxes overlap, so that bone entering from the side (which the rays cannot see) is still cut.
-  const bool mayCut = out.contact.solidOverlapsBone ? *out.contact.solidOverlapsBone : out.contact.boxesOverlap;
+  bool mayCut = out.contact.solidOverlapsBone ? *out.contact.solidOverlapsBone : out.contact.boxesOverlap;
+  if (sweptFrom && convexSolid_) {
+    const RigidTransform from = toTransform(*sweptFrom);
+    if (needsSweep(from, toBone, normalized(pose.axis))) {
+      tool = sweptByTranslation(*cuttingVolume_, from, toBone);
+      out.swept = true;
+      // The query saw the end pose only; the sweep lies within its box grown by the travel.
+      mayCut = out.contact.boxesOverlap;
+    }
+  }
   if (mayCut && cutter_) {
     pendingAdopt_ = true;  // from here the cutter may differ from `revision` (also if subtract throws)
     out.cut = cutter_->subtract(tool);

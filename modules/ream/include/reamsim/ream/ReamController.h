@@ -6,6 +6,7 @@
 // Collision: the BVH engine by default (exact overlap, distance and depth; the Boolean runs only when the
 // cutting volume reaches the bone) or the thesis's rays (the Boolean runs whenever the boxes overlap).
 #include <memory>
+#include <optional>
 
 #include "reamsim/ream/ReamEngine.h"
 #include "reamsim/ream/ReamStep.h"
@@ -17,6 +18,7 @@ struct ReamStepOutcome {
   ContactResult contact;
   ReferenceCut cut;
   double volumeBookkeepingError = 0;  // |removed − (V_before − V_after)|
+  bool swept = false;                 // the step cut the volume swept from the previous pose
 };
 
 // Synchronous composition of the two halves (ReamEngine off-thread part, commitReamStep document
@@ -43,6 +45,7 @@ class ReamController {
   AlertNode* alerts_;
   ReamEngine engine_;
   std::size_t steps_ = 0;
+  std::optional<Pose> previous_;  // the pose of the last step (the path's previous point)
 };
 
 }  // namespace reamsim

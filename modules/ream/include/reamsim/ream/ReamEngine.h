@@ -23,6 +23,7 @@ struct ReamComputation {
   ContactResult contact;
   bool contactChecked = false;     // false: no collision backend, nothing was queried
   ReferenceCut cut;                // cut.changed: `next` holds the bone after the cut
+  bool swept = false;              // the cut subtracted the volume swept from the previous pose
   std::optional<BoneState> next;
   double volumeBookkeepingError = 0;  // |removed − (V_before − V_after)|
 };
@@ -38,8 +39,11 @@ class ReamEngine {
   // the cut backend throws for a bone it cannot cut (e.g. an open surface).
   void prepare(const BoneState& bone, std::uint64_t revision);
   // One step at `pose`; stepMm is the tip travel since the previous step (grows the broad phase).
-  // Throws std::runtime_error when the Boolean fails; the engine then resyncs on the next call.
-  ReamComputation compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm);
+  // `sweptFrom`: where the reamer was before this step, when it got here by moving (not placed there): a
+  // translation with a sideways part cuts the whole volume swept between the two poses (SweptVolume.h), so
+  // a long move leaves no ridge. Throws std::runtime_error when the Boolean fails; the engine then resyncs.
+  ReamComputation compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm,
+                          const Pose* sweptFrom = nullptr);
   // The `next` of the last compute was committed to the bone history as `revision`.
   void adopt(std::uint64_t revision);
 
@@ -53,6 +57,7 @@ class ReamEngine {
 
   std::shared_ptr<const TriangleMesh> cuttingVolume_;
   std::vector<Vec3> localFaceVertices_;
+  bool convexSolid_ = false;  // swept volumes are hulls: convex cutting solids only
   std::unique_ptr<ContactBackend> contact_;
   CutBackendFactory cutFactory_;
   std::unique_ptr<CutBackend> cutter_;
