@@ -69,6 +69,18 @@ TEST(SweptCut, WithoutMotionThePlacedSolidIsCut) {
   EXPECT_LT(c.cut.removedMm3, 0.6 * 30.0 * widthAcrossX(*s.reamer->cuttingVolume()));
 }
 
+TEST(SweptCut, AxialJumpLongerThanTheSolidIsSwept) {
+  // The flat reamer is 10 mm long: a 15 mm plunge in one step would leave 5 mm uncut between the two solids.
+  test::ReamScene s(block(), flat20());
+  s.controller->moveTo(at(0, 1.0));
+  const ReamStepOutcome shortFeed = s.controller->moveTo(at(0, -2.0));  // 3 mm: covered, not swept
+  EXPECT_FALSE(shortFeed.swept);
+  const ReamStepOutcome plunge = s.controller->moveTo(at(0, -17.0));  // 15 mm at once
+  EXPECT_TRUE(plunge.swept);
+  const double disc = shortFeed.cut.removedMm3 / 2.0;  // per mm of depth
+  EXPECT_NEAR(plunge.cut.removedMm3, 15.0 * disc, 1e-6 * plunge.cut.removedMm3);
+}
+
 TEST(SweptCut, TurnsAreNotSwept) {
   test::ReamScene s(block(), flat20());
   s.controller->moveTo(at(0, -1.0));

@@ -34,6 +34,8 @@ ReamEngine::ReamEngine(std::shared_ptr<const TriangleMesh> cuttingVolumeLocal, s
   if (!cuttingVolume_) throw std::invalid_argument("the reamer has no cutting volume");
   localFaceVertices_ = forwardFacingVertices(*cuttingVolume_);
   convexSolid_ = isConvexSolid(*cuttingVolume_);
+  const Bounds local = computeBounds(*cuttingVolume_);
+  axialLength_ = local.max.z - local.min.z;  // reamer-local: the feed axis is +z
 }
 
 ReamEngine::~ReamEngine() = default;
@@ -58,14 +60,14 @@ void ReamEngine::sync(const BoneState& bone, std::uint64_t revision) {
 
 namespace {
 
-// A sweep is cut for a pure translation that moves sideways (an axial feed shorter than the reamer body is
-// already covered by the end pose's solid, and leaves the result unchanged).
-bool needsSweep(const RigidTransform& from, const RigidTransform& to, const Vec3& axis) {
+// A sweep is cut for a pure translation that moves sideways, or along the axis further than the solid is
+// long (a shorter axial feed is covered by the end pose's solid: sweeping it would change nothing).
+bool needsSweep(const RigidTransform& from, const RigidTransform& to, const Vec3& axis, double axialLength) {
   for (int i = 0; i < 9; ++i)
     if (from.rotation[i] != to.rotation[i]) return false;
   const Vec3 d = to.translation - from.translation;
   const Vec3 sideways = d - axis * dot(d, axis);
-  return norm(sideways) > 1e-9;
+  return norm(sideways) > 1e-9 || std::abs(dot(d, axis)) >= axialLength;
 }
 
 }  // namespace
@@ -93,7 +95,7 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   bool mayCut = out.contact.solidOverlapsBone ? *out.contact.solidOverlapsBone : out.contact.boxesOverlap;
   if (sweptFrom && convexSolid_) {
     const RigidTransform from = toTransform(*sweptFrom);
-    if (needsSweep(from, toBone, normalized(pose.axis))) {
+    if (needsSweep(from, toBone, normalized(pose.axis), axialLength_)) {
       tool = sweptByTranslation(*cuttingVolume_, from, toBone);
       out.swept = true;
       // The query saw the end pose only; the sweep lies within its box grown by the travel.

@@ -58,6 +58,7 @@ class ReamEngine {
   std::shared_ptr<const TriangleMesh> cuttingVolume_;
   std::vector<Vec3> localFaceVertices_;
   bool convexSolid_ = false;  // swept volumes are hulls: convex cutting solids only
+  double axialLength_ = 0;    // extent of the cutting solid along its axis
   std::unique_ptr<ContactBackend> contact_;
   CutBackendFactory cutFactory_;
   std::unique_ptr<CutBackend> cutter_;
