@@ -44,6 +44,9 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   view_->setFocus();
 
   connect(view_, &BoneView::reamerDragged, this, &MainWindow::dragReamer);
+  // A move by hand is drawn before its step is computed (ReamSession::setFrameGate).
+  session_->setFrameGate(true);
+  connect(view_, &QOpenGLWidget::frameSwapped, session_.get(), &ReamSession::frameShown);
   connect(session_.get(), &ReamSession::stepFinished, this, [this] { updateStatus(); });
   connect(session_.get(), &ReamSession::engineError, this, [this](const QString& m) {
     showError(tr("Cutting failed"), tr("The cutting engine reported an error; the bone is unchanged.\n\n%1").arg(m));

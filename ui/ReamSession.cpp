@@ -95,6 +95,19 @@ void ReamSession::moveReamer(const Pose& pose, bool moved) {
   // Coalesced moves sweep from the last computed pose only if every one of them was a travel.
   latestUserMoved_ = (latestUserPose_ ? latestUserMoved_ : true) && moved;
   latestUserPose_ = pose;
+  if (frameGate_ && !running_) {
+    if (!waitingForFrame_) {
+      waitingForFrame_ = true;
+      QTimer::singleShot(kFrameGateMs, this, [this] { frameShown(); });  // no frame came (hidden view)
+    }
+    return;
+  }
+  startNext();
+}
+
+void ReamSession::frameShown() {
+  if (!waitingForFrame_) return;
+  waitingForFrame_ = false;
   startNext();
 }
 
@@ -113,6 +126,7 @@ void ReamSession::runSteps(const std::vector<Pose>& poses) {
 void ReamSession::cancelQueued() {
   queued_.clear();
   latestUserPose_.reset();
+  waitingForFrame_ = false;
   sequenceDone_ = sequenceTotal_ = 0;
   Q_EMIT progress(0, 0);
   if (!running_) Q_EMIT busyChanged(false);

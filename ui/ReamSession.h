@@ -66,6 +66,11 @@ class ReamSession : public QObject {
   void runSteps(const std::vector<Pose>& poses);  // every step runs (feed, ream to depth, plan)
   void cancelQueued();
   std::size_t queuedSteps() const { return queued_.size(); }
+  // Show first, compute next: with the gate on, a move by hand starts its step once the view has presented
+  // the moved reamer (frameShown), or after kFrameGateMs at the latest, so that the step's computation does
+  // not compete with drawing that frame for the cores.
+  void setFrameGate(bool on) { frameGate_ = on; }
+  void frameShown();
   bool lastStepSwept() const { return lastStepSwept_; }  // the last committed step cut a swept volume
   bool busy() const;
   Pose targetPose() const;  // where the reamer is once every requested step has run
@@ -106,7 +111,9 @@ class ReamSession : public QObject {
   std::deque<Pose> queued_;
   std::optional<Pose> latestUserPose_;
   bool latestUserMoved_ = false;
-  bool lastStepSwept_ = false;  // every coalesced move since the last step was a travel (see moveReamer)
+  bool lastStepSwept_ = false;
+  bool frameGate_ = false, waitingForFrame_ = false;
+  static constexpr int kFrameGateMs = 50;  // every coalesced move since the last step was a travel (see moveReamer)
   std::optional<Pose> lastComputedPose_;
   int sequenceDone_ = 0, sequenceTotal_ = 0;
   std::size_t cuts_ = 0, steps_ = 0;
