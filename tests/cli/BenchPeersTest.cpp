@@ -2,36 +2,24 @@
 // raised top centre, two steps of the default reamer (the first short of the bone, the second cutting).
 // Checks results, never times. Skips when node or bench/peers/node_modules is missing (npm ci there).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "RunCommand.h"
+
 namespace {
 namespace fs = std::filesystem;
 
 const std::string kPeersDir = REAMSIM_PEERS_DIR;
 
-struct Run {
-  int exitCode = -1;
-  std::string out;
-};
+using Run = reamsim::test::CommandOutput;
 
-Run run(const std::string& command) {
-  Run r;
-  FILE* pipe = popen((command + " 2>/dev/null </dev/null").c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+Run run(const std::string& command) { return reamsim::test::runCommand(command + " 2>/dev/null </dev/null"); }
 
 fs::path scratch(const std::string& name) {
   fs::path p = fs::temp_directory_path() / ("reamsim_peers_test_" + std::to_string(::getpid())) / name;

@@ -1,33 +1,21 @@
 // reamsim-cli as a user runs it: exit codes, messages naming the file, outputs written.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "RunCommand.h"
+
 namespace {
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exitCode = -1;
-  std::string out;  // stdout and stderr together
-};
+// stdout and stderr together
+using CliRun = reamsim::test::CommandOutput;
 
-CliRun run(const std::string& args) {
-  CliRun r;
-  const std::string command = std::string(REAMSIM_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+CliRun run(const std::string& args) { return reamsim::test::runCommand(std::string(REAMSIM_CLI) + " " + args + " 2>&1"); }
 
 fs::path scratch(const std::string& name) {
   fs::path p = fs::temp_directory_path() / ("reamsim_cli_test_" + std::to_string(::getpid())) / name;

@@ -1,12 +1,13 @@
 // `reamsim-cli bench collision` as a user runs it: one JSON object with the documented fields, and clear
 // errors for bad input. Small and fast: the bundled 1.5k-face scapula, few poses, tiny baseline budgets.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
+
+#include "RunCommand.h"
 
 namespace {
 
@@ -16,15 +17,11 @@ struct CliRun {
 };
 
 CliRun run(const std::string& args) {
-  CliRun r;
   const std::string errFile = testing::TempDir() + "/bench_cli_stderr.txt";
-  const std::string command = std::string(REAMSIM_CLI) + " " + args + " 2>" + errFile;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
+  const reamsim::test::CommandOutput o =
+      reamsim::test::runCommand(std::string(REAMSIM_CLI) + " " + args + " 2>" + errFile);
+  CliRun r{o.exitCode, o.out, {}};
   std::array<char, 4096> buf{};
-  while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   if (FILE* f = std::fopen(errFile.c_str(), "r")) {
     while (std::size_t n = fread(buf.data(), 1, buf.size(), f)) r.err.append(buf.data(), n);
     std::fclose(f);

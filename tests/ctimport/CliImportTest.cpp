@@ -1,13 +1,12 @@
 // reamsim-cli import-ct as a user runs it: exit codes, messages naming the file, the JSON report, and the
 // imported bone cut by the reamer through reamsim-cli ream.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "Phantom.h"
+#include "RunCommand.h"
 #include "TestUtil.h"
 #include "reamsim/mesh/MeshIO.h"
 
@@ -22,17 +21,10 @@ struct CliRun {
 };
 
 CliRun run(const std::string& args) {
-  CliRun r;
   const cttest::fs::path err = cttest::fs::temp_directory_path() / ("reamsim_ctcli_err_" + std::to_string(::getpid()));
-  const std::string command = std::string(REAMSIM_CLI) + " " + args + " 2>" + err.string();
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.all = r.out + phantom::readBytes(err.string());
-  return r;
+  const reamsim::test::CommandOutput o =
+      reamsim::test::runCommand(std::string(REAMSIM_CLI) + " " + args + " 2>" + err.string());
+  return {o.exitCode, o.out, o.out + phantom::readBytes(err.string())};
 }
 
 // A small phantom volume on disk (sphere pierced by a cylinder).
