@@ -3,12 +3,10 @@
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
-#include <vtkCellArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkLight.h>
 #include <vtkLookupTable.h>
 #include <vtkMatrix4x4.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
@@ -26,24 +24,10 @@
 #include "CachedBoneLayer.h"
 #include "ReamSession.h"
 #include "ThesisInteractorStyle.h"
+#include "reamsim/ui/MeshPolyData.h"
 
 namespace reamsim::ui {
 namespace {
-
-vtkSmartPointer<vtkPolyData> toPolyData(const TriangleMesh& m) {
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataTypeToDouble();
-  for (const Vec3& p : m.vertices) points->InsertNextPoint(p.x, p.y, p.z);
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  for (const Triangle& t : m.triangles) {
-    const vtkIdType ids[3] = {t[0], t[1], t[2]};
-    cells->InsertNextCell(3, ids);
-  }
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->SetPoints(points);
-  poly->SetPolys(cells);
-  return poly;
-}
 
 void setColour(vtkProperty* p, const QColor& c) { p->SetColor(c.redF(), c.greenF(), c.blueF()); }
 

@@ -2,8 +2,6 @@
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
-#include <vtkCellArray.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPolyDataNormals.h>
@@ -12,25 +10,14 @@
 
 #include "BoneView.h"
 #include "reamsim/core/BoneNode.h"
+#include "reamsim/ui/MeshPolyData.h"
 
 namespace reamsim::ui {
 namespace {
 
 vtkSmartPointer<vtkActor> makeActor(const BoneState& state) {
-  const TriangleMesh m = state.toMesh();
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataTypeToDouble();
-  for (const Vec3& p : m.vertices) points->InsertNextPoint(p.x, p.y, p.z);
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  for (const Triangle& t : m.triangles) {
-    const vtkIdType ids[3] = {t[0], t[1], t[2]};
-    cells->InsertNextCell(3, ids);
-  }
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->SetPoints(points);
-  poly->SetPolys(cells);
   auto normals = vtkSmartPointer<vtkPolyDataNormals>::New();
-  normals->SetInputData(poly);
+  normals->SetInputData(toPolyData(state.toMesh()));
   normals->SplittingOff();
   normals->ConsistencyOff();  // imported bones are outward oriented already
   normals->Update();

@@ -13,25 +13,9 @@
 
 #include <QTimer>
 
+#include "reamsim/ui/MeshPolyData.h"
+
 namespace reamsim::ui::ct_import {
-namespace {
-
-vtkSmartPointer<vtkPolyData> toPolyData(const TriangleMesh& m) {
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataTypeToDouble();
-  for (const Vec3& p : m.vertices) points->InsertNextPoint(p.x, p.y, p.z);
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  for (const Triangle& t : m.triangles) {
-    const vtkIdType ids[3] = {t[0], t[1], t[2]};
-    cells->InsertNextCell(3, ids);
-  }
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->SetPoints(points);
-  poly->SetPolys(cells);
-  return poly;
-}
-
-}  // namespace
 
 SurfacePreview::SurfacePreview(QWidget* parent) : QVTKOpenGLNativeWidget(parent) {
   setObjectName("SurfacePreview");
