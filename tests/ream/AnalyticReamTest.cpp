@@ -13,7 +13,7 @@ namespace reamsim {
 namespace {
 
 // Top face at z = 0; the reamer feeds along -Z from 1 mm above it.
-TriangleMesh block() { return buildBox(Bounds{{-40, -40, -30}, {40, 40, 0}}, 4); }
+TriangleMesh block() { return test::blockBelowZ0(); }
 
 double capVolume(double R, double d) { return M_PI * d * d * (3 * R - d) / 3; }
 

@@ -2,6 +2,7 @@
 // (exact first contact on the BVH) and the feed poses from there.
 #include <gtest/gtest.h>
 
+#include "ReamFixture.h"
 #include "reamsim/ream/Approach.h"
 #include "reamsim/tools/Primitives.h"
 #include "reamsim/tools/ReamerGeometry.h"
@@ -9,18 +10,9 @@
 namespace reamsim {
 namespace {
 
-ReamerSpec flat20() {
-  ReamerSpec spec;
-  spec.name = "flat-20";
-  spec.diameterMm = 20;
-  spec.bodyLengthMm = 10;
-  spec.segments = 32;
-  return spec;
-}
-
 TEST(Approach, DistanceToTheFirstContactAlongTheAxis) {
-  const BoneState block = BoneState::fromMesh(buildBox(Bounds{{-40, -40, -30}, {40, 40, 0}}, 4));
-  const TriangleMesh tool = buildCuttingSolid(flat20());
+  const BoneState block = BoneState::fromMesh(test::blockBelowZ0());
+  const TriangleMesh tool = buildCuttingSolid(test::flatReamer20());
   const auto down = [](double z) { return Pose{{3, -2, z}, {0, 0, -1}, 0}; };
   EXPECT_NEAR(*advanceToContactMm(block, tool, down(2.0), 100), 2.0, 1e-9);
   EXPECT_NEAR(*advanceToContactMm(block, tool, down(37.25), 100), 37.25, 1e-9);

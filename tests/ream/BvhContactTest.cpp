@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 
+#include "ReamFixture.h"
 #include "reamsim/core/Document.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/LocalCutBackend.h"
@@ -18,39 +19,18 @@
 namespace reamsim {
 namespace {
 
-struct Scene {
-  Document doc;
-  BoneNode* bone;
-  ReamerNode* reamer;
-  LogNode* log;
-  AlertNode* alerts;
-  std::unique_ptr<ReamController> controller;
-  Scene(const TriangleMesh& mesh, const ReamerSpec& spec, std::unique_ptr<ContactBackend> contact) {
-    bone = &doc.create<BoneNode>("Bone", BoneState::fromMesh(mesh));
-    reamer = &doc.create<ReamerNode>("Reamer", spec);
-    reamer->setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(spec)));
-    log = &doc.create<LogNode>("Log");
-    alerts = &doc.create<AlertNode>("Alerts");
-    controller = std::make_unique<ReamController>(doc, *bone, *reamer, *log, alerts, localCutBackendFactory(),
-                                                  std::move(contact));
-  }
+// The local cutting engine with the given contact engine.
+struct Scene : test::ReamScene {
+  Scene(const TriangleMesh& mesh, const ReamerSpec& spec, std::unique_ptr<ContactBackend> contact)
+      : ReamScene(mesh, spec, localCutBackendFactory(), std::move(contact)) {}
 };
 
-ReamerSpec flat20() {
-  ReamerSpec spec;
-  spec.name = "flat-20";
-  spec.diameterMm = 20;
-  spec.bodyLengthMm = 10;
-  spec.segments = 32;
-  return spec;
-}
-
-TriangleMesh block() { return buildBox(Bounds{{-40, -40, -30}, {40, 40, 0}}, 4); }
+TriangleMesh block() { return test::blockBelowZ0(); }
 Pose at(double z) { return Pose{{0, 0, z}, {0, 0, -1}, 0}; }
 
 TEST(BvhContact, SameCutsAsTheThesisRaysOnABlock) {
-  Scene bvh(block(), flat20(), makeBvhContactBackend());
-  Scene thesis(block(), flat20(), makeThesisContactBackend());
+  Scene bvh(block(), test::flatReamer20(), makeBvhContactBackend());
+  Scene thesis(block(), test::flatReamer20(), makeThesisContactBackend());
   for (double z : {2.0, 1.0, 0.4, -0.3, -0.8, -1.3}) {
     const ReamStepOutcome a = bvh.controller->moveTo(at(z));
     const ReamStepOutcome b = thesis.controller->moveTo(at(z));
@@ -75,8 +55,8 @@ TEST(BvhContact, SameCutsAsTheThesisRaysOnABlock) {
 }
 
 TEST(BvhContact, NoBooleanWhileTheReamerIsClear) {
-  Scene bvh(block(), flat20(), makeBvhContactBackend());
-  Scene thesis(block(), flat20(), makeThesisContactBackend());
+  Scene bvh(block(), test::flatReamer20(), makeBvhContactBackend());
+  Scene thesis(block(), test::flatReamer20(), makeThesisContactBackend());
   for (Scene* s : {&bvh, &thesis}) s->controller->moveTo(at(1.0));
   // 0.6 mm of travel: the grown boxes overlap, the solid does not reach the top (0.4 mm left).
   const ReamStepOutcome a = bvh.controller->moveTo(at(0.4));
@@ -90,7 +70,7 @@ TEST(BvhContact, NoBooleanWhileTheReamerIsClear) {
 }
 
 TEST(BvhContact, DistanceAfterBackingOffAReamedHoleIsTheGap) {
-  Scene s(block(), flat20(), makeBvhContactBackend());
+  Scene s(block(), test::flatReamer20(), makeBvhContactBackend());
   for (double z : {0.5, -0.5, -1.3}) s.controller->moveTo(at(z));
   ASSERT_GT(s.log->cumulativeMm3(), 300.0);
   // Backed off 1 mm above the top: the closest bone is the hole's rim, 1 mm below the face.

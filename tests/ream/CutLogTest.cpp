@@ -11,12 +11,7 @@ namespace reamsim {
 namespace {
 
 TEST(CutLog, StepsCarryTheirCommitTimeIntoTheFiles) {
-  ReamerSpec spec;
-  spec.name = "flat-20";
-  spec.diameterMm = 20;
-  spec.bodyLengthMm = 10;
-  spec.segments = 32;
-  test::ReamScene s(buildBox(Bounds{{-40, -40, -30}, {40, 40, 0}}, 4), spec);
+  test::ReamScene s(test::blockBelowZ0(), test::flatReamer20());
   const auto now = [] {
     return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
         .count();

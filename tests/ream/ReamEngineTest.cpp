@@ -13,16 +13,7 @@
 namespace reamsim {
 namespace {
 
-TriangleMesh block() { return buildBox(Bounds{{-40, -40, -30}, {40, 40, 0}}, 4); }
-
-ReamerSpec flat20() {
-  ReamerSpec spec;
-  spec.name = "flat-20";
-  spec.diameterMm = 20;
-  spec.bodyLengthMm = 10;
-  spec.segments = 32;
-  return spec;
-}
+TriangleMesh block() { return test::blockBelowZ0(); }
 
 Pose at(double z) { return Pose{{0, 0, z}, {0, 0, -1}, 0}; }
 
@@ -32,8 +23,8 @@ ReamEngine referenceEngine(const ReamerNode& reamer) {
 }
 
 TEST(ReamEngine, WorkerThreadStepsMatchTheController) {
-  test::ReamScene sync(block(), flat20());
-  test::ReamScene split(block(), flat20());
+  test::ReamScene sync(block(), test::flatReamer20());
+  test::ReamScene split(block(), test::flatReamer20());
   ReamEngine engine = referenceEngine(*split.reamer);
   const double zs[] = {1.0, 0.2, -0.3, -0.8, -1.3};
   for (std::size_t i = 0; i < std::size(zs); ++i) {
@@ -57,7 +48,7 @@ TEST(ReamEngine, WorkerThreadStepsMatchTheController) {
 }
 
 TEST(ReamEngine, StaleComputationIsRefusedAndEngineResyncs) {
-  test::ReamScene s(block(), flat20());
+  test::ReamScene s(block(), test::flatReamer20());
   ReamEngine engine = referenceEngine(*s.reamer);
   ReamComputation first = engine.compute(s.bone->current(), s.bone->currentRevision(), at(-0.5), 0);
   const CutLogEntry cut = commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, first, 0);
@@ -79,7 +70,7 @@ TEST(ReamEngine, StaleComputationIsRefusedAndEngineResyncs) {
 }
 
 TEST(ReamEngine, CollisionOnlyEngineNeverCutsAndCutLogSkipsNonCuts) {
-  test::ReamScene s(block(), flat20());
+  test::ReamScene s(block(), test::flatReamer20());
   ReamEngine engine(s.reamer->cuttingVolume(), makeThesisContactBackend(), CutBackendFactory{});
   EXPECT_FALSE(engine.canCut());
   const double volume = s.bone->current().volume();
@@ -96,7 +87,7 @@ TEST(ReamEngine, CollisionOnlyEngineNeverCutsAndCutLogSkipsNonCuts) {
 }
 
 TEST(ReamEngine, CumulativeFromInitialVolumeIgnoresUndoneCuts) {
-  test::ReamScene s(block(), flat20());
+  test::ReamScene s(block(), test::flatReamer20());
   ReamEngine engine = referenceEngine(*s.reamer);
   CommitOptions options{false, s.bone->current().volume()};
   auto step = [&](double z, std::size_t i) {

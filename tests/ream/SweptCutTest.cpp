@@ -13,16 +13,7 @@
 namespace reamsim {
 namespace {
 
-ReamerSpec flat20() {
-  ReamerSpec spec;
-  spec.name = "flat-20";
-  spec.diameterMm = 20;
-  spec.bodyLengthMm = 10;
-  spec.segments = 32;
-  return spec;
-}
-
-TriangleMesh block() { return buildBox(Bounds{{-60, -40, -30}, {60, 40, 0}}, 4); }
+TriangleMesh block() { return test::blockBelowZ0(60); }
 Pose at(double x, double z) { return Pose{{x, 0, z}, {0, 0, -1}, 0}; }
 
 // Width of the reamer's cross-section across the direction of travel (x): what a sideways sweep removes per
@@ -39,7 +30,7 @@ double widthAcrossX(const TriangleMesh& solid) {
 class SweptCutEngines : public ::testing::TestWithParam<bool> {};  // local engine, or the CGAL reference
 
 TEST_P(SweptCutEngines, SidewaysMoveRemovesTheSweptSlot) {
-  test::ReamScene s(block(), flat20(), GetParam() ? localCutBackendFactory() : referenceCutBackendFactory());
+  test::ReamScene s(block(), test::flatReamer20(), GetParam() ? localCutBackendFactory() : referenceCutBackendFactory());
   const TriangleMesh solid = *s.reamer->cuttingVolume();
   ASSERT_TRUE(isConvexSolid(solid));
   s.controller->moveTo(at(-15, 1.0));                      // above the top
@@ -61,7 +52,7 @@ INSTANTIATE_TEST_SUITE_P(SweptCut, SweptCutEngines, ::testing::Values(true, fals
 
 TEST(SweptCut, WithoutMotionThePlacedSolidIsCut) {
   // The same end pose reached by placing the reamer: only the end disc goes, the ridge between stays.
-  test::ReamScene s(block(), flat20());
+  test::ReamScene s(block(), test::flatReamer20());
   s.controller->moveTo(at(-15, -1.0));
   ReamEngine engine(s.reamer->cuttingVolume(), makeBvhContactBackend(), referenceCutBackendFactory());
   const ReamComputation c = engine.compute(s.bone->current(), s.bone->currentRevision(), at(15, -1.0), 30.0);
@@ -71,7 +62,7 @@ TEST(SweptCut, WithoutMotionThePlacedSolidIsCut) {
 
 TEST(SweptCut, AxialJumpLongerThanTheSolidIsSwept) {
   // The flat reamer is 10 mm long: a 15 mm plunge in one step would leave 5 mm uncut between the two solids.
-  test::ReamScene s(block(), flat20());
+  test::ReamScene s(block(), test::flatReamer20());
   s.controller->moveTo(at(0, 1.0));
   const ReamStepOutcome shortFeed = s.controller->moveTo(at(0, -2.0));  // 3 mm: covered, not swept
   EXPECT_FALSE(shortFeed.swept);
@@ -82,7 +73,7 @@ TEST(SweptCut, AxialJumpLongerThanTheSolidIsSwept) {
 }
 
 TEST(SweptCut, TurnsAreNotSwept) {
-  test::ReamScene s(block(), flat20());
+  test::ReamScene s(block(), test::flatReamer20());
   s.controller->moveTo(at(0, -1.0));
   Pose tilted = at(5, -1.0);
   tilted.axis = normalized(Vec3{0.05, 0, -1});
@@ -90,7 +81,7 @@ TEST(SweptCut, TurnsAreNotSwept) {
 }
 
 TEST(SweptCut, HullOfTwoPlacementsIsClosedAndHasTheExpectedVolume) {
-  const TriangleMesh solid = buildCuttingSolid(flat20());
+  const TriangleMesh solid = buildCuttingSolid(test::flatReamer20());
   const RigidTransform a = toTransform(at(0, 0)), b = toTransform(at(7, 0));
   const TriangleMesh hull = sweptByTranslation(solid, a, b);
   EXPECT_TRUE(isConvexSolid(hull));
