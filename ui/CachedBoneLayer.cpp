@@ -124,49 +124,51 @@ bool CachedBoneLayer::ensureTarget(int width, int height) {
   return glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 }
 
-// After the bone layer was drawn: copy colour and depth of the render framebuffer aside.
-void CachedBoneLayer::save() {
+// Copies colour and depth between the framebuffer VTK is drawing into and the saved one (toSaved: into it),
+// with the scissor test off and VTK's bindings and state as they were afterwards. "" on success, else what
+// went wrong.
+std::string CachedBoneLayer::copy(bool toSaved) {
   vtkOpenGLState* state = window_->GetState();
   state->PushFramebufferBindings();
   vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
   state->vtkglDisable(GL_SCISSOR_TEST);
-  GLint current = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &current);
   while (glGetError() != GL_NO_ERROR) {
   }
-  state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(current));
-  const bool ok = ensureTarget(width_, height_);
-  if (ok) {
-    state->vtkglBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
+  std::string problem;
+  if (toSaved) {
+    GLint drawing = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawing);
+    state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(drawing));
+    if (ensureTarget(width_, height_))
+      state->vtkglBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
+    else
+      problem = "the copy framebuffer is incomplete";
+  } else {
+    state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  }
+  if (problem.empty()) {
     glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
                       GL_NEAREST);
+    if (const GLenum error = glGetError(); error != GL_NO_ERROR)
+      problem = "OpenGL error " + std::to_string(error) + (toSaved ? " copying" : " restoring") + " the bone layer";
   }
-  const GLenum error = glGetError();
   state->PopFramebufferBindings();
-  if (!ok) return fail("the copy framebuffer is incomplete");
-  if (error != GL_NO_ERROR) return fail("OpenGL error " + std::to_string(error) + " copying the bone layer");
+  return problem;
+}
+
+// After the bone layer was drawn: copy colour and depth of the render framebuffer aside.
+void CachedBoneLayer::save() {
+  const std::string problem = copy(true);
+  if (!problem.empty()) return fail(problem);
   valid_ = true;
 }
 
 // Before the reamer is drawn in a frame that skipped the bone: put the saved bone picture back.
 void CachedBoneLayer::restore() {
-  vtkOpenGLState* state = window_->GetState();
-  state->PushFramebufferBindings();
-  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
-  state->vtkglDisable(GL_SCISSOR_TEST);
-  GLint current = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &current);
-  while (glGetError() != GL_NO_ERROR) {
-  }
-  state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
-  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
-                    GL_NEAREST);
-  const GLenum error = glGetError();
-  state->PopFramebufferBindings();
-  if (error != GL_NO_ERROR) {
-    fail("OpenGL error " + std::to_string(error) + " restoring the bone layer");
-    failedFrame_ = true;
-  }
+  const std::string problem = copy(false);
+  if (problem.empty()) return;
+  fail(problem);
+  failedFrame_ = true;  // this frame lacks the bone
 }
 
 void CachedBoneLayer::releaseGraphicsResources() {

@@ -51,6 +51,7 @@ class CachedBoneLayer {
   static void onEvent(vtkObject* caller, unsigned long event, void* self, void*);
   vtkMTimeType boneSignature() const;
   bool ensureTarget(int width, int height);
+  std::string copy(bool toSaved);
   void save();
   void restore();
   void fail(const std::string& why);
