@@ -169,7 +169,7 @@ int runLatencyBench(MainWindow& window, const LatencyOptions& o) {
       std::fprintf(stderr, "reamsim --bench-latency: the reamer meets no bone along its axis\n");
       return 1;
     }
-    start.tip = start.tip + normalized(start.axis) * (*approach + 0.5);
+    start = advancedAlongAxis(start, *approach + 0.5);
   }
   session.moveReamer(start);
   session.waitIdle(60000);

@@ -10,6 +10,11 @@
 namespace reamsim::ui::test {
 namespace {
 
+// `start` advanced along its axis to `mm` past where the reamer first touches the bone.
+Pose pastFirstContact(ReamSession& s, const Pose& start, double mm) {
+  return advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + mm);
+}
+
 TEST(GuiReaming, ReamToDepthStartsAtTheFirstContact) {
   REAMSIM_REQUIRE_DISPLAY();
   GuiFixture f;
@@ -80,9 +85,7 @@ TEST(GuiReaming, HeldFeedKeyQueuesOnlyAFewSteps) {
   MainWindow& w = *f.window;
   ReamSession& s = f.session();
   // Already in the bone, so that every feed step cuts (~0.1 s each).
-  Pose start = s.plan()->poses().front();
-  start.tip = start.tip + normalized(start.axis) *
-                              (*advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.3);
+  const Pose start = pastFirstContact(s, s.plan()->poses().front(), 0.3);
   s.moveReamer(start);
   ASSERT_TRUE(s.waitIdle(60000));
   w.setSteps(0.5, 2.0, 0.2);
@@ -121,9 +124,7 @@ TEST(GuiReaming, KeyMovesSweepPlacementsDoNot) {
   GuiFixture f;
   MainWindow& w = *f.window;
   ReamSession& s = f.session();
-  Pose start = s.plan()->poses().front();
-  start.tip = start.tip + normalized(start.axis) *
-                              (*advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.5);
+  const Pose start = pastFirstContact(s, s.plan()->poses().front(), 0.5);
   s.moveReamer(start);  // placed: nothing swept
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_FALSE(s.lastStepSwept());
