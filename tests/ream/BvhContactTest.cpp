@@ -40,7 +40,9 @@ TEST(BvhContact, SameCutsAsTheThesisRaysOnABlock) {
       // A flat face above a flat top: the true distance and the thesis's axial gap are both z (the thesis
       // measures only once the boxes overlap; the BVH engine always does).
       EXPECT_NEAR(a.contact.minDistanceMm, z, 1e-9) << "z " << z;
-      if (b.contact.boxesOverlap) EXPECT_NEAR(b.contact.minDistanceMm, z, 1e-9) << "z " << z;
+      if (b.contact.boxesOverlap) {
+        EXPECT_NEAR(b.contact.minDistanceMm, z, 1e-9) << "z " << z;
+      }
       EXPECT_FALSE(a.contact.penetrating);
       ASSERT_TRUE(a.contact.solidOverlapsBone.has_value());
       EXPECT_FALSE(*a.contact.solidOverlapsBone);
@@ -95,7 +97,9 @@ TEST(BvhContact, DefaultPlanMatchesTheThesisPathWithSaneContacts) {
     EXPECT_NEAR(a.entry.removedMm3, b.entry.removedMm3, 1e-9 * std::max(1.0, b.entry.removedMm3));
     cuts += a.cut.changed;
     // The true face distance can only be shorter than the thesis's axial gap from the face vertices.
-    if (std::isfinite(b.contact.minDistanceMm)) EXPECT_LE(a.contact.minDistanceMm, b.contact.minDistanceMm + 1e-9);
+    if (std::isfinite(b.contact.minDistanceMm)) {
+      EXPECT_LE(a.contact.minDistanceMm, b.contact.minDistanceMm + 1e-9);
+    }
     ASSERT_TRUE(a.contact.contactPoint.has_value()) << "step " << a.entry.stepIndex;
     const Vec3 p = *a.contact.contactPoint;
     EXPECT_TRUE(box.overlaps(Bounds{p, p})) << "step " << a.entry.stepIndex;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "Cubic.h"
 #include "reamsim/collision/TriangleGeometry.h"
@@ -100,6 +101,53 @@ void boxRates(const SegmentMotion& m, const Vec3& qlo, const Vec3& qhi, double r
     rateLo[i] = m.delta[i] + w * std::min(0.0, vc[i] - vh[i]) - g;
     rateHi[i] = m.delta[i] + w * std::max(0.0, vc[i] + vh[i]) + g;
   }
+}
+
+AxisSweep axisSweep(const SegmentMotion& m, const Vec3& nLocal, double dlo, double dhi, const Vec3& plo,
+                    const Vec3& phi, double r) {
+  AxisSweep a;
+  a.axis = m.R0 * nLocal;
+  const double base = dot(a.axis, m.tip0);
+  // First-order turn: d/ds L.(Rot q) ~ phi' L.(k x q) = phi' (R0^T (L x k)).p, ranged over the local box.
+  const Vec3 w = m.R0.transposed() * cross(a.axis, m.k);
+  const Vec3 c = (plo + phi) * 0.5, h = (phi - plo) * 0.5;
+  const double wc = dot(w, c), wh = std::abs(w.x) * h.x + std::abs(w.y) * h.y + std::abs(w.z) * h.z;
+  const double lin = dot(a.axis, m.delta), g = secondOrder(m, r);
+  a.rateLo = lin + 2 * m.tau * std::min(0.0, wc - wh) - g;
+  a.rateHi = lin + 2 * m.tau * std::max(0.0, wc + wh) + g;
+  // Rounding of the rotated axis, the dot products and the rates: far below these pads.
+  const double pad = 1e-12 * (std::abs(base) + r + std::abs(dlo) + std::abs(dhi)) + 1e-300;
+  const double ratePad = 1e-12 * (std::abs(lin) + 2 * m.tau * r + g) + 1e-300;
+  a.lo0 = dlo + base - pad;
+  a.hi0 = dhi + base + pad;
+  a.rateLo -= ratePad;
+  a.rateHi += ratePad;
+  return a;
+}
+
+double axisSweepTime(const AxisSweep& a, double blo, double bhi, double smax) {
+  double lo = 0, hi = smax;
+  auto clip = [&](double c0, double c1) {  // c0 + c1 s <= 0
+    if (c1 == 0) {
+      if (c0 > 0) hi = -1;
+    } else if (c1 > 0) {
+      hi = std::min(hi, -c0 / c1);
+    } else {
+      lo = std::max(lo, -c0 / c1);
+    }
+  };
+  clip(a.lo0 - bhi, a.rateLo);   // the sweep's low end reaches the interval's high end
+  clip(blo - a.hi0, -a.rateHi);  // the sweep's high end reaches the interval's low end
+  return lo <= hi * (1 + 1e-12) + 1e-300 ? lo * (1 - 1e-12) : std::numeric_limits<double>::infinity();
+}
+
+void projectBox(const Vec3& axis, const Vec3& lo, const Vec3& hi, double& plo, double& phi) {
+  const Vec3 c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
+  const double pc = dot(axis, c);
+  const double ph = std::abs(axis.x) * h.x + std::abs(axis.y) * h.y + std::abs(axis.z) * h.z;
+  const double pad = 1e-12 * (std::abs(pc) + ph) + 1e-300;
+  plo = pc - ph - pad;
+  phi = pc + ph + pad;
 }
 
 double approachRate(const SegmentMotion& m, const Vec3& n, const Vec3& q, double side) {

@@ -30,6 +30,24 @@ double sweptBoxTime(const Vec3& lo0, const Vec3& hi0, const Vec3& rateLo, const 
 // direction is known, which keeps the bound tight) and a second-order remainder.
 void boxRates(const SegmentMotion& m, const Vec3& qlo, const Vec3& qhi, double r, Vec3& rateLo, Vec3& rateHi);
 
+// A moving reamer feature seen along one fixed world axis L: at segment time s its projection on L lies
+// within [lo0 + s rateLo, hi0 + s rateHi]. With L the feature's own (rotated) normal direction this is a
+// slab as thin as the feature is flat, which boxes are not once the reamer is tilted.
+struct AxisSweep {
+  Vec3 axis;  // L, world, unit
+  double lo0 = 0, hi0 = 0, rateLo = 0, rateHi = 0;
+};
+// Points p (reamer-local) with nLocal.p in [dlo, dhi], inside the local box [plo, phi], at most r from the
+// tip; L = R0 nLocal. Exact for translations; the turn adds its directional first-order reach and the
+// second-order remainder, as in boxRates.
+AxisSweep axisSweep(const SegmentMotion& m, const Vec3& nLocal, double dlo, double dhi, const Vec3& plo,
+                    const Vec3& phi, double r);
+// Earliest s in [0, smax] at which the sweep can overlap the fixed interval [blo, bhi] of the same axis;
+// +inf when it cannot.
+double axisSweepTime(const AxisSweep& a, double blo, double bhi, double smax);
+// The projection of a fixed box on the sweep's axis, padded for rounding.
+void projectBox(const Vec3& axis, const Vec3& lo, const Vec3& hi, double& plo, double& phi);
+
 // Fastest rate at which the signed height n.(x - a) of the point with offset q can move towards zero, given
 // its current side (sign of the height).
 double approachRate(const SegmentMotion& m, const Vec3& n, const Vec3& q, double side);

@@ -26,6 +26,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct ToiScratch {
   std::vector<std::uint32_t> nodeStamp, triStamp;
   std::vector<Vec3> a0lo, a0hi, rlo, rhi;
+  std::vector<detail::AxisSweep> slab;
   std::vector<std::array<Vec3, 3>> q;
   std::uint32_t stamp = 0;
   void begin(std::size_t nodes, std::size_t tris) {
@@ -35,6 +36,7 @@ struct ToiScratch {
       a0hi.resize(nodes);
       rlo.resize(nodes);
       rhi.resize(nodes);
+      slab.resize(nodes);
     }
     if (triStamp.size() < tris) { triStamp.resize(tris, 0); q.resize(tris); }
     if (++stamp == 0) {
@@ -46,14 +48,17 @@ struct ToiScratch {
 };
 thread_local ToiScratch tlsScratch;
 
-// Best-first search over (bone node, reamer node) pairs ordered by the earliest time their boxes can meet:
-// the reamer box at s = 0 moved along the tip's travel and grown by the rotation's reach (sweptBoxTime,
-// exact for translations). Pairs that cannot meet before the best contact so far are dropped; triangle pairs
-// that survive get a plane bound, then the exact cubic events.
+// Best-first search over (bone node, reamer node) pairs ordered by the earliest time they can meet: the
+// later of the time their boxes can meet (the reamer box at s = 0 moved along the tip's travel and grown by
+// the rotation's reach: sweptBoxTime, exact for translations) and the time the reamer node's slab along its
+// own normal can reach the bone box (axisSweepTime: what keeps a tilted face patch thin). Pairs that cannot
+// meet before the best contact so far are dropped; triangle pairs that survive get the same two bounds plus
+// a plane bound, then the exact cubic events.
 class ToiSearch {
  public:
   ToiSearch(const TriangleBvh& bone, const ReamerModel& reamer, const SegmentMotion& m, FirstContactResult& out)
-      : bone_(bone), rtree_(reamer.solidBvh()), radius_(reamer.solidNodeRadius()), m_(m), out_(out),
+      : bone_(bone), rtree_(reamer.solidBvh()), radius_(reamer.solidNodeRadius()), slabs_(reamer.solidNodeSlabs()),
+        m_(m), out_(out),
         sc_(tlsScratch) {
     sc_.begin(rtree_.nodes().size(), rtree_.slotCapacity());
   }
@@ -102,13 +107,19 @@ class ToiSearch {
     sc_.a0lo[r] = qlo + m_.tip0;
     sc_.a0hi[r] = qhi + m_.tip0;
     detail::boxRates(m_, qlo, qhi, radius_[r], sc_.rlo[r], sc_.rhi[r]);
+    const ReamerModel::NodeSlab& sl = slabs_[r];
+    sc_.slab[r] = detail::axisSweep(m_, sl.axis, sl.lo, sl.hi, R.lo, R.hi, radius_[r]);
     sc_.nodeStamp[r] = sc_.stamp;
   }
 
   double bound(std::int32_t b, std::int32_t r) {
     startBox(r);
     const BvhNode& B = bone_.nodes()[b];
-    return detail::sweptBoxTime(sc_.a0lo[r], sc_.a0hi[r], sc_.rlo[r], sc_.rhi[r], B.lo, B.hi, best_);
+    const double t = detail::sweptBoxTime(sc_.a0lo[r], sc_.a0hi[r], sc_.rlo[r], sc_.rhi[r], B.lo, B.hi, best_);
+    if (!promising(t)) return t;
+    double plo, phi;
+    detail::projectBox(sc_.slab[r].axis, B.lo, B.hi, plo, phi);
+    return std::max(t, detail::axisSweepTime(sc_.slab[r], plo, phi, best_));
   }
 
   const std::array<Vec3, 3>& rotatedTriangle(std::uint32_t slot) {
@@ -140,18 +151,26 @@ class ToiSearch {
   void leafPair(const BvhNode& B, const BvhNode& R) {
     const std::uint32_t* bs = bone_.leafSlots(B);
     const std::uint32_t* rs = rtree_.leafSlots(R);
+    Vec3 blo[TriangleBvh::kLeafCapacity], bhi[TriangleBvh::kLeafCapacity];
+    for (int i = 0; i < B.count; ++i) TriangleBvh::paddedBox(bone_.triangle(bs[i]), blo[i], bhi[i]);
     for (int j = 0; j < R.count; ++j) {
       const auto& qa = rotatedTriangle(rs[j]);
       const Vec3 X[3] = {m_.tip0 + qa[0], m_.tip0 + qa[1], m_.tip0 + qa[2]};
       Vec3 tlo, thi, qlo, qhi, rlo, rhi;
       TriangleBvh::paddedBox({X[0], X[1], X[2]}, tlo, thi);
       TriangleBvh::paddedBox({qa[0], qa[1], qa[2]}, qlo, qhi);
-      detail::boxRates(m_, qlo, qhi, std::max({norm(qa[0]), norm(qa[1]), norm(qa[2])}), rlo, rhi);
+      const double reach = std::max({norm(qa[0]), norm(qa[1]), norm(qa[2])});
+      detail::boxRates(m_, qlo, qhi, reach, rlo, rhi);
+      const detail::AxisSweep plane = triangleSweep(rtree_.triangle(rs[j]), reach);
       for (int i = 0; i < B.count; ++i) {
         const BvhTriangle& bt = bone_.triangle(bs[i]);
-        Vec3 blo, bhi;
-        TriangleBvh::paddedBox(bt, blo, bhi);
-        double t = detail::sweptBoxTime(tlo, thi, rlo, rhi, blo, bhi, best_);
+        double t = detail::sweptBoxTime(tlo, thi, rlo, rhi, blo[i], bhi[i], best_);
+        if (!promising(t)) continue;
+        // The reamer triangle's own plane, moving: the bone triangle's extent along its normal.
+        const double h0 = dot(plane.axis, bt.a), h1 = dot(plane.axis, bt.b), h2 = dot(plane.axis, bt.c);
+        const double hlo = std::min({h0, h1, h2}), hhi = std::max({h0, h1, h2});
+        const double pad = 1e-12 * (std::abs(hlo) + std::abs(hhi)) + 1e-300;
+        t = std::max(t, detail::axisSweepTime(plane, hlo - pad, hhi + pad, best_));
         if (!promising(t)) continue;
         // Plane bound: each reamer vertex needs at least h / (its fastest approach) to reach the bone
         // triangle's plane, and the triangle cannot touch before its first vertex or edge does.
@@ -170,6 +189,19 @@ class ToiSearch {
         push({t, static_cast<std::int32_t>(bs[i]), static_cast<std::int32_t>(rs[j]), true});
       }
     }
+  }
+
+  // The sweep of a reamer triangle (local coordinates) along its own normal.
+  detail::AxisSweep triangleSweep(const BvhTriangle& lt, double reach) const {
+    Vec3 n = cross(lt.b - lt.a, lt.c - lt.a);
+    const double len = norm(n);
+    n = len > 0 ? n / len : Vec3{0, 0, 1};
+    const double d0 = dot(n, lt.a), d1 = dot(n, lt.b), d2 = dot(n, lt.c);
+    const Vec3 plo{std::min({lt.a.x, lt.b.x, lt.c.x}), std::min({lt.a.y, lt.b.y, lt.c.y}),
+                   std::min({lt.a.z, lt.b.z, lt.c.z})};
+    const Vec3 phi{std::max({lt.a.x, lt.b.x, lt.c.x}), std::max({lt.a.y, lt.b.y, lt.c.y}),
+                   std::max({lt.a.z, lt.b.z, lt.c.z})};
+    return detail::axisSweep(m_, n, std::min({d0, d1, d2}), std::max({d0, d1, d2}), plo, phi, reach);
   }
 
   void exact(std::int32_t boneSlot, std::int32_t reamerSlot) {
@@ -192,6 +224,7 @@ class ToiSearch {
   const TriangleBvh& bone_;
   const TriangleBvh& rtree_;
   const std::vector<double>& radius_;
+  const std::vector<ReamerModel::NodeSlab>& slabs_;
   const SegmentMotion m_;
   FirstContactResult& out_;
   ToiScratch& sc_;

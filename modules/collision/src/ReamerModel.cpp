@@ -14,6 +14,62 @@
 
 namespace reamsim {
 
+namespace {
+
+// Slabs of every node (see ReamerModel::NodeSlab), bottom-up: a node's triangles are its leaf slots or its
+// children's, gathered once per level (the reamer tree is small).
+std::vector<ReamerModel::NodeSlab> nodeSlabs(const TriangleBvh& bvh) {
+  const auto& nodes = bvh.nodes();
+  std::vector<ReamerModel::NodeSlab> out(nodes.size());
+  std::vector<std::vector<std::uint32_t>> slots(nodes.size());
+  // Post-order without recursion: children before parents.
+  std::vector<std::pair<std::int32_t, bool>> stack{{bvh.root(), false}};
+  while (!stack.empty()) {
+    auto [i, expanded] = stack.back();
+    stack.pop_back();
+    if (i < 0) continue;
+    const BvhNode& n = nodes[i];
+    if (!expanded && !n.isLeaf()) {
+      stack.push_back({i, true});
+      stack.push_back({n.left, false});
+      stack.push_back({n.right, false});
+      continue;
+    }
+    if (n.isLeaf()) {
+      const std::uint32_t* s = bvh.leafSlots(n);
+      slots[i].assign(s, s + n.count);
+    } else {
+      slots[i] = slots[n.left];
+      slots[i].insert(slots[i].end(), slots[n.right].begin(), slots[n.right].end());
+    }
+    Vec3 sum;
+    for (std::uint32_t t : slots[i]) {
+      const BvhTriangle& tri = bvh.triangle(t);
+      sum += cross(tri.b - tri.a, tri.c - tri.a);
+    }
+    ReamerModel::NodeSlab& slab = out[i];
+    const double len = norm(sum);
+    if (len > 0) slab.axis = sum / len;
+    slab.lo = std::numeric_limits<double>::infinity();
+    slab.hi = -slab.lo;
+    for (std::uint32_t t : slots[i]) {
+      const BvhTriangle& tri = bvh.triangle(t);
+      for (const Vec3& v : {tri.a, tri.b, tri.c}) {
+        const double d = dot(slab.axis, v);
+        slab.lo = std::min(slab.lo, d);
+        slab.hi = std::max(slab.hi, d);
+      }
+    }
+    if (!n.isLeaf()) {  // the children's lists are no longer needed
+      std::vector<std::uint32_t>().swap(slots[n.left]);
+      std::vector<std::uint32_t>().swap(slots[n.right]);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 ReamerModel::ReamerModel(TriangleMesh cuttingSolid, std::vector<std::uint32_t> faceTriangles)
     : solid_(std::move(cuttingSolid)), face_(std::move(faceTriangles)) {
   if (solid_.triangles.empty()) throw std::invalid_argument("ReamerModel: the cutting solid has no triangles");
@@ -56,6 +112,7 @@ ReamerModel::ReamerModel(TriangleMesh cuttingSolid, std::vector<std::uint32_t> f
     }
     solidNodeRadius_[i] = r;
   }
+  solidNodeSlabs_ = nodeSlabs(solidBvh_);
 
   // Pseudo-normals: unit face normals, edge = sum of its two faces, vertex = angle-weighted sum.
   const std::size_t nt = solid_.triangles.size();

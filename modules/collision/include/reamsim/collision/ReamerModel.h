@@ -33,6 +33,14 @@ class ReamerModel {
   // Per solid-BVH node: largest distance from the tip (origin) to its box, for motion bounds.
   const std::vector<double>& solidNodeRadius() const { return solidNodeRadius_; }
   double radius() const { return radius_; }  // largest |vertex|
+  // Per solid-BVH node: a slab holding its triangles (unit local axis = their area-weighted normal, and
+  // the range of axis.p over their vertices). Thin for a patch of the cutting face however the reamer is
+  // tilted, where the node's box, once rotated into the bone's frame, is as thick as it is wide.
+  struct NodeSlab {
+    Vec3 axis{0, 0, 1};
+    double lo = 0, hi = 0;
+  };
+  const std::vector<NodeSlab>& solidNodeSlabs() const { return solidNodeSlabs_; }
 
   // Point strictly inside the closed cutting solid (local coordinates): the sign of p - c against the
   // angle-weighted pseudo-normal of the feature holding the closest surface point c (Baerentzen & Aanaes
@@ -74,6 +82,7 @@ class ReamerModel {
   std::vector<std::uint32_t> face_, rest_;
   TriangleBvh solidBvh_, faceBvh_, restBvh_;
   std::vector<double> solidNodeRadius_;
+  std::vector<NodeSlab> solidNodeSlabs_;
   std::vector<Vec3> vertexNormal_, edgeNormal_, faceNormal_;  // pseudo-normals; edges as 3 x triangle + k
   Vec3 deepPoint_;
   FaceRegion faceRegion_;
