@@ -97,15 +97,32 @@ double percentile(std::vector<double> v, double q) {
   return v[std::min(v.size() - 1, std::size_t(q * (v.size() - 1) + 0.5))];
 }
 
+double smallestAngleDeg(const TriangleMesh& m, const Triangle& t) {
+  double best = 180;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 a = m.vertices[t[(i + 1) % 3]] - m.vertices[t[i]], b = m.vertices[t[(i + 2) % 3]] - m.vertices[t[i]];
+    const double c = dot(a, b) / std::max(1e-300, norm(a) * norm(b));
+    best = std::min(best, std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI);
+  }
+  return best;
+}
+
 double minAngleDeg(const TriangleMesh& m) {
   double best = 180;
-  for (const Triangle& t : m.triangles)
-    for (int i = 0; i < 3; ++i) {
-      const Vec3 a = m.vertices[t[(i + 1) % 3]] - m.vertices[t[i]], b = m.vertices[t[(i + 2) % 3]] - m.vertices[t[i]];
-      const double c = dot(a, b) / std::max(1e-300, norm(a) * norm(b));
-      best = std::min(best, std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI);
-    }
+  for (const Triangle& t : m.triangles) best = std::min(best, smallestAngleDeg(m, t));
   return best;
+}
+
+// How many faces have a smallest angle below 1, 5 and 15 degrees (slivers left over).
+nlohmann::json facesBelowAngle(const TriangleMesh& m) {
+  std::size_t n1 = 0, n5 = 0, n15 = 0;
+  for (const Triangle& t : m.triangles) {
+    const double a = smallestAngleDeg(m, t);
+    n1 += a < 1;
+    n5 += a < 5;
+    n15 += a < 15;
+  }
+  return {{"below_1_deg", n1}, {"below_5_deg", n5}, {"below_15_deg", n15}};
 }
 
 nlohmann::json transformJson(const Pose& p) {
@@ -196,8 +213,8 @@ nlohmann::json table51(const TriangleMesh& bone, const TriangleMesh& localTool, 
 int runBenchCut(const std::vector<std::string>& args) {
   CliArgs a(args,
             {"bone", "units", "subdivide", "steps", "depth", "tilt", "reamer", "check-every", "export-sequence",
-             "peers-dir", "peers-budget-ms"},
-            {"json", "peers", "table-5-1"});
+             "peers-dir", "peers-budget-ms", "cleanup-deviation-mm", "cleanup-min-edge-mm", "cleanup-min-angle-deg"},
+            {"json", "peers", "table-5-1", "no-cleanup"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string boneArg = a.value("bone", "default");
   const int steps = int(a.number("steps", 200));
@@ -226,12 +243,22 @@ int runBenchCut(const std::vector<std::string>& args) {
 
   const auto t0 = std::chrono::steady_clock::now();
   LocalSubtractor engine(bone);
+  {
+    BandCleanup cleanup;
+    cleanup.enabled = !a.has("no-cleanup");
+    cleanup.maxDeviationMm = a.number("cleanup-deviation-mm", cleanup.maxDeviationMm);
+    cleanup.minEdgeMm = a.number("cleanup-min-edge-mm", cleanup.minEdgeMm);
+    cleanup.minAngleDeg = a.number("cleanup-min-angle-deg", cleanup.minAngleDeg);
+    engine.setBandCleanup(cleanup);
+  }
   const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::vector<double> times, cutTimes;
   std::vector<double> perStep;  // one per step, NaN for a failed one (the peers' ratios over the same steps)
   std::size_t failures = 0, cuts = 0, checks = 0, exactSI = 0, roundedSI = 0, notClosed = 0;
   std::map<std::string, std::size_t> failureKinds;
-  double worstBookkeeping = 0, worstPiece = 0, removedTotal = 0;
+  double worstBookkeeping = 0, worstPiece = 0, removedTotal = 0, cleanupVolume = 0;
+  std::size_t collapses = 0, flips = 0;
+  std::vector<double> cleanupTimes;
   const double volumeStart = engine.volumeMm3();
   const bool closedStart = engine.defects().borderEdges == 0;
   auto check = [&]() {
@@ -253,7 +280,12 @@ int runBenchCut(const std::vector<std::string>& args) {
         removedTotal += c.removedMm3;
         const double scale = std::max(1e-3, c.removedMm3);
         worstBookkeeping = std::max(worstBookkeeping, std::abs(c.removedMm3 - (c.volumeBeforeMm3 - c.volumeAfterMm3)) / scale);
-        worstPiece = std::max(worstPiece, std::abs(c.removedMm3 - c.removedPieceMm3) / scale);
+        // The piece bone ∩ tool is what the Boolean removed; the band clean-up's change comes on top.
+        worstPiece = std::max(worstPiece, std::abs(c.removedMm3 - c.cleanupVolumeMm3 - c.removedPieceMm3) / scale);
+        cleanupVolume += c.cleanupVolumeMm3;
+        collapses += c.cleanupCollapses;
+        flips += c.cleanupFlips;
+        cleanupTimes.push_back(c.cleanupMilliseconds);
       }
     } catch (const CutError& e) {
       ++failures;
@@ -291,7 +323,14 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"removed_mm3", removedTotal},
       {"volume_drop_mm3", volumeStart - engine.volumeMm3()},
       {"exact_vertices_end", engine.exactVertexCount()},
+      {"band_cleanup", {{"enabled", engine.bandCleanup().enabled},
+                        {"max_deviation_mm", engine.bandCleanup().maxDeviationMm},
+                        {"collapses", collapses},
+                        {"flips", flips},
+                        {"volume_change_mm3", cleanupVolume},
+                        {"median_ms", percentile(cleanupTimes, 0.5)}}},
       {"min_angle_deg", minAngleDeg(finalMesh)},
+      {"faces_by_smallest_angle", facesBelowAngle(finalMesh)},
       {"defects", {{"self_intersecting_pairs", engine.defects().selfIntersectingPairs},
                    {"self_intersecting_faces", engine.defects().selfIntersectingFaces},
                    {"non_manifold_faces", engine.defects().nonManifoldFaces},

@@ -14,6 +14,7 @@
 #include <optional>
 #include <unordered_map>
 
+#include "CutBandCleanup.h"
 #include "LocalDefectScan.h"
 #include "TrianglePair.h"
 #include "TriangleGrid.h"
@@ -197,6 +198,7 @@ struct LocalSubtractor::Impl {
   std::vector<std::uint8_t> defect;  // per triangle slot (DefectFlag bits), 0 for faces made by cuts
   LocalDefects defects;
   std::vector<std::uint32_t> candidates;
+  BandCleanup cleanup;
 
   P point(std::uint32_t v) const {
     const auto it = exact.find(v);
@@ -227,6 +229,7 @@ struct LocalSubtractor::Impl {
 
   bool touchesTool(std::uint32_t slot, const SM& tool, CGAL::Side_of_triangle_mesh<SM, EK>& side) const;
   Side insideBone(const P& q);
+  double cleanBand(const std::vector<std::uint32_t>& seeds, const Vec3& origin, LocalCut& cut);
   LocalCut subtract(const TriangleMesh& toolMesh);
 };
 
@@ -283,6 +286,45 @@ Side LocalSubtractor::Impl::insideBone(const P& q) {
     }
   }
   return kUndecided;
+}
+
+// The band clean-up around the faces a cut made, committed as its own delta; returns its 6 × volume
+// change (removed − added, same origin as the cut's bookkeeping).
+double LocalSubtractor::Impl::cleanBand(const std::vector<std::uint32_t>& seeds, const Vec3& origin, LocalCut& cut) {
+  const auto start = std::chrono::steady_clock::now();
+  csg::CleanupOptions options;
+  options.maxDeviationMm = cleanup.maxDeviationMm;
+  options.minEdgeMm = cleanup.minEdgeMm;
+  options.minAngleDeg = cleanup.minAngleDeg;
+  std::vector<std::uint32_t> live;
+  for (std::uint32_t s : seeds)
+    if (s != kNone && state.isTriangleLive(s)) live.push_back(s);
+  const csg::CleanupPlan plan = csg::planCutBandCleanup(
+      state, grid, live, [&](std::uint32_t v) { return exact.count(v) != 0; },
+      [&](std::uint32_t s) { return s < defect.size() && defect[s] != 0; }, options);
+  cut.cleanupCollapses = plan.collapses;
+  cut.cleanupFlips = plan.flips;
+  double change6 = 0;
+  if (!plan.delta.empty()) {
+    for (std::uint32_t s : plan.delta.removedTriangles) {
+      const Triangle& t = state.triangle(s);
+      change6 += volumeTerm(origin, state.vertex(t[0]), state.vertex(t[1]), state.vertex(t[2]));
+    }
+    for (const Triangle& t : plan.delta.addedTriangles)
+      change6 -= volumeTerm(origin, state.vertex(t[0]), state.vertex(t[1]), state.vertex(t[2]));
+    DeltaPlacement placement;
+    BoneState next = state.applyDelta(plan.delta, &placement);
+    for (std::uint32_t s : plan.delta.removedTriangles) grid.remove(s);
+    state = std::move(next);
+    if (defect.size() < state.triangleSlotCount()) defect.resize(state.triangleSlotCount(), 0);
+    for (std::uint32_t s : placement.triangleSlots) {
+      defect[s] = 0;
+      grid.insert(s, boxOf(state.triangle(s)));
+    }
+  }
+  cut.cleanupVolumeMm3 = change6 / 6.0;
+  cut.cleanupMilliseconds = elapsedMs(start);
+  return change6;
 }
 
 LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
@@ -643,6 +685,8 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     grid.insert(s, boxOf(state.triangle(s)));
   }
 
+  if (cleanup.enabled) removed6 += cleanBand(placement.triangleSlots, o, cut);
+
   cut.changed = true;
   cut.removedMm3 = removed6 / 6.0;
   cut.removedPieceMm3 = piece6 / 6.0;
@@ -693,6 +737,8 @@ LocalSubtractor::LocalSubtractor(LocalSubtractor&&) noexcept = default;
 LocalSubtractor& LocalSubtractor::operator=(LocalSubtractor&&) noexcept = default;
 
 LocalCut LocalSubtractor::subtract(const TriangleMesh& tool) { return impl_->subtract(tool); }
+void LocalSubtractor::setBandCleanup(const BandCleanup& cleanup) { impl_->cleanup = cleanup; }
+const BandCleanup& LocalSubtractor::bandCleanup() const { return impl_->cleanup; }
 const BoneState& LocalSubtractor::state() const { return impl_->state; }
 TriangleMesh LocalSubtractor::mesh() const { return impl_->state.toMesh(); }
 double LocalSubtractor::volumeMm3() const { return impl_->state.volume(); }

@@ -52,7 +52,22 @@ struct LocalCut {
   std::size_t patchFaces = 0;    // bone faces taken into the local Boolean
   std::size_t removedFaces = 0;  // triangle slots removed from the bone
   std::size_t addedFaces = 0;
+  // The band clean-up after the cut (see BandCleanup): its volume change is part of removedMm3 (so
+  // removedMm3 = V_before − V_after still holds), not of removedPieceMm3.
+  double cleanupVolumeMm3 = 0;
+  std::size_t cleanupCollapses = 0, cleanupFlips = 0;
+  double cleanupMilliseconds = 0;
   double milliseconds = 0;
+};
+
+// Clean-up of the cut band after each cut: short edges collapsed and caps flipped around the new faces, so
+// that faces do not accumulate and slivers do not pile up over many cuts. Each operation moves the surface
+// by at most maxDeviationMm and is checked exactly for self-intersections (src/CutBandCleanup.h).
+struct BandCleanup {
+  bool enabled = true;
+  double maxDeviationMm = 0.001;
+  double minEdgeMm = 0.05;
+  double minAngleDeg = 15;
 };
 
 struct LocalDefects {
@@ -76,6 +91,9 @@ class LocalSubtractor {
   // Subtracts a closed, outward-oriented tool (bone coordinates). Throws CutError (bone unchanged) when
   // the cut cannot be computed correctly here.
   LocalCut subtract(const TriangleMesh& tool);
+  // The clean-up after each cut (on by default). Off, the result is the exact Boolean alone.
+  void setBandCleanup(const BandCleanup& cleanup);
+  const BandCleanup& bandCleanup() const;
 
   const BoneState& state() const;  // rounded coordinates, slot based (cheap to copy)
   TriangleMesh mesh() const;       // rounded to doubles

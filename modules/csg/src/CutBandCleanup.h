@@ -1,0 +1,45 @@
+#pragma once
+// Internal: keeps the cut band of the local engine bounded and well shaped. Consecutive cuts with slightly
+// different poses leave slivers (thin strips between nearly coincident tool placements, needles where
+// intersection curves run close) and faces accumulate. After each cut this pass removes short edges by
+// half-edge collapses (a vertex moves onto a neighbour: no new coordinates) and fixes caps by edge flips,
+// around the faces the cut created.
+//
+// Every operation is checked before it is taken, with exact predicates on the doubles:
+//   - topology: the link condition (collapse), the new edge not existing yet (flip); only vertices whose
+//     whole star lies in the local region take part;
+//   - geometry: the surface moves by at most `maxDeviationMm` (the removed vertex, or the flipped quad's
+//     far corner, lies that close to the new faces' planes); no new face is degenerate or turns by more
+//     than ~45 degrees from the one it replaces; quality does not get worse;
+//   - no self-intersection: every new face is tested against every face of the bone its box could meet
+//     (the region is a grid query around the cut, and new faces must stay inside its box).
+// Vertices with exact (non-double) coordinates and faces flagged as defects are never touched.
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "TriangleGrid.h"
+#include "reamsim/core/BoneState.h"
+#include "reamsim/core/MeshDelta.h"
+
+namespace reamsim::csg {
+
+struct CleanupOptions {
+  double maxDeviationMm = 0.001;  // how far an operation may move the surface
+  double minEdgeMm = 0.05;        // shorter edges are collapsed
+  double minAngleDeg = 15;        // faces with a smaller angle are collapsed or flipped
+  std::size_t maxOperations = 20000;
+};
+
+struct CleanupPlan {
+  MeshDelta delta;  // removed slots and added faces (no new vertices); empty when nothing was done
+  std::size_t collapses = 0, flips = 0;
+};
+
+// Plans the clean-up around the faces `seeds` (live slots of `state`). `grid` holds every live face's box.
+// `frozenVertex` / `frozenFace`: vertices and faces that must not change.
+CleanupPlan planCutBandCleanup(const BoneState& state, TriangleGrid& grid, const std::vector<std::uint32_t>& seeds,
+                               const std::function<bool(std::uint32_t)>& frozenVertex,
+                               const std::function<bool(std::uint32_t)>& frozenFace, const CleanupOptions& options);
+
+}  // namespace reamsim::csg
