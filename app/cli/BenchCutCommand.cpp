@@ -84,6 +84,29 @@ std::vector<Pose> reamingPath(const Spot& s, int steps, double depthMm, double t
   return poses;
 }
 
+// The soak path: five feeds into the spot, each from 1 mm outside to a deeper depth (depthMm, then + 0.5 mm
+// per feed), each with its own mean tilt (4 degrees, turning 144 degrees per feed) and the jitter of
+// reamingPath on top (2 degrees of wobble, 0.5 mm of drift): the reamer leaves and re-enters the cavity.
+std::vector<Pose> soakPath(const Spot& s, int steps, double depthMm) {
+  const Vec3 ref = std::abs(s.inward.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  const Vec3 u = normalized(cross(s.inward, ref)), v = cross(s.inward, u);
+  constexpr int kFeeds = 5;
+  const double meanTilt = std::tan(4 * M_PI / 180), wobble = std::tan(2 * M_PI / 180);
+  std::vector<Pose> poses;
+  for (int i = 0; i < steps; ++i) {
+    const int feed = std::min(kFeeds - 1, i * kFeeds / steps);
+    const int first = feed * steps / kFeeds, count = std::max(1, (feed + 1) * steps / kFeeds - first);
+    const double f = count > 1 ? double(i - first) / (count - 1) : 1.0;
+    const double m = 2 * M_PI * 0.4 * feed, a = 2 * M_PI * i / 50.0, b = 2 * M_PI * i / 37.0;
+    const Vec3 axis = normalized(s.inward + (u * std::cos(m) + v * std::sin(m)) * meanTilt +
+                                 (u * std::cos(a) + v * std::sin(a)) * wobble);
+    const double depth = depthMm + 0.5 * feed;
+    const Vec3 tip = s.centre + s.inward * (-1.0 + (1.0 + depth) * f) + (u * std::cos(b) + v * std::sin(b)) * 0.5;
+    poses.push_back({tip, axis, 0});
+  }
+  return poses;
+}
+
 TriangleMesh placed(const TriangleMesh& local, const Pose& pose) {
   TriangleMesh m = local;
   const RigidTransform t = toTransform(pose);
@@ -213,7 +236,7 @@ nlohmann::json table51(const TriangleMesh& bone, const TriangleMesh& localTool, 
 int runBenchCut(const std::vector<std::string>& args) {
   CliArgs a(args,
             {"bone", "units", "subdivide", "steps", "depth", "tilt", "reamer", "check-every", "export-sequence",
-             "peers-dir", "peers-budget-ms", "cleanup-deviation-mm", "cleanup-min-edge-mm", "cleanup-min-angle-deg"},
+             "peers-dir", "peers-budget-ms", "path", "cleanup-deviation-mm", "cleanup-min-edge-mm", "cleanup-min-angle-deg"},
             {"json", "peers", "table-5-1", "no-cleanup"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string boneArg = a.value("bone", "default");
@@ -235,7 +258,10 @@ int runBenchCut(const std::vector<std::string>& args) {
   const Spot spot = findSpot(boneArg, bone);
   const ReamerSpec spec = loadPreset(a.value("reamer", "glenoid-36-R30"), reamerPresetsPath());
   const TriangleMesh localTool = buildCuttingSolid(spec);
-  const std::vector<Pose> poses = reamingPath(spot, steps, a.number("depth", 3.0), a.number("tilt", 3.0));
+  const std::string pathKind = a.value("path", "jitter");
+  if (pathKind != "jitter" && pathKind != "soak") throw UsageError("--path jitter|soak");
+  const std::vector<Pose> poses = pathKind == "soak" ? soakPath(spot, steps, a.number("depth", 1.0))
+                                                     : reamingPath(spot, steps, a.number("depth", 3.0), a.number("tilt", 3.0));
 
   const double peersBudgetMs = a.number("peers-budget-ms", 60000);
   if (peersBudgetMs <= 0) throw UsageError("--peers-budget-ms > 0");
@@ -305,6 +331,7 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"faces_end", finalMesh.triangles.size()},
       {"faces_ratio", double(finalMesh.triangles.size()) / double(bone.triangles.size())},
       {"steps", steps},
+      {"path", pathKind},
       {"cuts", cuts},
       {"setup_ms", setupMs},
       {"median_ms", percentile(times, 0.5)},
