@@ -117,9 +117,25 @@ class ToiSearch {
     const BvhNode& B = bone_.nodes()[b];
     const double t = detail::sweptBoxTime(sc_.a0lo[r], sc_.a0hi[r], sc_.rlo[r], sc_.rhi[r], B.lo, B.hi, best_);
     if (!promising(t)) return t;
+    const detail::AxisSweep& slab = sc_.slab[r];
     double plo, phi;
-    detail::projectBox(sc_.slab[r].axis, B.lo, B.hi, plo, phi);
-    return std::max(t, detail::axisSweepTime(sc_.slab[r], plo, phi, best_));
+    detail::projectBox(slab.axis, B.lo, B.hi, plo, phi);
+    const double ts = std::max(t, detail::axisSweepTime(slab, plo, phi, best_));
+    if (!promising(ts) || !B.isLeaf()) return ts;
+    // A bone leaf: its triangles' own extent along the axis, much thinner than its box's when the patch
+    // is tilted against the bone's axes (the near-contact case, where most pairs are leaves).
+    const std::uint32_t* slots = bone_.leafSlots(B);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (int i = 0; i < B.count; ++i) {
+      const BvhTriangle& bt = bone_.triangle(slots[i]);
+      for (const Vec3* v : {&bt.a, &bt.b, &bt.c}) {
+        const double d = dot(slab.axis, *v);
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+      }
+    }
+    const double pad = 1e-12 * (std::abs(lo) + std::abs(hi)) + 1e-300;
+    return std::max(ts, detail::axisSweepTime(slab, lo - pad, hi + pad, best_));
   }
 
   const std::array<Vec3, 3>& rotatedTriangle(std::uint32_t slot) {
