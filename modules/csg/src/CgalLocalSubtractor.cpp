@@ -135,11 +135,13 @@ std::array<VI, 3> faceVertices(const SM& m, FI f) {
 }
 
 // True when the faces `added` (a subset of the surface `kept`), with coordinates from `at`, are not
-// degenerate and do not intersect any face of `kept` other than along shared edges and vertices.
-// Epick: predicates only, exact on the given doubles.
+// degenerate and the faces `moved` (those of `added` with a vertex that rounding moves) do not intersect
+// any face of `kept` other than along shared edges and vertices: a pair in which no vertex moved is a pair
+// of the exact result, which is free of intersections. Epick: predicates only, exact on the given doubles.
 template <class At>
 bool roundingIsSafe(const std::vector<std::array<std::uint32_t, 3>>& kept,
-                    const std::vector<std::array<std::uint32_t, 3>>& added, At&& at) {
+                    const std::vector<std::array<std::uint32_t, 3>>& added,
+                    const std::vector<std::array<std::uint32_t, 3>>& moved, At&& at) {
   using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 3, std::size_t,
                                                           CGAL::Box_intersection_d::ID_EXPLICIT>;
@@ -153,16 +155,17 @@ bool roundingIsSafe(const std::vector<std::array<std::uint32_t, 3>>& kept,
   };
   for (const auto& t : added)
     if (CGAL::collinear(pt(t[0]), pt(t[1]), pt(t[2]))) return false;
+  if (moved.empty()) return true;
   std::vector<Box> a, k;
-  a.reserve(added.size());
+  a.reserve(moved.size());
   k.reserve(kept.size());
-  for (std::size_t i = 0; i < added.size(); ++i) a.push_back(boxOf(added[i], i));
+  for (std::size_t i = 0; i < moved.size(); ++i) a.push_back(boxOf(moved[i], i));
   for (std::size_t i = 0; i < kept.size(); ++i) k.push_back(boxOf(kept[i], i));
   bool safe = true;
   struct Stop {};
   try {
     CGAL::box_intersection_d(a.begin(), a.end(), k.begin(), k.end(), [&](const Box& ba, const Box& bk) {
-      const bool bad = csg::trianglesIntersectBeyondShared<IK>(added[ba.handle()], kept[bk.handle()], pt);
+      const bool bad = csg::trianglesIntersectBeyondShared<IK>(moved[ba.handle()], kept[bk.handle()], pt);
       if (bad) {
         safe = false;
         throw Stop{};
@@ -652,7 +655,17 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   // nor intersect each other or their kept neighbours. Then the engine forgets their exact values, which
   // keeps exact coordinates from compounding cut after cut; otherwise it keeps them (and the document's
   // rounded copy may self-intersect there, which checkInvariants reports).
-  const bool keepExact = !roundingIsSafe(kept, added, [&](std::uint32_t uid) {
+  // Rounding moves the curve points and old vertices known exactly; the tool's own vertices (ids from nP
+  // on, off the curve) and old double vertices stay where they are.
+  auto moves = [&](std::uint32_t uid) {
+    if (uid >= nP) return false;
+    const std::uint32_t s = slotOfV[VI(uid)];
+    return s == kNone || exact.count(s) != 0;
+  };
+  std::vector<std::array<std::uint32_t, 3>> moved;
+  for (const auto& t : added)
+    if (moves(t[0]) || moves(t[1]) || moves(t[2])) moved.push_back(t);
+  const bool keepExact = !roundingIsSafe(kept, added, moved, [&](std::uint32_t uid) {
     // Every vertex of `kept` is an old slot or was given a reference with the added faces above.
     const std::uint32_t r = ref[uid] != kNone ? ref[uid] : slotOfV[VI(uid)];
     return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : state.vertex(r);
