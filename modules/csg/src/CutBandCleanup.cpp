@@ -20,11 +20,13 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Tri = std::array<std::uint32_t, 3>;
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 constexpr double kNormalAgreement = 0.7;  // cos of the largest turn a replaced face may take (~45 degrees)
+constexpr double kPi = 3.14159265358979323846;
 
 struct LocalFace {
   Tri v;
   std::uint32_t slot;  // the bone slot, kNone for faces made here
   bool alive = true;
+  bool frozen = false;  // a defect face: never changed, and no new face may come near it
 };
 
 double smallestAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -40,11 +42,17 @@ class Cleanup {
   Cleanup(const BoneState& state, TriangleGrid& grid, const std::function<bool(std::uint32_t)>& frozenVertex,
           const std::function<bool(std::uint32_t)>& frozenFace, const CleanupOptions& options)
       : state_(state), boneGrid_(grid), frozenVertex_(frozenVertex), frozenFace_(frozenFace), opt_(options),
-        minAngle_(options.minAngleDeg * M_PI / 180) {}
+        minAngle_(options.minAngleDeg * kPi / 180) {}
 
   CleanupPlan run(const std::vector<std::uint32_t>& seeds) {
     CleanupPlan plan;
-    if (seeds.empty()) return plan;
+    // Most cuts leave nothing to clean: decide that before gathering the region.
+    bool anyBad = false;
+    for (std::uint32_t s : seeds) {
+      const Triangle& t = state_.triangle(s);
+      if ((anyBad = bad({t[0], t[1], t[2]}))) break;
+    }
+    if (!anyBad) return plan;
     gather(seeds);
     std::vector<int> work;
     for (std::uint32_t s : seeds) {
@@ -100,13 +108,16 @@ class Cleanup {
     }
     local_.init(domain, slots.size());
     std::unordered_map<std::uint32_t, std::uint32_t> localUse;
+    localUse.reserve(slots.size());
+    localOfSlot_.reserve(slots.size());
+    star_.reserve(slots.size());
     for (std::uint32_t s : slots) {
       const Triangle& t = state_.triangle(s);
       const int id = static_cast<int>(faces_.size());
-      faces_.push_back({{t[0], t[1], t[2]}, s, true});
+      const bool frozen = frozenFace_(s);
+      faces_.push_back({{t[0], t[1], t[2]}, s, true, frozen});
       localOfSlot_[s] = id;
       local_.insert(static_cast<std::uint32_t>(id), boneGrid_.box(s));
-      const bool frozen = frozenFace_(s);
       for (std::uint32_t v : t) {
         star_[v].push_back(id);
         ++localUse[v];
@@ -138,17 +149,43 @@ class Cleanup {
   double angleOf(const Tri& t) const { return smallestAngle(at(t[0]), at(t[1]), at(t[2])); }
   Vec3 normalOf(const Tri& t) const { return cross(at(t[1]) - at(t[0]), at(t[2]) - at(t[0])); }
 
-  bool bad(int f) const {
-    const Tri& t = faces_[f].v;
+  bool bad(int f) const { return bad(faces_[f].v); }
+  bool bad(const Tri& t) const {
     for (int i = 0; i < 3; ++i)
       if (norm(at(t[(i + 1) % 3]) - at(t[i])) < opt_.minEdgeMm) return true;
     return angleOf(t) < minAngle_;
   }
 
-  std::vector<int> aliveStar(std::uint32_t v) {
+  const std::vector<int>& aliveStar(std::uint32_t v) {
     std::vector<int>& s = star_[v];
     s.erase(std::remove_if(s.begin(), s.end(), [&](int f) { return !faces_[f].alive; }), s.end());
     return s;
+  }
+  // The faces about v close up (each neighbour on exactly two of them): not on an open border of the bone
+  // and not a pinched vertex. Moving such a vertex, or changing the faces about it, keeps the surface
+  // manifold; a border vertex could be joined to another border.
+  bool closedFan(std::uint32_t v) {
+    const std::vector<int>& star = aliveStar(v);
+    std::unordered_map<std::uint32_t, int> seen;
+    for (int f : star)
+      for (std::uint32_t w : faces_[f].v)
+        if (w != v) ++seen[w];
+    if (seen.size() != star.size()) return false;
+    for (const auto& [w, n] : seen)
+      if (n != 2) return false;
+    return true;
+  }
+  // Whether some live face of u other than `except` has the same three vertices as t.
+  bool duplicates(const Tri& t, std::uint32_t u, const std::vector<int>& except) {
+    Tri a = t;
+    std::sort(a.begin(), a.end());
+    for (int f : aliveStar(u)) {
+      if (std::find(except.begin(), except.end(), f) != except.end()) continue;
+      Tri b = faces_[f].v;
+      std::sort(b.begin(), b.end());
+      if (a == b) return true;
+    }
+    return false;
   }
   std::unordered_set<std::uint32_t> neighbours(const std::vector<int>& star, std::uint32_t v) const {
     std::unordered_set<std::uint32_t> out;
@@ -182,8 +219,9 @@ class Cleanup {
       for (std::uint32_t g : hits_) {
         const LocalFace& lf = faces_[g];
         if (!lf.alive || std::find(dying.begin(), dying.end(), int(g)) != dying.end()) continue;
-        // A face with an exact (non-double) vertex is only known here rounded: stay away from it.
-        if (frozenVertex_(lf.v[0]) || frozenVertex_(lf.v[1]) || frozenVertex_(lf.v[2])) return false;
+        // A face with an exact (non-double) vertex is only known here rounded, and a defect face may be
+        // degenerate (the intersection tests require proper triangles): stay away from both.
+        if (lf.frozen || frozenVertex_(lf.v[0]) || frozenVertex_(lf.v[1]) || frozenVertex_(lf.v[2])) return false;
         if (trianglesIntersectBeyondShared<K>(made[i], lf.v, [&](std::uint32_t v) { return kp(v); })) return false;
       }
     }
@@ -221,7 +259,7 @@ class Cleanup {
 
   // Half-edge collapse: v moves onto u.
   bool collapse(std::uint32_t v, std::uint32_t u, std::vector<int>& made) {
-    if (!movable_.count(v) || !movable_.count(u)) return false;
+    if (!movable_.count(v) || !movable_.count(u) || !closedFan(v) || !closedFan(u)) return false;
     const std::vector<int> sv = aliveStar(v), su = aliveStar(u);
     if (sv.size() < 3 || su.size() < 3) return false;
     std::vector<std::uint32_t> opposite;
@@ -246,9 +284,13 @@ class Cleanup {
       oldQuality = std::min(oldQuality, angleOf(t));
       if (std::find(t.begin(), t.end(), u) != t.end()) continue;
       const Vec3 was = normalOf(t);
-      for (std::uint32_t& w : t)
+      for (std::uint32_t& w : t) {
         if (w == v) w = u;
+        if (frozenVertex_(w)) return false;  // only known rounded here
+      }
       if (!acceptableFace(t, was) || planeDistance(at(v), t) > opt_.maxDeviationMm) return false;
+      // A closed piece as small as a tetrahedron would fold onto one of u's faces.
+      if (duplicates(t, u, sv)) return false;
       newQuality = std::min(newQuality, angleOf(t));
       newFaces.push_back(t);
     }
@@ -273,6 +315,7 @@ class Cleanup {
     }
     const std::uint32_t a = t[e], b = t[(e + 1) % 3], c = t[(e + 2) % 3];
     if (!movable_.count(a) || !movable_.count(b) || !movable_.count(c)) return false;
+    if (!closedFan(a) || !closedFan(b)) return false;
     int g = -1;
     std::uint32_t d = kNone;
     for (int h : aliveStar(a)) {
@@ -285,6 +328,8 @@ class Cleanup {
           d = s[(i + 2) % 3];
         }
     }
+    // A neighbour across a-b running the same way would break orientation; such faces are flagged as
+    // defects (frozen vertices are not movable), so only the consistent twin b->a is looked for.
     if (g < 0 || d == c || !movable_.count(d)) return false;
     if (neighbours(aliveStar(c), c).count(d)) return false;  // the edge c-d exists already
     const Tri tf = faces_[f].v, tg = faces_[g].v;
@@ -305,8 +350,8 @@ class Cleanup {
 
   const BoneState& state_;
   TriangleGrid& boneGrid_;
-  const std::function<bool(std::uint32_t)>& frozenVertex_;
-  const std::function<bool(std::uint32_t)>& frozenFace_;
+  const std::function<bool(std::uint32_t)> frozenVertex_;
+  const std::function<bool(std::uint32_t)> frozenFace_;
   const CleanupOptions opt_;
   const double minAngle_;
 
