@@ -86,7 +86,7 @@ void printRow(const CutLogEntry& e) {
 }  // namespace
 
 int runReam(const std::vector<std::string>& args) {
-  CliArgs a(args, {"bone", "reamer", "plan", "out", "units", "engine", "collision"}, {"json", "check"});
+  CliArgs a(args, {"bone", "reamer", "plan", "out", "units", "engine", "collision"}, {"json", "check", "no-cleanup"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string outDir = a.required("out");
   const std::string planArg = a.value("plan", "default");
@@ -117,7 +117,8 @@ int runReam(const std::vector<std::string>& args) {
   if (collisionName != "bvh" && collisionName != "thesis")
     throw UsageError("--collision must be 'bvh' or 'thesis', not '" + collisionName + "'");
   ReamController controller(doc, boneNode, reamer, log, &alerts,
-                            engineName == "local" ? localCutBackendFactory() : referenceCutBackendFactory(),
+                            engineName == "local" ? localCutBackendFactory(!a.has("no-cleanup"))
+                                                  : referenceCutBackendFactory(),
                             collisionName == "bvh" ? makeBvhContactBackend() : makeThesisContactBackend());
 
   const bool json = a.has("json");

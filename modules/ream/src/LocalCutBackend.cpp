@@ -7,7 +7,11 @@ namespace {
 
 class LocalCutBackend final : public CutBackend {
  public:
-  explicit LocalCutBackend(const TriangleMesh& bone) : engine_(bone) {}
+  LocalCutBackend(const TriangleMesh& bone, bool bandCleanup) : engine_(bone) {
+    BandCleanup cleanup = engine_.bandCleanup();
+    cleanup.enabled = bandCleanup;
+    engine_.setBandCleanup(cleanup);
+  }
   ReferenceCut subtract(const TriangleMesh& tool) override {
     const LocalCut c = engine_.subtract(tool);
     ReferenceCut r;
@@ -28,8 +32,10 @@ class LocalCutBackend final : public CutBackend {
 
 }  // namespace
 
-CutBackendFactory localCutBackendFactory() {
-  return [](const TriangleMesh& bone) -> std::unique_ptr<CutBackend> { return std::make_unique<LocalCutBackend>(bone); };
+CutBackendFactory localCutBackendFactory(bool bandCleanup) {
+  return [bandCleanup](const TriangleMesh& bone) -> std::unique_ptr<CutBackend> {
+    return std::make_unique<LocalCutBackend>(bone, bandCleanup);
+  };
 }
 
 }  // namespace reamsim

@@ -5,7 +5,8 @@
 namespace reamsim {
 
 // Unlike the reference, accepts open and dirty bones; a cut that reaches a defect throws CutError
-// (a std::runtime_error) and leaves the bone unchanged.
-CutBackendFactory localCutBackendFactory();
+// (a std::runtime_error) and leaves the bone unchanged. bandCleanup: the engine's clean-up of the cut band
+// after each cut (docs/CSG.md); off, the bone is the exact Boolean alone and its faces grow.
+CutBackendFactory localCutBackendFactory(bool bandCleanup = true);
 
 }  // namespace reamsim
