@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -105,6 +106,39 @@ std::vector<Pose> soakPath(const Spot& s, int steps, double depthMm) {
     poses.push_back({tip, axis, 0});
   }
   return poses;
+}
+
+TriangleMesh placed(const TriangleMesh& local, const Pose& pose);
+
+// --avoid-defects (bones other than the default): dirty CT meshes refuse cuts that reach a defect, so try
+// up to 40 spots, highest first and each at least 20 mm from the ones tried, fed along the inward vertex
+// normal, and keep the first where the path's deepest pose cuts without reaching a defect or an open border.
+Spot findCleanSpot(const TriangleMesh& bone, const TriangleMesh& localTool,
+                   const std::function<std::vector<Pose>(const Spot&)>& pathAt) {
+  std::vector<Vec3> normal(bone.vertices.size());
+  for (const Triangle& t : bone.triangles) {
+    const Vec3 n = cross(bone.vertices[t[1]] - bone.vertices[t[0]], bone.vertices[t[2]] - bone.vertices[t[0]]);
+    for (std::uint32_t v : t) normal[v] += n;
+  }
+  std::vector<std::uint32_t> order(bone.vertices.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return bone.vertices[a].z > bone.vertices[b].z; });
+  LocalSubtractor probe(bone);
+  std::vector<Vec3> tried;
+  for (std::uint32_t v : order) {
+    if (tried.size() >= 40) break;
+    const Vec3& p = bone.vertices[v];
+    if (norm(normal[v]) == 0 || std::any_of(tried.begin(), tried.end(), [&](const Vec3& q) { return norm(q - p) < 20; }))
+      continue;
+    tried.push_back(p);
+    const Spot spot{p, -normalized(normal[v])};
+    try {
+      if (probe.subtract(placed(localTool, pathAt(spot).back())).changed) return spot;  // the probe is discarded
+    } catch (const CutError&) {
+    }
+  }
+  throw std::runtime_error("--avoid-defects: no spot among " + std::to_string(tried.size()) +
+                           " tried lets the reamer cut without reaching a defect");
 }
 
 TriangleMesh placed(const TriangleMesh& local, const Pose& pose) {
@@ -237,7 +271,7 @@ int runBenchCut(const std::vector<std::string>& args) {
   CliArgs a(args,
             {"bone", "units", "subdivide", "steps", "depth", "tilt", "reamer", "check-every", "export-sequence",
              "peers-dir", "peers-budget-ms", "path", "cleanup-deviation-mm", "cleanup-min-edge-mm", "cleanup-min-angle-deg"},
-            {"json", "peers", "table-5-1", "no-cleanup"});
+            {"json", "peers", "table-5-1", "no-cleanup", "avoid-defects"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string boneArg = a.value("bone", "default");
   const int steps = int(a.number("steps", 200));
@@ -255,13 +289,17 @@ int runBenchCut(const std::vector<std::string>& args) {
     bone = readMesh(boneArg, options).mesh;  // as is: the local engine takes dirty bones
   }
   for (int i = 0; i < subdivisions; ++i) bone = subdivide(bone);
-  const Spot spot = findSpot(boneArg, bone);
-  const ReamerSpec spec = loadPreset(a.value("reamer", "glenoid-36-R30"), reamerPresetsPath());
-  const TriangleMesh localTool = buildCuttingSolid(spec);
   const std::string pathKind = a.value("path", "jitter");
   if (pathKind != "jitter" && pathKind != "soak") throw UsageError("--path jitter|soak");
-  const std::vector<Pose> poses = pathKind == "soak" ? soakPath(spot, steps, a.number("depth", 1.0))
-                                                     : reamingPath(spot, steps, a.number("depth", 3.0), a.number("tilt", 3.0));
+  const ReamerSpec spec = loadPreset(a.value("reamer", "glenoid-36-R30"), reamerPresetsPath());
+  const TriangleMesh localTool = buildCuttingSolid(spec);
+  auto pathAt = [&](const Spot& s) {
+    return pathKind == "soak" ? soakPath(s, steps, a.number("depth", 1.0))
+                              : reamingPath(s, steps, a.number("depth", 3.0), a.number("tilt", 3.0));
+  };
+  const Spot spot = a.has("avoid-defects") && boneArg != "default" ? findCleanSpot(bone, localTool, pathAt)
+                                                                    : findSpot(boneArg, bone);
+  const std::vector<Pose> poses = pathAt(spot);
 
   const double peersBudgetMs = a.number("peers-budget-ms", 60000);
   if (peersBudgetMs <= 0) throw UsageError("--peers-budget-ms > 0");
@@ -332,6 +370,7 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"faces_ratio", double(finalMesh.triangles.size()) / double(bone.triangles.size())},
       {"steps", steps},
       {"path", pathKind},
+      {"spot", {{"centre", {spot.centre.x, spot.centre.y, spot.centre.z}}, {"inward", {spot.inward.x, spot.inward.y, spot.inward.z}}}},
       {"cuts", cuts},
       {"setup_ms", setupMs},
       {"median_ms", percentile(times, 0.5)},
