@@ -28,6 +28,25 @@ double l1(const Vec3& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z);
 double sum3(const Vec3 (&c)[3]) { return l1(c[0]) + l1(c[1]) + l1(c[2]); }
 double sum4(const Vec3 (&c)[4]) { return l1(c[0]) + l1(c[1]) + l1(c[2]) + l1(c[3]); }
 
+// The times s in [0, smax] satisfying linear constraints c0 + c1 s <= 0.
+struct TimeWindow {
+  double lo = 0, hi;
+  explicit TimeWindow(double smax) : hi(smax) {}
+  void clip(double c0, double c1) {
+    if (c1 == 0) {
+      if (c0 > 0) hi = -1;
+    } else if (c1 > 0) {
+      hi = std::min(hi, -c0 / c1);
+    } else {
+      lo = std::max(lo, -c0 / c1);
+    }
+  }
+  // The first time of the window (shaded down for rounding), +inf when it is empty.
+  double earliest() const {
+    return lo <= hi * (1 + 1e-12) + 1e-300 ? lo * (1 - 1e-12) : std::numeric_limits<double>::infinity();
+  }
+};
+
 Vec3 unitOr(const Vec3& v, const Vec3& fallback) {
   const double n = norm(v);
   return n > 0 ? v / n : fallback;
@@ -65,22 +84,12 @@ void sweptTriangleBox(const SegmentMotion& m, const Mat3& rotAtSmax, const Vec3 
 
 double sweptBoxTime(const Vec3& lo0, const Vec3& hi0, const Vec3& rateLo, const Vec3& rateHi, const Vec3& blo,
                     const Vec3& bhi, double smax) {
-  double lo = 0, hi = smax;
-  // Each side: a + b s <= 0.
-  auto clip = [&](double a, double b) {
-    if (b == 0) {
-      if (a > 0) hi = -1;
-    } else if (b > 0) {
-      hi = std::min(hi, -a / b);
-    } else {
-      lo = std::max(lo, -a / b);
-    }
-  };
+  TimeWindow w(smax);
   for (int i = 0; i < 3; ++i) {
-    clip(lo0[i] - bhi[i], rateLo[i]);   // lower face reaches the other box's upper face
-    clip(blo[i] - hi0[i], -rateHi[i]);  // upper face reaches the other box's lower face
+    w.clip(lo0[i] - bhi[i], rateLo[i]);   // lower face reaches the other box's upper face
+    w.clip(blo[i] - hi0[i], -rateHi[i]);  // upper face reaches the other box's lower face
   }
-  return lo <= hi * (1 + 1e-12) + 1e-300 ? lo * (1 - 1e-12) : std::numeric_limits<double>::infinity();
+  return w.earliest();
 }
 
 // Rot(phi) q = q + phi (k x q) + e with |e| <= (phi^2/2 + phi^3/6)|q|, and phi <= 2 tau s <= 2 tau for s <= 1.
@@ -126,19 +135,10 @@ AxisSweep axisSweep(const SegmentMotion& m, const Vec3& nLocal, double dlo, doub
 }
 
 double axisSweepTime(const AxisSweep& a, double blo, double bhi, double smax) {
-  double lo = 0, hi = smax;
-  auto clip = [&](double c0, double c1) {  // c0 + c1 s <= 0
-    if (c1 == 0) {
-      if (c0 > 0) hi = -1;
-    } else if (c1 > 0) {
-      hi = std::min(hi, -c0 / c1);
-    } else {
-      lo = std::max(lo, -c0 / c1);
-    }
-  };
-  clip(a.lo0 - bhi, a.rateLo);   // the sweep's low end reaches the interval's high end
-  clip(blo - a.hi0, -a.rateHi);  // the sweep's high end reaches the interval's low end
-  return lo <= hi * (1 + 1e-12) + 1e-300 ? lo * (1 - 1e-12) : std::numeric_limits<double>::infinity();
+  TimeWindow w(smax);
+  w.clip(a.lo0 - bhi, a.rateLo);   // the sweep's low end reaches the interval's high end
+  w.clip(blo - a.hi0, -a.rateHi);  // the sweep's high end reaches the interval's low end
+  return w.earliest();
 }
 
 void projectBox(const Vec3& axis, const Vec3& lo, const Vec3& hi, double& plo, double& phi) {
