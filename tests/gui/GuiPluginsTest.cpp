@@ -36,8 +36,8 @@ TEST(GuiPlugins, AllPluginsLoadFromTheBuildTree) {
 TEST(GuiPlugins, StartsReducedWithoutCsgAndListsWhatFailed) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;
-  for (const QString& name : {"meshimport", "collision", "logpanel"}) {
-    const QString file = "libreamsim_" + name + ".so";
+  for (const char* name : {"meshimport", "collision", "logpanel"}) {
+    const QString file = QString("libreamsim_") + name + ".so";
     ASSERT_TRUE(QFile::copy(QDir(REAMSIM_GUI_PLUGIN_DIR).filePath(file), dir.filePath(file)));
   }
   QFile broken(dir.filePath("libreamsim_broken.so"));
