@@ -233,6 +233,9 @@ struct LocalSubtractor::Impl {
   bool touchesTool(std::uint32_t slot, const SM& tool, CGAL::Side_of_triangle_mesh<SM, EK>& side) const;
   Side insideBone(const P& q);
   double cleanBand(const std::vector<std::uint32_t>& seeds, const Vec3& origin, LocalCut& cut);
+  double removedVolume6(const MeshDelta& delta, const Vec3& origin) const;
+  template <class Placed>
+  void commit(const MeshDelta& delta, Placed&& placed);
   LocalCut subtract(const TriangleMesh& toolMesh);
 };
 
@@ -295,39 +298,55 @@ Side LocalSubtractor::Impl::insideBone(const P& q) {
 // change (removed − added, same origin as the cut's bookkeeping).
 double LocalSubtractor::Impl::cleanBand(const std::vector<std::uint32_t>& seeds, const Vec3& origin, LocalCut& cut) {
   const auto start = std::chrono::steady_clock::now();
-  csg::CleanupOptions options;
-  options.maxDeviationMm = cleanup.maxDeviationMm;
-  options.minEdgeMm = cleanup.minEdgeMm;
-  options.minAngleDeg = cleanup.minAngleDeg;
   std::vector<std::uint32_t> live;
   for (std::uint32_t s : seeds)
     if (s != kNone && state.isTriangleLive(s)) live.push_back(s);
   const csg::CleanupPlan plan = csg::planCutBandCleanup(
       state, grid, live, [&](std::uint32_t v) { return exact.count(v) != 0; },
-      [&](std::uint32_t s) { return s < defect.size() && defect[s] != 0; }, options);
+      [&](std::uint32_t s) { return s < defect.size() && defect[s] != 0; }, cleanup);
   cut.cleanupCollapses = plan.collapses;
   cut.cleanupFlips = plan.flips;
-  double change6 = 0;
-  if (!plan.delta.empty()) {
-    for (std::uint32_t s : plan.delta.removedTriangles) {
-      const Triangle& t = state.triangle(s);
-      change6 += volumeTerm(origin, state.vertex(t[0]), state.vertex(t[1]), state.vertex(t[2]));
-    }
-    for (const Triangle& t : plan.delta.addedTriangles)
-      change6 -= volumeTerm(origin, state.vertex(t[0]), state.vertex(t[1]), state.vertex(t[2]));
-    DeltaPlacement placement;
-    BoneState next = state.applyDelta(plan.delta, &placement);
-    for (std::uint32_t s : plan.delta.removedTriangles) grid.remove(s);
-    state = std::move(next);
-    if (defect.size() < state.triangleSlotCount()) defect.resize(state.triangleSlotCount(), 0);
-    for (std::uint32_t s : placement.triangleSlots) {
-      defect[s] = 0;
-      grid.insert(s, boxOf(state.triangle(s)));
-    }
-  }
+  const double change6 = removedVolume6(plan.delta, origin);
+  if (!plan.delta.empty()) commit(plan.delta, [](const DeltaPlacement&) {});
   cut.cleanupVolumeMm3 = change6 / 6.0;
   cut.cleanupMilliseconds = elapsedMs(start);
   return change6;
+}
+
+// 6 × the volume a delta removes (removed faces − added faces, divergence theorem about `origin`), in the
+// document's rounded coordinates: from the changed faces only.
+double LocalSubtractor::Impl::removedVolume6(const MeshDelta& delta, const Vec3& origin) const {
+  auto at = [&](std::uint32_t r) {
+    return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : state.vertex(r);
+  };
+  double v6 = 0;
+  for (std::uint32_t s : delta.removedTriangles) {
+    const Triangle& t = state.triangle(s);
+    v6 += volumeTerm(origin, state.vertex(t[0]), state.vertex(t[1]), state.vertex(t[2]));
+  }
+  for (const Triangle& t : delta.addedTriangles) v6 -= volumeTerm(origin, at(t[0]), at(t[1]), at(t[2]));
+  return v6;
+}
+
+// Applies a delta and keeps the side tables in step: the exact points of freed vertices are forgotten,
+// `placed(placement)` records anything about the new slots before they are gridded (the exact points
+// of new vertices, which their grid boxes use), and the removed and added faces are re-gridded.
+template <class Placed>
+void LocalSubtractor::Impl::commit(const MeshDelta& delta, Placed&& placed) {
+  DeltaPlacement placement;
+  BoneState next = state.applyDelta(delta, &placement);
+  for (std::uint32_t s : delta.removedTriangles) {
+    for (std::uint32_t v : state.triangle(s))
+      if (!next.isVertexLive(v)) exact.erase(v);
+    grid.remove(s);
+  }
+  placed(placement);
+  state = std::move(next);
+  if (defect.size() < state.triangleSlotCount()) defect.resize(state.triangleSlotCount(), 0);
+  for (std::uint32_t s : placement.triangleSlots) {
+    defect[s] = 0;
+    grid.insert(s, boxOf(state.triangle(s)));
+  }
 }
 
 LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
@@ -640,16 +659,7 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   };
   for (const auto& t : added) delta.addedTriangles.push_back({refOf(t[0]), refOf(t[1]), refOf(t[2])});
 
-  // Removed volume from the changed faces only, in the document's rounded coordinates.
-  auto at = [&](std::uint32_t r) {
-    return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : state.vertex(r);
-  };
-  double removed6 = 0;
-  for (std::uint32_t s : removed) {
-    const Triangle& t = state.triangle(s);
-    removed6 += volumeTerm(o, state.vertex(t[0]), state.vertex(t[1]), state.vertex(t[2]));
-  }
-  for (const Triangle& t : delta.addedTriangles) removed6 -= volumeTerm(o, at(t[0]), at(t[1]), at(t[2]));
+  double removed6 = removedVolume6(delta, o);
 
   // New vertices are rounded to doubles when that is safe: the rounded new faces are neither degenerate
   // nor intersect each other or their kept neighbours. Then the engine forgets their exact values, which
@@ -671,34 +681,24 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : state.vertex(r);
   });
 
-  DeltaPlacement placement;
-  BoneState next = state.applyDelta(delta, &placement);
-
-  // Side tables: forget the exact points of freed vertices, record those of new ones; re-grid faces.
-  for (std::uint32_t s : removed) {
-    for (std::uint32_t v : state.triangle(s))
-      if (!next.isVertexLive(v)) exact.erase(v);
-    grid.remove(s);
-  }
-  for (std::size_t i = 0; i < newPoints.size(); ++i) {
-    const std::uint32_t slot = placement.vertexSlots[i];
-    if (slot == kNone) continue;
-    const Vec3& d = delta.addedVertices[i];
-    if (!keepExact || P(d.x, d.y, d.z) == newPoints[i]) {
-      exact.erase(slot);
-    } else {
-      settle(newPoints[i]);  // collapse the lazy history so later cuts do not re-evaluate it
-      exact[slot] = newPoints[i];
+  // Side tables: the exact points of new vertices are kept only where rounding is not safe.
+  std::vector<std::uint32_t> newFaceSlots;
+  commit(delta, [&](const DeltaPlacement& placement) {
+    for (std::size_t i = 0; i < newPoints.size(); ++i) {
+      const std::uint32_t slot = placement.vertexSlots[i];
+      if (slot == kNone) continue;
+      const Vec3& d = delta.addedVertices[i];
+      if (!keepExact || P(d.x, d.y, d.z) == newPoints[i]) {
+        exact.erase(slot);
+      } else {
+        settle(newPoints[i]);  // collapse the lazy history so later cuts do not re-evaluate it
+        exact[slot] = newPoints[i];
+      }
     }
-  }
-  state = std::move(next);
-  if (defect.size() < state.triangleSlotCount()) defect.resize(state.triangleSlotCount(), 0);
-  for (std::uint32_t s : placement.triangleSlots) {
-    defect[s] = 0;
-    grid.insert(s, boxOf(state.triangle(s)));
-  }
+    newFaceSlots = placement.triangleSlots;
+  });
 
-  if (cleanup.enabled) removed6 += cleanBand(placement.triangleSlots, o, cut);
+  if (cleanup.enabled) removed6 += cleanBand(newFaceSlots, o, cut);
 
   cut.changed = true;
   cut.removedMm3 = removed6 / 6.0;

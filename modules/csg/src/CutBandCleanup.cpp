@@ -21,6 +21,7 @@ using Tri = std::array<std::uint32_t, 3>;
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 constexpr double kNormalAgreement = 0.7;  // cos of the largest turn a replaced face may take (~45 degrees)
 constexpr double kPi = 3.14159265358979323846;
+constexpr std::size_t kMaxOperations = 20000;  // per cut: a bound on the work, far above what cuts need
 
 struct LocalFace {
   Tri v;
@@ -40,7 +41,7 @@ double smallestAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
 class Cleanup {
  public:
   Cleanup(const BoneState& state, TriangleGrid& grid, const std::function<bool(std::uint32_t)>& frozenVertex,
-          const std::function<bool(std::uint32_t)>& frozenFace, const CleanupOptions& options)
+          const std::function<bool(std::uint32_t)>& frozenFace, const BandCleanup& options)
       : state_(state), boneGrid_(grid), frozenVertex_(frozenVertex), frozenFace_(frozenFace), opt_(options),
         minAngle_(options.minAngleDeg * kPi / 180) {}
 
@@ -60,7 +61,7 @@ class Cleanup {
       if (it != localOfSlot_.end()) work.push_back(it->second);
     }
     std::size_t ops = 0;
-    while (!work.empty() && ops < opt_.maxOperations) {
+    while (!work.empty() && ops < kMaxOperations) {
       const int f = work.back();
       work.pop_back();
       if (!faces_[f].alive || !bad(f)) continue;
@@ -352,7 +353,7 @@ class Cleanup {
   TriangleGrid& boneGrid_;
   const std::function<bool(std::uint32_t)> frozenVertex_;
   const std::function<bool(std::uint32_t)> frozenFace_;
-  const CleanupOptions opt_;
+  const BandCleanup opt_;
   const double minAngle_;
 
   Box3 region_;
@@ -369,7 +370,7 @@ class Cleanup {
 
 CleanupPlan planCutBandCleanup(const BoneState& state, TriangleGrid& grid, const std::vector<std::uint32_t>& seeds,
                                const std::function<bool(std::uint32_t)>& frozenVertex,
-                               const std::function<bool(std::uint32_t)>& frozenFace, const CleanupOptions& options) {
+                               const std::function<bool(std::uint32_t)>& frozenFace, const BandCleanup& options) {
   return Cleanup(state, grid, frozenVertex, frozenFace, options).run(seeds);
 }
 

@@ -9,7 +9,7 @@
 //   - topology: the link condition and no duplicated face (collapse), the new edge not existing yet
 //     (flip); only vertices whose whole star lies in the local region and closes up (not on an open
 //     border) take part;
-//   - geometry: the surface moves by at most `maxDeviationMm` (the removed vertex, or the flipped quad's
+//   - geometry: the surface moves by at most `BandCleanup::maxDeviationMm` (the removed vertex, or the flipped quad's
 //     far corner, lies that close to the new faces' planes); no new face is degenerate or turns by more
 //     than ~45 degrees from the one it replaces; the smallest angle does not drop below the old one or
 //     the threshold, whichever is lower;
@@ -24,15 +24,9 @@
 #include "TriangleGrid.h"
 #include "reamsim/core/BoneState.h"
 #include "reamsim/core/MeshDelta.h"
+#include "reamsim/csg/LocalSubtractor.h"
 
 namespace reamsim::csg {
-
-struct CleanupOptions {
-  double maxDeviationMm = 0.001;  // how far an operation may move the surface
-  double minEdgeMm = 0.05;        // shorter edges are collapsed
-  double minAngleDeg = 15;        // faces with a smaller angle are collapsed or flipped
-  std::size_t maxOperations = 20000;
-};
 
 struct CleanupPlan {
   MeshDelta delta;  // removed slots and added faces (no new vertices); empty when nothing was done
@@ -43,6 +37,6 @@ struct CleanupPlan {
 // `frozenVertex` / `frozenFace`: vertices and faces that must not change.
 CleanupPlan planCutBandCleanup(const BoneState& state, TriangleGrid& grid, const std::vector<std::uint32_t>& seeds,
                                const std::function<bool(std::uint32_t)>& frozenVertex,
-                               const std::function<bool(std::uint32_t)>& frozenFace, const CleanupOptions& options);
+                               const std::function<bool(std::uint32_t)>& frozenFace, const BandCleanup& options);
 
 }  // namespace reamsim::csg
