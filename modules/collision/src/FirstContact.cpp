@@ -24,10 +24,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Per-thread scratch: reamer node boxes rotated by R0 and reamer triangles rotated by R0, filled on first use.
 struct ToiScratch {
-  std::vector<std::uint32_t> nodeStamp, triStamp;
+  std::vector<std::uint32_t> nodeStamp, triStamp, planeStamp;
   std::vector<Vec3> a0lo, a0hi, rlo, rhi;
   std::vector<detail::AxisSweep> slab;
   std::vector<std::array<Vec3, 3>> q;
+  std::vector<detail::AxisSweep> plane;
   std::uint32_t stamp = 0;
   void begin(std::size_t nodes, std::size_t tris) {
     if (nodeStamp.size() < nodes) {
@@ -38,10 +39,16 @@ struct ToiScratch {
       rhi.resize(nodes);
       slab.resize(nodes);
     }
-    if (triStamp.size() < tris) { triStamp.resize(tris, 0); q.resize(tris); }
+    if (triStamp.size() < tris) {
+      triStamp.resize(tris, 0);
+      planeStamp.resize(tris, 0);
+      q.resize(tris);
+      plane.resize(tris);
+    }
     if (++stamp == 0) {
       std::fill(nodeStamp.begin(), nodeStamp.end(), 0);
       std::fill(triStamp.begin(), triStamp.end(), 0);
+      std::fill(planeStamp.begin(), planeStamp.end(), 0);
       stamp = 1;
     }
   }
@@ -175,9 +182,8 @@ class ToiSearch {
       Vec3 tlo, thi, qlo, qhi, rlo, rhi;
       TriangleBvh::paddedBox({X[0], X[1], X[2]}, tlo, thi);
       TriangleBvh::paddedBox({qa[0], qa[1], qa[2]}, qlo, qhi);
-      const double reach = std::max({norm(qa[0]), norm(qa[1]), norm(qa[2])});
-      detail::boxRates(m_, qlo, qhi, reach, rlo, rhi);
-      const detail::AxisSweep plane = triangleSweep(rtree_.triangle(rs[j]), reach);
+      detail::boxRates(m_, qlo, qhi, std::max({norm(qa[0]), norm(qa[1]), norm(qa[2])}), rlo, rhi);
+      const detail::AxisSweep& plane = planeSweep(rs[j]);
       for (int i = 0; i < B.count; ++i) {
         const BvhTriangle& bt = bone_.triangle(bs[i]);
         double t = detail::sweptBoxTime(tlo, thi, rlo, rhi, blo[i], bhi[i], best_);
@@ -207,8 +213,10 @@ class ToiSearch {
     }
   }
 
-  // The sweep of a reamer triangle (local coordinates) along its own normal.
-  detail::AxisSweep triangleSweep(const BvhTriangle& lt, double reach) const {
+  // The sweep of a reamer triangle along its own normal (cached: a triangle meets many bone leaves).
+  const detail::AxisSweep& planeSweep(std::uint32_t slot) {
+    if (sc_.planeStamp[slot] == sc_.stamp) return sc_.plane[slot];
+    const BvhTriangle& lt = rtree_.triangle(slot);
     Vec3 n = cross(lt.b - lt.a, lt.c - lt.a);
     const double len = norm(n);
     n = len > 0 ? n / len : Vec3{0, 0, 1};
@@ -217,7 +225,10 @@ class ToiSearch {
                    std::min({lt.a.z, lt.b.z, lt.c.z})};
     const Vec3 phi{std::max({lt.a.x, lt.b.x, lt.c.x}), std::max({lt.a.y, lt.b.y, lt.c.y}),
                    std::max({lt.a.z, lt.b.z, lt.c.z})};
-    return detail::axisSweep(m_, n, std::min({d0, d1, d2}), std::max({d0, d1, d2}), plo, phi, reach);
+    const double reach = std::max({norm(lt.a), norm(lt.b), norm(lt.c)});  // rotation keeps lengths
+    sc_.plane[slot] = detail::axisSweep(m_, n, std::min({d0, d1, d2}), std::max({d0, d1, d2}), plo, phi, reach);
+    sc_.planeStamp[slot] = sc_.stamp;
+    return sc_.plane[slot];
   }
 
   void exact(std::int32_t boneSlot, std::int32_t reamerSlot) {
