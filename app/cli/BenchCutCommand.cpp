@@ -323,6 +323,7 @@ int runBenchCut(const std::vector<std::string>& args) {
   double worstBookkeeping = 0, worstPiece = 0, removedTotal = 0, cleanupVolume = 0;
   std::size_t collapses = 0, flips = 0;
   std::vector<double> cleanupTimes;
+  std::map<std::string, std::vector<double>> phaseTimes;  // of the steps that cut
   const double volumeStart = engine.volumeMm3();
   const bool closedStart = engine.defects().borderEdges == 0;
   auto check = [&]() {
@@ -350,6 +351,12 @@ int runBenchCut(const std::vector<std::string>& args) {
         collapses += c.cleanupCollapses;
         flips += c.cleanupFlips;
         cleanupTimes.push_back(c.cleanupMilliseconds);
+        phaseTimes["setup"].push_back(c.phaseMilliseconds.setup);
+        phaseTimes["corefine"].push_back(c.phaseMilliseconds.corefine);
+        phaseTimes["classify"].push_back(c.phaseMilliseconds.classify);
+        phaseTimes["rounding"].push_back(c.phaseMilliseconds.rounding);
+        phaseTimes["commit"].push_back(c.phaseMilliseconds.commit);
+        phaseTimes["cleanup"].push_back(c.cleanupMilliseconds);
       }
     } catch (const CutError& e) {
       ++failures;
@@ -377,6 +384,11 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"p95_ms", percentile(times, 0.95)},
       {"p99_ms", percentile(times, 0.99)},
       {"median_ms_changed", percentile(cutTimes, 0.5)},
+      {"phases_median_ms_changed", [&] {
+         nlohmann::json j = nlohmann::json::object();
+         for (const auto& [name, t] : phaseTimes) j[name] = percentile(t, 0.5);
+         return j;
+       }()},
       {"failures", failures},
       {"failure_kinds", failureKinds},
       {"checks", checks},

@@ -1,14 +1,16 @@
 // CGAL translation unit: the local exact subtraction (see LocalSubtractor.h for the design).
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Gmpzf.h>
+#include <CGAL/Lazy_kernel.h>
+#include <CGAL/Quotient.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Side_of_triangle_mesh.h>
-#include <CGAL/box_intersection_d.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <optional>
@@ -20,9 +22,29 @@
 #include "TriangleGrid.h"
 #include "reamsim/csg/LocalSubtractor.h"
 
+namespace reamsim::csg {
+// A lazy exact kernel like Epeck, over Quotient<Gmpz> instead of a canonicalised rational: the exact
+// fallbacks of the corefinement (intersection points tested for collinearity in each cut face's
+// triangulation) then skip the gcd that Gmpq pays on every operation.
+using LocalExactNT = CGAL::Quotient<CGAL::Gmpzf>;
+using LocalExactBase = CGAL::Simple_cartesian<LocalExactNT>;
+struct LocalKernel
+    : CGAL::Type_equality_wrapper<
+          CGAL::Lazy_kernel_base<LocalExactBase, CGAL::Simple_cartesian<CGAL::Interval_nt_advanced>,
+                                 CGAL::Cartesian_converter<LocalExactBase, CGAL::Simple_cartesian<CGAL::Interval_nt_advanced>>,
+                                 LocalKernel>,
+          LocalKernel> {};
+}  // namespace reamsim::csg
+namespace CGAL {
+template <>
+struct Triangulation_structural_filtering_traits<reamsim::csg::LocalKernel> {
+  typedef Tag_true Use_structural_filtering_tag;
+};
+}  // namespace CGAL
+
 namespace reamsim {
 namespace {
-using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+using EK = csg::LocalKernel;
 using P = EK::Point_3;
 using SM = CGAL::Surface_mesh<P>;
 using VI = SM::Vertex_index;
@@ -138,42 +160,153 @@ std::array<VI, 3> faceVertices(const SM& m, FI f) {
 // degenerate and the faces `moved` (those of `added` with a vertex that rounding moves) do not intersect
 // any face of `kept` other than along shared edges and vertices: a pair in which no vertex moved is a pair
 // of the exact result, which is free of intersections. Epick: predicates only, exact on the given doubles.
+// Vertex ids run below `ids`.
 template <class At>
 bool roundingIsSafe(const std::vector<std::array<std::uint32_t, 3>>& kept,
                     const std::vector<std::array<std::uint32_t, 3>>& added,
-                    const std::vector<std::array<std::uint32_t, 3>>& moved, At&& at) {
+                    const std::vector<std::array<std::uint32_t, 3>>& moved, std::size_t ids, At&& at) {
   using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 3, std::size_t,
-                                                          CGAL::Box_intersection_d::ID_EXPLICIT>;
-  auto pt = [&](std::uint32_t uid) {
-    const Vec3 v = at(uid);
-    return IK::Point_3(v.x, v.y, v.z);
-  };
-  auto boxOf = [&](const std::array<std::uint32_t, 3>& t, std::size_t id) {
-    const CGAL::Bbox_3 b = pt(t[0]).bbox() + pt(t[1]).bbox() + pt(t[2]).bbox();
-    return Box(b, id);
-  };
+  std::vector<IK::Point_3> points(ids);
+  std::vector<char> known(ids, 0);
+  for (const auto& t : kept)
+    for (std::uint32_t uid : t)
+      if (!known[uid]) {
+        known[uid] = 1;
+        const Vec3 v = at(uid);
+        points[uid] = IK::Point_3(v.x, v.y, v.z);
+      }
+  auto pt = [&](std::uint32_t uid) -> const IK::Point_3& { return points[uid]; };
   for (const auto& t : added)
     if (CGAL::collinear(pt(t[0]), pt(t[1]), pt(t[2]))) return false;
   if (moved.empty()) return true;
-  std::vector<Box> a, k;
-  a.reserve(moved.size());
-  k.reserve(kept.size());
-  for (std::size_t i = 0; i < moved.size(); ++i) a.push_back(boxOf(moved[i], i));
-  for (std::size_t i = 0; i < kept.size(); ++i) k.push_back(boxOf(kept[i], i));
-  bool safe = true;
-  struct Stop {};
-  try {
-    CGAL::box_intersection_d(a.begin(), a.end(), k.begin(), k.end(), [&](const Box& ba, const Box& bk) {
-      const bool bad = csg::trianglesIntersectBeyondShared<IK>(moved[ba.handle()], kept[bk.handle()], pt);
-      if (bad) {
-        safe = false;
-        throw Stop{};
+  // A small uniform grid over the kept faces: far cheaper here than box_intersection_d's sorting, since
+  // the moved faces are a thin ring and each meets a dozen neighbours.
+  auto boxOf = [&](const std::array<std::uint32_t, 3>& t) {
+    csg::Box3 b = emptyBox();
+    for (std::uint32_t uid : t) {
+      const IK::Point_3& v = points[uid];
+      for (int i = 0; i < 3; ++i) {
+        b.lo[i] = std::min(b.lo[i], v[i]);
+        b.hi[i] = std::max(b.hi[i], v[i]);
       }
-    });
-  } catch (const Stop&) {
+    }
+    return b;
+  };
+  std::vector<csg::Box3> keptBoxes(kept.size());
+  Bounds domain;
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    keptBoxes[i] = boxOf(kept[i]);
+    domain.add(Vec3{keptBoxes[i].lo[0], keptBoxes[i].lo[1], keptBoxes[i].lo[2]});
+    domain.add(Vec3{keptBoxes[i].hi[0], keptBoxes[i].hi[1], keptBoxes[i].hi[2]});
   }
-  return safe;
+  csg::TriangleGrid grid;
+  grid.init(domain, kept.size(), 4.0);
+  for (std::size_t i = 0; i < kept.size(); ++i) grid.insert(std::uint32_t(i), keptBoxes[i]);
+  std::vector<std::uint32_t> near;
+  for (const auto& m : moved) {
+    grid.query(boxOf(m), near);
+    for (std::uint32_t k : near)
+      if (csg::trianglesIntersectBeyondShared<IK>(m, kept[k], pt)) return false;
+  }
+  return true;
+}
+
+// The tool's triangles form a closed, consistently and outward oriented surface (each directed edge once,
+// with its twin). Checked on indices, so no exact mesh has to be built for it.
+void checkTool(const TriangleMesh& tool) {
+  const std::size_t n = tool.vertices.size();
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * tool.triangles.size());
+  for (const Triangle& t : tool.triangles) {
+    if (t[0] >= n || t[1] >= n || t[2] >= n || t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+      throw CutError(CutError::Kind::BadTool, "tool has a triangle with a bad or repeated vertex index");
+    for (int i = 0; i < 3; ++i) edges.push_back(directedKey(t[i], t[(i + 1) % 3]));
+  }
+  std::sort(edges.begin(), edges.end());
+  if (edges.empty() || std::adjacent_find(edges.begin(), edges.end()) != edges.end())
+    throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
+  for (std::uint64_t e : edges)
+    if (!std::binary_search(edges.begin(), edges.end(), directedKey(std::uint32_t(e & 0xffffffffu), std::uint32_t(e >> 32))))
+      throw CutError(CutError::Kind::BadTool, "tool is not a closed, outward-oriented triangle mesh");
+  if (signedVolume(tool) <= 0)
+    throw CutError(CutError::Kind::BadTool, "tool is not a closed, outward-oriented triangle mesh");
+}
+
+// The whole tool as an exact mesh, built on first use.
+const SM& exactTool(const TriangleMesh& toolMesh, std::optional<SM>& whole) {
+  if (whole) return *whole;
+  whole.emplace();
+  std::vector<VI> v;
+  v.reserve(toolMesh.vertices.size());
+  for (const Vec3& p : toolMesh.vertices) v.push_back(whole->add_vertex(P(p.x, p.y, p.z)));
+  for (const Triangle& t : toolMesh.triangles)
+    if (whole->add_face(v[t[0]], v[t[1]], v[t[2]]) == SM::null_face())
+      throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
+  return *whole;
+}
+
+// Union-find over the near components [0, nearCount) and the far faces after them; each group has one
+// side. Far faces join the faces across their edges, far or near (see joinFarFaces).
+class SideGroups {
+ public:
+  SideGroups(std::size_t nearCount, std::size_t farCount)
+      : nearCount_(nearCount), parent_(nearCount + farCount), side_(nearCount + farCount, kUndecided) {
+    for (std::size_t i = 0; i < parent_.size(); ++i) parent_[i] = i;
+  }
+  std::size_t nearCount() const { return nearCount_; }
+  void join(std::size_t a, std::size_t b) {
+    a = root(a);
+    b = root(b);
+    if (a != b) parent_[a] = b;
+  }
+  // False when the group has the other side already; kUndecided changes nothing.
+  bool setSide(std::size_t e, Side s) {
+    if (s == kUndecided) return true;
+    Side& g = side_[root(e)];
+    if (g != kUndecided && g != s) return false;
+    g = s;
+    return true;
+  }
+  Side side(std::size_t e) { return side_[root(e)]; }
+  bool anyUndecided() {
+    for (std::size_t e = nearCount_; e < parent_.size(); ++e)
+      if (side(e) == kUndecided) return true;
+    return false;
+  }
+
+ private:
+  std::size_t root(std::size_t e) {
+    while (parent_[e] != e) e = parent_[e] = parent_[parent_[e]];
+    return e;
+  }
+  std::size_t nearCount_;
+  std::vector<std::size_t> parent_;
+  std::vector<Side> side_;
+};
+
+// Joins each far face to the far faces and near components across its edges. `triangleOf(j)` gives far
+// face j in vertex ids; `nearAcross(b, a)` the near component whose face has the directed edge b → a, or −1.
+template <class TriangleOf, class NearAcross>
+void joinFarFaces(SideGroups& groups, std::size_t farCount, TriangleOf&& triangleOf, NearAcross&& nearAcross) {
+  std::unordered_map<std::uint64_t, std::uint32_t> farEdge;
+  farEdge.reserve(3 * farCount);
+  for (std::size_t j = 0; j < farCount; ++j) {
+    const auto t = triangleOf(j);
+    for (int i = 0; i < 3; ++i) farEdge.emplace(directedKey(t[i], t[(i + 1) % 3]), std::uint32_t(j));
+  }
+  const std::size_t base = groups.nearCount();
+  for (std::size_t j = 0; j < farCount; ++j) {
+    const auto t = triangleOf(j);
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t a = t[i], b = t[(i + 1) % 3];
+      const auto twin = farEdge.find(directedKey(b, a));
+      if (twin != farEdge.end()) {
+        groups.join(base + j, base + twin->second);
+      } else if (const int c = nearAcross(b, a); c >= 0) {
+        groups.join(base + j, std::size_t(c));
+      }
+    }
+  }
 }
 
 double elapsedMs(std::chrono::steady_clock::time_point start) {
@@ -351,38 +484,32 @@ void LocalSubtractor::Impl::commit(const MeshDelta& delta, Placed&& placed) {
 
 LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   const auto start = std::chrono::steady_clock::now();
+  auto lap = [last = start]() mutable {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - last).count();
+    last = now;
+    return ms;
+  };
   LocalCut cut;
   cut.volumeBeforeMm3 = cut.volumeAfterMm3 = state.volume();
   cut.facesAfter = state.liveTriangleCount();
 
-  // The tool, exact. Its box bounds everything it can touch.
-  SM tool;
+  // The tool: checked on its indices (closed, oriented, outward); its box bounds everything it can touch.
   Box3 toolBox = emptyBox();
-  {
-    std::vector<VI> v;
-    v.reserve(toolMesh.vertices.size());
-    for (const Vec3& p : toolMesh.vertices) {
-      if (!isFinite(p)) throw CutError(CutError::Kind::BadTool, "tool has a non-finite coordinate");
-      v.push_back(tool.add_vertex(P(p.x, p.y, p.z)));
-      for (int i = 0; i < 3; ++i) {
-        toolBox.lo[i] = std::min(toolBox.lo[i], p[i]);
-        toolBox.hi[i] = std::max(toolBox.hi[i], p[i]);
-      }
+  for (const Vec3& p : toolMesh.vertices) {
+    if (!isFinite(p)) throw CutError(CutError::Kind::BadTool, "tool has a non-finite coordinate");
+    for (int i = 0; i < 3; ++i) {
+      toolBox.lo[i] = std::min(toolBox.lo[i], p[i]);
+      toolBox.hi[i] = std::max(toolBox.hi[i], p[i]);
     }
-    for (const Triangle& t : toolMesh.triangles) {
-      if (t[0] >= v.size() || t[1] >= v.size() || t[2] >= v.size() ||
-          tool.add_face(v[t[0]], v[t[1]], v[t[2]]) == SM::null_face())
-        throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
-    }
-    if (tool.is_empty() || !CGAL::is_closed(tool) || signedVolume(toolMesh) <= 0)
-      throw CutError(CutError::Kind::BadTool, "tool is not a closed, outward-oriented triangle mesh");
   }
-
+  checkTool(toolMesh);
   // A margin so that faces within rounding distance of the new ones are in the patch too (see below).
+  std::array<double, 3> margin{};
   for (int i = 0; i < 3; ++i) {
-    const double m = 1e-9 * (1 + std::abs(toolBox.lo[i]) + std::abs(toolBox.hi[i]));
-    toolBox.lo[i] -= m;
-    toolBox.hi[i] += m;
+    margin[i] = 1e-9 * (1 + std::abs(toolBox.lo[i]) + std::abs(toolBox.hi[i]));
+    toolBox.lo[i] -= margin[i];
+    toolBox.hi[i] += margin[i];
   }
   grid.query(toolBox, candidates);
   // No face near the tool: it misses the bone, unless it is buried inside it (then it leaves a cavity,
@@ -395,14 +522,15 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     return cut;
   }
 
-  // Defect faces may stay out of the patch when they do not touch the tool (the patch only has to hold
-  // every face that does); one that touches it stops the cut.
-  const SM toolCopy = tool;  // corefinement refines `tool`; side queries use the original
+  // The whole tool as an exact closed mesh, only for the rare exact side tests.
+  std::optional<SM> wholeTool;
   std::optional<CGAL::Side_of_triangle_mesh<SM, EK>> side;
   auto sideOf = [&]() -> CGAL::Side_of_triangle_mesh<SM, EK>& {
-    if (!side) side.emplace(toolCopy);
+    if (!side) side.emplace(exactTool(toolMesh, wholeTool));
     return *side;
   };
+  // Defect faces may stay out of the patch when they do not touch the tool (the patch only has to hold
+  // every face that does); one that touches it stops the cut.
   std::vector<std::uint32_t> patchSlots;
   patchSlots.reserve(candidates.size());
   for (std::uint32_t s : candidates) {
@@ -410,7 +538,7 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
       patchSlots.push_back(s);
       continue;
     }
-    if (touchesTool(s, toolCopy, sideOf())) {
+    if (touchesTool(s, exactTool(toolMesh, wholeTool), sideOf())) {
       const char* what = (defect[s] & csg::kSelfIntersecting) ? "self-intersecting"
                          : (defect[s] & csg::kNonManifold)    ? "non-manifold"
                                                               : "degenerate";
@@ -419,47 +547,93 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
                                                         "); the bone is unchanged");
     }
   }
-  cut.patchFaces = patchSlots.size();
 
-  // The patch, with the exact coordinates of earlier cuts.
-  SM patch;
-  patch.set_recycle_garbage(false);  // new elements must not inherit the properties of removed ones
-  auto slotOfV = patch.add_property_map<VI, std::uint32_t>("v:slot", kNone).first;
-  auto origOfF = patch.add_property_map<FI, std::uint32_t>("f:orig", kNone).first;
+  // Near and far: only bone and tool faces whose boxes meet a box of the other side can cross it; the
+  // Boolean runs on those. A connected group of far faces lies wholly on one side of the other surface
+  // and takes the side of the near faces it borders (or of one point test), so the far faces are
+  // classified without being corefined: typically two thirds of the patch and most of the tool.
+  std::vector<char> nearBone(patchSlots.size(), 0), nearTool(toolMesh.triangles.size(), 0);
   {
-    std::unordered_map<std::uint32_t, VI> vmap;
-    vmap.reserve(patchSlots.size());
-    for (std::uint32_t i = 0; i < patchSlots.size(); ++i) {
-      const Triangle& t = state.triangle(patchSlots[i]);
-      VI v[3];
-      for (int k = 0; k < 3; ++k) {
-        auto [it, added] = vmap.try_emplace(t[k]);
-        if (added) {
-          it->second = patch.add_vertex(point(t[k]));
-          slotOfV[it->second] = t[k];
+    csg::TriangleGrid toolGrid;
+    Bounds domain;
+    domain.add(Vec3{toolBox.lo[0], toolBox.lo[1], toolBox.lo[2]});
+    domain.add(Vec3{toolBox.hi[0], toolBox.hi[1], toolBox.hi[2]});
+    toolGrid.init(domain, toolMesh.triangles.size(), 4.0);
+    for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i) {
+      Box3 b = emptyBox();
+      for (std::uint32_t v : toolMesh.triangles[i])
+        for (int k = 0; k < 3; ++k) {
+          b.lo[k] = std::min(b.lo[k], toolMesh.vertices[v][k] - margin[k]);
+          b.hi[k] = std::max(b.hi[k], toolMesh.vertices[v][k] + margin[k]);
         }
-        v[k] = it->second;
-      }
-      const FI f = patch.add_face(v[0], v[1], v[2]);
-      if (f == SM::null_face())
-        throw CutError(CutError::Kind::DefectReached,
-                       "the bone surface is not manifold near the cut (slot " + std::to_string(patchSlots[i]) +
-                           "); the bone is unchanged");
-      origOfF[f] = i;
+      toolGrid.insert(i, b);
+    }
+    std::vector<std::uint32_t> hits;
+    for (std::size_t i = 0; i < patchSlots.size(); ++i) {
+      toolGrid.query(grid.box(patchSlots[i]), hits);
+      nearBone[i] = !hits.empty();
+      for (std::uint32_t h : hits) nearTool[h] = 1;
     }
   }
 
+  // The patch (near bone faces, with the exact coordinates of earlier cuts) and the near tool faces.
+  SM patch, tool;
+  patch.set_recycle_garbage(false);  // new elements must not inherit the properties of removed ones
+  auto slotOfV = patch.add_property_map<VI, std::uint32_t>("v:slot", kNone).first;
+  auto origOfF = patch.add_property_map<FI, std::uint32_t>("f:orig", kNone).first;
+  std::unordered_map<std::uint32_t, VI> patchVertex;  // bone vertex slot → patch vertex
+  patchVertex.reserve(patchSlots.size());
+  for (std::uint32_t i = 0; i < patchSlots.size(); ++i) {
+    if (!nearBone[i]) continue;
+    const Triangle& t = state.triangle(patchSlots[i]);
+    VI v[3];
+    for (int k = 0; k < 3; ++k) {
+      auto [it, added] = patchVertex.try_emplace(t[k]);
+      if (added) {
+        it->second = patch.add_vertex(point(t[k]));
+        slotOfV[it->second] = t[k];
+      }
+      v[k] = it->second;
+    }
+    const FI f = patch.add_face(v[0], v[1], v[2]);
+    if (f == SM::null_face())
+      throw CutError(CutError::Kind::DefectReached,
+                     "the bone surface is not manifold near the cut (slot " + std::to_string(patchSlots[i]) +
+                         "); the bone is unchanged");
+    origOfF[f] = i;
+    ++cut.patchFaces;
+  }
+  std::vector<VI> toolVertex(toolMesh.vertices.size(), SM::null_vertex());  // tool vertex → near-tool vertex
+  for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i) {
+    if (!nearTool[i]) continue;
+    VI v[3];
+    for (int k = 0; k < 3; ++k) {
+      VI& w = toolVertex[toolMesh.triangles[i][k]];
+      if (w == SM::null_vertex()) {
+        const Vec3& p = toolMesh.vertices[toolMesh.triangles[i][k]];
+        w = tool.add_vertex(P(p.x, p.y, p.z));
+      }
+      v[k] = w;
+    }
+    if (tool.add_face(v[0], v[1], v[2]) == SM::null_face())
+      throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
+  }
+  cut.phaseMilliseconds.setup = lap();
   auto conP = patch.add_property_map<EI, bool>("e:c", false).first;
   auto conT = tool.add_property_map<EI, bool>("e:c", false).first;
-  try {
-    PMP::corefine(patch, tool, CGAL::parameters::edge_is_constrained_map(conP),
-                  CGAL::parameters::edge_is_constrained_map(conT));
-  } catch (const std::exception& e) {
-    throw CutError(CutError::Kind::Inconsistent, std::string("corefinement failed: ") + e.what());
+  if (!patch.is_empty()) {
+    try {
+      PMP::corefine(patch, tool, CGAL::parameters::edge_is_constrained_map(conP),
+                    CGAL::parameters::edge_is_constrained_map(conT));
+    } catch (const std::exception& e) {
+      throw CutError(CutError::Kind::Inconsistent, std::string("corefinement failed: ") + e.what());
+    }
   }
+  cut.phaseMilliseconds.corefine = lap();
 
   // Intersection curve: patch vertices on it get unified ids shared with the tool's copies.
   const std::uint32_t nP = std::uint32_t(patch.number_of_vertices());
+  const std::uint32_t nT = std::uint32_t(tool.number_of_vertices());
   std::unordered_multimap<ApproxKey, std::uint32_t, ApproxHash> curve;
   auto findOnCurve = [&](const P& p) -> std::uint32_t {
     const auto range = curve.equal_range(approxKey(p));
@@ -472,11 +646,9 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     return kNone;
   };
   std::unordered_map<std::uint64_t, HI> patchEdge, toolEdge;
-  std::size_t constrainedEdges = 0;
   std::vector<char> visitedCurve(nP, 0);
   for (EI e : patch.edges()) {
     if (!conP[e]) continue;
-    ++constrainedEdges;
     const HI h = patch.halfedge(e);
     if (patch.is_border(e))
       throw CutError(CutError::Kind::OpenBorderReached,
@@ -492,7 +664,9 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     }
     patchEdge.emplace(pairKey(patch.source(h).idx(), patch.target(h).idx()), h);
   }
-  std::vector<std::uint32_t> toolUid(tool.number_of_vertices());
+  // Unified ids: patch vertices [0, nP), near-tool vertices [nP, nP + nT) unless on the curve, other tool
+  // vertices nP + nT + their index in the tool mesh.
+  std::vector<std::uint32_t> toolUid(nT);
   for (VI v : tool.vertices()) toolUid[v.idx()] = nP + std::uint32_t(v.idx());
   for (EI e : tool.edges()) {
     if (!conT[e]) continue;
@@ -507,9 +681,18 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   }
   if (toolEdge.size() != patchEdge.size())
     throw CutError(CutError::Kind::Inconsistent, "the intersection curves of bone and tool differ");
+  const std::uint32_t uidCount = nP + nT + std::uint32_t(toolMesh.vertices.size());
+  auto toolVertexUid = [&](std::uint32_t v) {
+    return toolVertex[v] != SM::null_vertex() ? toolUid[toolVertex[v].idx()] : nP + nT + v;
+  };
+  auto uidPoint = [&](std::uint32_t uid) -> P {
+    if (uid < nP) return patch.point(VI(uid));
+    if (uid < nP + nT) return tool.point(VI(uid - nP));
+    const Vec3& p = toolMesh.vertices[uid - nP - nT];
+    return P(p.x, p.y, p.z);
+  };
 
-  // Classify components: at an intersection edge, the exact wedge test against the other surface;
-  // components that do not reach the curve by a point test (side of the tool; ray parity for the bone).
+  // Classify components: at an intersection edge, the exact wedge test against the other surface.
   int nPC = 0, nTC = 0;
   const std::vector<int> pcomp = components(patch, conP, nPC);
   const std::vector<int> tcomp = components(tool, conT, nTC);
@@ -525,6 +708,8 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
       // Orient the tool halfedge like hp (a → b) or take its opposite.
       const bool same = toolUid[tool.source(ht0).idx()] == patch.source(hp).idx();
       const HI t = same ? ht0 : tool.opposite(ht0);
+      if (tool.is_border(t) || tool.is_border(tool.opposite(t)))
+        throw CutError(CutError::Kind::Inconsistent, "the intersection curve reaches the border of the near tool");
       pside[c] = wedgeSide(tool.point(tool.source(t)), tool.point(tool.target(t)),
                            tool.point(tool.target(tool.next(t))),
                            tool.point(tool.target(tool.next(tool.opposite(t)))),
@@ -550,38 +735,83 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     tHasCurve[tcomp[tool.face(ht).idx()]] = 1;
     tHasCurve[tcomp[tool.face(tool.opposite(ht)).idx()]] = 1;
   }
+
+  // Far faces join the components they border; groups left without a side get one point test.
+  std::vector<std::uint32_t> farBone, farTool;  // patchSlots indices / tool triangle indices
+  for (std::uint32_t i = 0; i < patchSlots.size(); ++i)
+    if (!nearBone[i]) farBone.push_back(i);
+  for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i)
+    if (!nearTool[i]) farTool.push_back(i);
+  SideGroups boneGroups(std::size_t(nPC), farBone.size()), toolGroups(std::size_t(nTC), farTool.size());
+  joinFarFaces(boneGroups, farBone.size(), [&](std::size_t j) { return state.triangle(patchSlots[farBone[j]]); },
+               [&](std::uint32_t a, std::uint32_t b) -> int {
+                 const auto ia = patchVertex.find(a), ib = patchVertex.find(b);
+                 if (ia == patchVertex.end() || ib == patchVertex.end()) return -1;
+                 const auto h = CGAL::halfedge(ia->second, ib->second, patch);
+                 return h.second && !patch.is_border(h.first) ? pcomp[patch.face(h.first).idx()] : -1;
+               });
+  joinFarFaces(toolGroups, farTool.size(), [&](std::size_t j) { return toolMesh.triangles[farTool[j]]; },
+               [&](std::uint32_t a, std::uint32_t b) -> int {
+                 if (toolVertex[a] == SM::null_vertex() || toolVertex[b] == SM::null_vertex()) return -1;
+                 const auto h = CGAL::halfedge(toolVertex[a], toolVertex[b], tool);
+                 return h.second && !tool.is_border(h.first) ? tcomp[tool.face(h.first).idx()] : -1;
+               });
+  for (int c = 0; c < nPC; ++c)
+    if (!boneGroups.setSide(std::size_t(c), pside[c]))
+      throw CutError(CutError::Kind::Inconsistent, "bone faces on one side of the tool were classified apart");
+  for (int c = 0; c < nTC; ++c)
+    if (!toolGroups.setSide(std::size_t(c), tside[c]))
+      throw CutError(CutError::Kind::Inconsistent, "tool faces on one side of the bone were classified apart");
+  auto toolSideOf = [&](const P& q) {
+    const auto s = sideOf()(q);
+    return s == CGAL::ON_BOUNDARY ? kUndecided : s == CGAL::ON_BOUNDED_SIDE ? kInside : kOutside;
+  };
   for (FI f : patch.faces()) {
     const int c = pcomp[f.idx()];
     if (pside[c] != kUndecided || pHasCurve[c]) continue;
+    if ((pside[c] = boneGroups.side(std::size_t(c))) != kUndecided) continue;
     const auto v = faceVertices(patch, f);
-    const auto s = sideOf()(CGAL::centroid(patch.point(v[0]), patch.point(v[1]), patch.point(v[2])));
-    if (s != CGAL::ON_BOUNDARY) pside[c] = s == CGAL::ON_BOUNDED_SIDE ? kInside : kOutside;
+    boneGroups.setSide(std::size_t(c), pside[c] = toolSideOf(CGAL::centroid(patch.point(v[0]), patch.point(v[1]), patch.point(v[2]))));
+  }
+  for (std::size_t j = 0; j < farBone.size(); ++j) {
+    const std::size_t e = std::size_t(nPC) + j;
+    if (boneGroups.side(e) != kUndecided) continue;
+    const Triangle& t = state.triangle(patchSlots[farBone[j]]);
+    boneGroups.setSide(e, toolSideOf(CGAL::centroid(point(t[0]), point(t[1]), point(t[2]))));
   }
   for (FI f : tool.faces()) {
     const int c = tcomp[f.idx()];
     if (tside[c] != kUndecided || tHasCurve[c]) continue;
+    if ((tside[c] = toolGroups.side(std::size_t(c))) != kUndecided) continue;
     const auto v = faceVertices(tool, f);
-    tside[c] = insideBone(CGAL::centroid(tool.point(v[0]), tool.point(v[1]), tool.point(v[2])));
+    toolGroups.setSide(std::size_t(c), tside[c] = insideBone(CGAL::centroid(tool.point(v[0]), tool.point(v[1]), tool.point(v[2]))));
   }
-  for (Side s : pside)
-    if (s == kUndecided)
-      throw CutError(CutError::Kind::Degenerate,
-                     "coplanar or tangential contact between tool and bone; the bone is unchanged");
-  for (Side s : tside)
-    if (s == kUndecided)
-      throw CutError(CutError::Kind::Degenerate,
-                     "coplanar or tangential contact between tool and bone; the bone is unchanged");
+  for (std::size_t j = 0; j < farTool.size(); ++j) {
+    const std::size_t e = std::size_t(nTC) + j;
+    if (toolGroups.side(e) != kUndecided) continue;
+    const Triangle& t = toolMesh.triangles[farTool[j]];
+    toolGroups.setSide(e, insideBone(CGAL::centroid(uidPoint(nP + nT + t[0]), uidPoint(nP + nT + t[1]),
+                                                     uidPoint(nP + nT + t[2]))));
+  }
+  auto undecided = [](const std::vector<Side>& sides) {
+    return std::find(sides.begin(), sides.end(), kUndecided) != sides.end();
+  };
+  if (undecided(pside) || undecided(tside) || boneGroups.anyUndecided() || toolGroups.anyUndecided())
+    throw CutError(CutError::Kind::Degenerate,
+                   "coplanar or tangential contact between tool and bone; the bone is unchanged");
 
   bool anyInside = false;
   for (Side s : pside) anyInside |= s == kInside;
   for (Side s : tside) anyInside |= s == kInside;
+  for (std::size_t j = 0; j < farBone.size(); ++j) anyInside |= boneGroups.side(std::size_t(nPC) + j) == kInside;
+  for (std::size_t j = 0; j < farTool.size(); ++j) anyInside |= toolGroups.side(std::size_t(nTC) + j) == kInside;
   if (!anyInside) {
     cut.milliseconds = elapsedMs(start);
     return cut;
   }
 
   // The new surface in unified vertex ids: kept patch faces, and tool faces inside the bone reversed.
-  std::vector<std::array<std::uint32_t, 3>> kept;  // all kept faces (for the closedness check)
+  std::vector<std::array<std::uint32_t, 3>> kept;  // all kept faces of the Boolean (for the closedness check)
   std::vector<std::array<std::uint32_t, 3>> added;
   std::vector<std::uint32_t> removed;
   std::vector<char> origSeenUnchanged(patchSlots.size(), 0);
@@ -610,15 +840,33 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     }
     added.push_back(ids);
   }
-  for (std::uint32_t i = 0; i < patchSlots.size(); ++i)
-    if (!origSeenUnchanged[i]) removed.push_back(patchSlots[i]);
+  // Removed in slot order (the order decides which freed slots new faces reuse): near faces that did not
+  // come through unchanged, and far faces inside the tool (the other far faces stay).
+  for (std::uint32_t i = 0, j = 0; i < patchSlots.size(); ++i) {
+    if (nearBone[i]) {
+      if (!origSeenUnchanged[i]) removed.push_back(patchSlots[i]);
+      continue;
+    }
+    if (boneGroups.side(std::size_t(nPC) + j++) != kInside) continue;
+    const Triangle& t = state.triangle(patchSlots[i]);
+    pieceTerm(point(t[0]), point(t[1]), point(t[2]));
+    removed.push_back(patchSlots[i]);
+  }
+  auto keepToolFace = [&](const std::array<std::uint32_t, 3>& ids) {
+    pieceTerm(uidPoint(ids[0]), uidPoint(ids[1]), uidPoint(ids[2]));
+    const std::array<std::uint32_t, 3> reversed = {ids[0], ids[2], ids[1]};
+    kept.push_back(reversed);
+    added.push_back(reversed);
+  };
   for (FI f : tool.faces()) {
     if (tside[tcomp[f.idx()]] != kInside) continue;
     const auto v = faceVertices(tool, f);
-    pieceTerm(tool.point(v[0]), tool.point(v[1]), tool.point(v[2]));
-    const std::array<std::uint32_t, 3> ids = {toolUid[v[0].idx()], toolUid[v[2].idx()], toolUid[v[1].idx()]};
-    kept.push_back(ids);
-    added.push_back(ids);
+    keepToolFace({toolUid[v[0].idx()], toolUid[v[1].idx()], toolUid[v[2].idx()]});
+  }
+  for (std::size_t j = 0; j < farTool.size(); ++j) {
+    if (toolGroups.side(std::size_t(nTC) + j) != kInside) continue;
+    const Triangle& t = toolMesh.triangles[farTool[j]];
+    keepToolFace({toolVertexUid(t[0]), toolVertexUid(t[1]), toolVertexUid(t[2])});
   }
 
   // Closedness check: every directed edge of the new surface is used once, and its twin is used too
@@ -647,12 +895,12 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   // The delta: original slots for old vertices, new vertices in first-use order.
   MeshDelta delta;
   delta.removedTriangles = removed;
-  std::vector<std::uint32_t> ref(nP + tool.number_of_vertices(), kNone);
+  std::vector<std::uint32_t> ref(uidCount, kNone);
   std::vector<P> newPoints;
   auto refOf = [&](std::uint32_t uid) {
     if (ref[uid] != kNone) return ref[uid];
     if (uid < nP && slotOfV[VI(uid)] != kNone) return ref[uid] = slotOfV[VI(uid)];
-    const P& p = uid < nP ? patch.point(VI(uid)) : tool.point(VI(uid - nP));
+    const P p = uidPoint(uid);
     newPoints.push_back(p);  // exact values are only computed if they have to be kept (below)
     delta.addedVertices.push_back(rounded(p));
     return ref[uid] = MeshDelta::newVertex(std::uint32_t(newPoints.size() - 1));
@@ -660,13 +908,15 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   for (const auto& t : added) delta.addedTriangles.push_back({refOf(t[0]), refOf(t[1]), refOf(t[2])});
 
   double removed6 = removedVolume6(delta, o);
+  cut.phaseMilliseconds.classify = lap();
 
   // New vertices are rounded to doubles when that is safe: the rounded new faces are neither degenerate
   // nor intersect each other or their kept neighbours. Then the engine forgets their exact values, which
   // keeps exact coordinates from compounding cut after cut; otherwise it keeps them (and the document's
   // rounded copy may self-intersect there, which checkInvariants reports).
   // Rounding moves the curve points and old vertices known exactly; the tool's own vertices (ids from nP
-  // on, off the curve) and old double vertices stay where they are.
+  // on, off the curve) and old double vertices stay where they are. Far faces are more than the margin
+  // away from every tool face, so no moved face comes near them.
   auto moves = [&](std::uint32_t uid) {
     if (uid >= nP) return false;
     const std::uint32_t s = slotOfV[VI(uid)];
@@ -675,11 +925,12 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   std::vector<std::array<std::uint32_t, 3>> moved;
   for (const auto& t : added)
     if (moves(t[0]) || moves(t[1]) || moves(t[2])) moved.push_back(t);
-  const bool keepExact = !roundingIsSafe(kept, added, moved, [&](std::uint32_t uid) {
+  const bool keepExact = !roundingIsSafe(kept, added, moved, uidCount, [&](std::uint32_t uid) {
     // Every vertex of `kept` is an old slot or was given a reference with the added faces above.
     const std::uint32_t r = ref[uid] != kNone ? ref[uid] : slotOfV[VI(uid)];
     return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : state.vertex(r);
   });
+  cut.phaseMilliseconds.rounding = lap();
 
   // Side tables: the exact points of new vertices are kept only where rounding is not safe.
   std::vector<std::uint32_t> newFaceSlots;
@@ -697,6 +948,7 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     }
     newFaceSlots = placement.triangleSlots;
   });
+  cut.phaseMilliseconds.commit = lap();
 
   if (cleanup.enabled) removed6 += cleanBand(newFaceSlots, o, cut);
 

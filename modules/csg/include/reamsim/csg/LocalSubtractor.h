@@ -57,6 +57,11 @@ struct LocalCut {
   double cleanupVolumeMm3 = 0;
   std::size_t cleanupCollapses = 0, cleanupFlips = 0;
   double cleanupMilliseconds = 0;
+  // Where the time went (ms), for the benchmark: tool and patch set-up (grid query, defect test, exact
+  // meshes), the corefinement, the classification and seam check, the rounding check, the commit.
+  struct Phases {
+    double setup = 0, corefine = 0, classify = 0, rounding = 0, commit = 0;
+  } phaseMilliseconds;
   double milliseconds = 0;
 };
 
