@@ -211,25 +211,47 @@ bool roundingIsSafe(const std::vector<std::array<std::uint32_t, 3>>& kept,
   return true;
 }
 
-// The tool's triangles form a closed, consistently and outward oriented surface (each directed edge once,
-// with its twin). Checked on indices, so no exact mesh has to be built for it.
-void checkTool(const TriangleMesh& tool) {
-  const std::size_t n = tool.vertices.size();
-  std::vector<std::uint64_t> edges;
-  edges.reserve(3 * tool.triangles.size());
-  for (const Triangle& t : tool.triangles) {
-    if (t[0] >= n || t[1] >= n || t[2] >= n || t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
-      throw CutError(CutError::Kind::BadTool, "tool has a triangle with a bad or repeated vertex index");
-    for (int i = 0; i < 3; ++i) edges.push_back(directedKey(t[i], t[(i + 1) % 3]));
-  }
-  std::sort(edges.begin(), edges.end());
-  if (edges.empty() || std::adjacent_find(edges.begin(), edges.end()) != edges.end())
-    throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
-  for (std::uint64_t e : edges)
-    if (!std::binary_search(edges.begin(), edges.end(), directedKey(std::uint32_t(e & 0xffffffffu), std::uint32_t(e >> 32))))
-      throw CutError(CutError::Kind::BadTool, "tool is not a closed, outward-oriented triangle mesh");
+// The tool's connectivity: a closed, consistently oriented surface (each directed edge once, with its twin);
+// `across[t][i]` is the face across edge i of face t. Checked on indices and kept while the triangles stay
+// the same (a reaming tool is one solid placed anew each step), so no exact mesh is built for it.
+struct ToolTopology {
+  std::size_t vertexCount = 0;
+  std::vector<Triangle> triangles;
+  std::vector<std::array<std::uint32_t, 3>> across;
+};
+
+const ToolTopology& checkTool(const TriangleMesh& tool, ToolTopology& cache) {
   if (signedVolume(tool) <= 0)
     throw CutError(CutError::Kind::BadTool, "tool is not a closed, outward-oriented triangle mesh");
+  if (cache.vertexCount == tool.vertices.size() && cache.triangles == tool.triangles) return cache;
+  cache = {};
+  const std::size_t n = tool.vertices.size();
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;  // directed edge → 3 × face + i
+  edges.reserve(3 * tool.triangles.size());
+  for (std::uint32_t f = 0; f < tool.triangles.size(); ++f) {
+    const Triangle& t = tool.triangles[f];
+    if (t[0] >= n || t[1] >= n || t[2] >= n || t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+      throw CutError(CutError::Kind::BadTool, "tool has a triangle with a bad or repeated vertex index");
+    for (std::uint32_t i = 0; i < 3; ++i) edges.push_back({directedKey(t[i], t[(i + 1) % 3]), 3 * f + i});
+  }
+  std::sort(edges.begin(), edges.end());
+  if (edges.empty())
+    throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
+  for (std::size_t k = 1; k < edges.size(); ++k)
+    if (edges[k].first == edges[k - 1].first)
+      throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
+  std::vector<std::array<std::uint32_t, 3>> across(tool.triangles.size());
+  for (const auto& [key, fi] : edges) {
+    const std::uint64_t twin = directedKey(std::uint32_t(key & 0xffffffffu), std::uint32_t(key >> 32));
+    const auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(twin, std::uint32_t(0)));
+    if (it == edges.end() || it->first != twin)
+      throw CutError(CutError::Kind::BadTool, "tool is not a closed, outward-oriented triangle mesh");
+    across[fi / 3][fi % 3] = it->second / 3;
+  }
+  cache.vertexCount = n;
+  cache.triangles = tool.triangles;
+  cache.across = std::move(across);
+  return cache;
 }
 
 // The whole tool as an exact mesh, built on first use.
@@ -335,6 +357,7 @@ struct LocalSubtractor::Impl {
   LocalDefects defects;
   std::vector<std::uint32_t> candidates;
   BandCleanup cleanup;
+  ToolTopology toolTopology;  // of the last tool checked
 
   P point(std::uint32_t v) const {
     const auto it = exact.find(v);
@@ -503,7 +526,7 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
       toolBox.hi[i] = std::max(toolBox.hi[i], p[i]);
     }
   }
-  checkTool(toolMesh);
+  const ToolTopology& topology = checkTool(toolMesh, toolTopology);
   // A margin so that faces within rounding distance of the new ones are in the patch too (see below).
   std::array<double, 3> margin{};
   for (int i = 0; i < 3; ++i) {
@@ -750,12 +773,25 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
                  const auto h = CGAL::halfedge(ia->second, ib->second, patch);
                  return h.second && !patch.is_border(h.first) ? pcomp[patch.face(h.first).idx()] : -1;
                });
-  joinFarFaces(toolGroups, farTool.size(), [&](std::size_t j) { return toolMesh.triangles[farTool[j]]; },
-               [&](std::uint32_t a, std::uint32_t b) -> int {
-                 if (toolVertex[a] == SM::null_vertex() || toolVertex[b] == SM::null_vertex()) return -1;
-                 const auto h = CGAL::halfedge(toolVertex[a], toolVertex[b], tool);
-                 return h.second && !tool.is_border(h.first) ? tcomp[tool.face(h.first).idx()] : -1;
-               });
+  {  // far tool faces: through the tool's face adjacency
+    std::vector<std::uint32_t> farIndex(toolMesh.triangles.size(), kNone);
+    for (std::uint32_t j = 0; j < farTool.size(); ++j) farIndex[farTool[j]] = j;
+    for (std::size_t j = 0; j < farTool.size(); ++j) {
+      const Triangle& t = toolMesh.triangles[farTool[j]];
+      for (int i = 0; i < 3; ++i) {
+        const std::uint32_t n = topology.across[farTool[j]][i];
+        if (farIndex[n] != kNone) {
+          toolGroups.join(std::size_t(nTC) + j, std::size_t(nTC) + farIndex[n]);
+          continue;
+        }
+        const VI a = toolVertex[t[i]], b = toolVertex[t[(i + 1) % 3]];
+        if (a == SM::null_vertex() || b == SM::null_vertex()) continue;
+        const auto h = CGAL::halfedge(b, a, tool);
+        if (h.second && !tool.is_border(h.first))
+          toolGroups.join(std::size_t(nTC) + j, std::size_t(tcomp[tool.face(h.first).idx()]));
+      }
+    }
+  }
   for (int c = 0; c < nPC; ++c)
     if (!boneGroups.setSide(std::size_t(c), pside[c]))
       throw CutError(CutError::Kind::Inconsistent, "bone faces on one side of the tool were classified apart");

@@ -28,6 +28,7 @@ struct LocalFace {
   std::uint32_t slot;  // the bone slot, kNone for faces made here
   bool alive = true;
   bool frozen = false;  // a defect face: never changed, and no new face may come near it
+  bool exactVertex = false;  // has a vertex known exactly (only rounded here): no new face may come near it
 };
 
 double smallestAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -107,7 +108,7 @@ class Cleanup {
       domain.min[i] = region_.lo[i];
       domain.max[i] = region_.hi[i];
     }
-    local_.init(domain, slots.size());
+    local_.init(domain, slots.size(), 2.0);
     std::unordered_map<std::uint32_t, std::uint32_t> localUse;
     localUse.reserve(slots.size());
     localOfSlot_.reserve(slots.size());
@@ -116,7 +117,8 @@ class Cleanup {
       const Triangle& t = state_.triangle(s);
       const int id = static_cast<int>(faces_.size());
       const bool frozen = frozenFace_(s);
-      faces_.push_back({{t[0], t[1], t[2]}, s, true, frozen});
+      faces_.push_back({{t[0], t[1], t[2]}, s, true, frozen,
+                        frozenVertex_(t[0]) || frozenVertex_(t[1]) || frozenVertex_(t[2])});
       localOfSlot_[s] = id;
       local_.insert(static_cast<std::uint32_t>(id), boneGrid_.box(s));
       for (std::uint32_t v : t) {
@@ -167,13 +169,14 @@ class Cleanup {
   // manifold; a border vertex could be joined to another border.
   bool closedFan(std::uint32_t v) {
     const std::vector<int>& star = aliveStar(v);
-    std::unordered_map<std::uint32_t, int> seen;
+    ring_.clear();
     for (int f : star)
       for (std::uint32_t w : faces_[f].v)
-        if (w != v) ++seen[w];
-    if (seen.size() != star.size()) return false;
-    for (const auto& [w, n] : seen)
-      if (n != 2) return false;
+        if (w != v) ring_.push_back(w);
+    std::sort(ring_.begin(), ring_.end());
+    if (ring_.size() != 2 * star.size()) return false;
+    for (std::size_t i = 0; i < ring_.size(); i += 2)
+      if (ring_[i] != ring_[i + 1] || (i + 2 < ring_.size() && ring_[i + 2] == ring_[i])) return false;
     return true;
   }
   // Whether some live face of u other than `except` has the same three vertices as t.
@@ -188,14 +191,17 @@ class Cleanup {
     }
     return false;
   }
-  std::unordered_set<std::uint32_t> neighbours(const std::vector<int>& star, std::uint32_t v) const {
-    std::unordered_set<std::uint32_t> out;
+  // The vertices next to v, sorted, each once.
+  std::vector<std::uint32_t> neighbours(const std::vector<int>& star, std::uint32_t v) const {
+    std::vector<std::uint32_t> out;
+    out.reserve(2 * star.size());
     for (int f : star)
       for (std::uint32_t w : faces_[f].v)
-        if (w != v) out.insert(w);
+        if (w != v) out.push_back(w);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
   }
-
   // A replacement face: not degenerate, turned by less than ~45 degrees from `was`, inside the region.
   bool acceptableFace(const Tri& t, const Vec3& was) const {
     if (CGAL::collinear(kp(t[0]), kp(t[1]), kp(t[2]))) return false;
@@ -222,7 +228,7 @@ class Cleanup {
         if (!lf.alive || std::find(dying.begin(), dying.end(), int(g)) != dying.end()) continue;
         // A face with an exact (non-double) vertex is only known here rounded, and a defect face may be
         // degenerate (the intersection tests require proper triangles): stay away from both.
-        if (lf.frozen || frozenVertex_(lf.v[0]) || frozenVertex_(lf.v[1]) || frozenVertex_(lf.v[2])) return false;
+        if (lf.frozen || lf.exactVertex) return false;
         if (trianglesIntersectBeyondShared<K>(made[i], lf.v, [&](std::uint32_t v) { return kp(v); })) return false;
       }
     }
@@ -272,10 +278,13 @@ class Cleanup {
     }
     if (opposite.size() != 2 || opposite[0] == opposite[1]) return false;
     // Link condition: u and v share exactly the two neighbours across the edge.
-    const auto nu = neighbours(su, u);
+    const auto nu = neighbours(su, u), nv = neighbours(sv, v);
     std::size_t common = 0;
-    for (std::uint32_t w : neighbours(sv, v))
-      if (nu.count(w)) ++common;
+    for (std::size_t i = 0, j = 0; i < nu.size() && j < nv.size();) {
+      if (nu[i] < nv[j]) ++i;
+      else if (nv[j] < nu[i]) ++j;
+      else ++common, ++i, ++j;
+    }
     if (common != 2) return false;
 
     std::vector<Tri> newFaces;
@@ -332,7 +341,8 @@ class Cleanup {
     // A neighbour across a-b running the same way would break orientation; such faces are flagged as
     // defects (frozen vertices are not movable), so only the consistent twin b->a is looked for.
     if (g < 0 || d == c || !movable_.count(d)) return false;
-    if (neighbours(aliveStar(c), c).count(d)) return false;  // the edge c-d exists already
+    const auto nc = neighbours(aliveStar(c), c);
+    if (std::binary_search(nc.begin(), nc.end(), d)) return false;  // the edge c-d exists already
     const Tri tf = faces_[f].v, tg = faces_[g].v;
     if (planeDistance(at(d), tf) > opt_.maxDeviationMm || planeDistance(at(c), tg) > opt_.maxDeviationMm)
       return false;
@@ -364,6 +374,7 @@ class Cleanup {
   std::unordered_set<std::uint32_t> movable_;  // whole star local, double coordinates, not a defect
   std::unordered_set<std::uint32_t> frozen_;
   std::vector<std::uint32_t> hits_;
+  std::vector<std::uint32_t> ring_;  // scratch for closedFan
 };
 
 }  // namespace
