@@ -597,6 +597,11 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
       nearBone[i] = !hits.empty();
       for (std::uint32_t h : hits) nearTool[h] = 1;
     }
+    // Faces at vertices known exactly stay near: the rounding check below must see them, since new faces
+    // at such a vertex are tested in its rounded position.
+    if (!exact.empty())
+      for (std::size_t i = 0; i < patchSlots.size(); ++i)
+        for (std::uint32_t v : state.triangle(patchSlots[i])) nearBone[i] |= exact.count(v) != 0;
   }
 
   // The patch (near bone faces, with the exact coordinates of earlier cuts) and the near tool faces.
