@@ -1,8 +1,6 @@
 // CGAL translation unit: the local exact subtraction (see LocalSubtractor.h for the design).
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Gmpzf.h>
-#include <CGAL/Lazy_kernel.h>
-#include <CGAL/Quotient.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -22,29 +20,9 @@
 #include "TriangleGrid.h"
 #include "reamsim/csg/LocalSubtractor.h"
 
-namespace reamsim::csg {
-// A lazy exact kernel like Epeck, over Quotient<Gmpz> instead of a canonicalised rational: the exact
-// fallbacks of the corefinement (intersection points tested for collinearity in each cut face's
-// triangulation) then skip the gcd that Gmpq pays on every operation.
-using LocalExactNT = CGAL::Quotient<CGAL::Gmpzf>;
-using LocalExactBase = CGAL::Simple_cartesian<LocalExactNT>;
-struct LocalKernel
-    : CGAL::Type_equality_wrapper<
-          CGAL::Lazy_kernel_base<LocalExactBase, CGAL::Simple_cartesian<CGAL::Interval_nt_advanced>,
-                                 CGAL::Cartesian_converter<LocalExactBase, CGAL::Simple_cartesian<CGAL::Interval_nt_advanced>>,
-                                 LocalKernel>,
-          LocalKernel> {};
-}  // namespace reamsim::csg
-namespace CGAL {
-template <>
-struct Triangulation_structural_filtering_traits<reamsim::csg::LocalKernel> {
-  typedef Tag_true Use_structural_filtering_tag;
-};
-}  // namespace CGAL
-
 namespace reamsim {
 namespace {
-using EK = csg::LocalKernel;
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;
 using P = EK::Point_3;
 using SM = CGAL::Surface_mesh<P>;
 using VI = SM::Vertex_index;
