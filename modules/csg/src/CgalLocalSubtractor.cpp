@@ -72,13 +72,6 @@ void grow(Box3& b, const P& p) {
   b.lo = {std::min(b.lo[0], ix.first), std::min(b.lo[1], iy.first), std::min(b.lo[2], iz.first)};
   b.hi = {std::max(b.hi[0], ix.second), std::max(b.hi[1], iy.second), std::max(b.hi[2], iz.second)};
 }
-Box3 emptyBox() {
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  Box3 b;
-  b.lo = {inf, inf, inf};
-  b.hi = {-inf, -inf, -inf};
-  return b;
-}
 
 // 6 × signed tetra volume of (o, a, b, c): the divergence-theorem term of one face.
 double volumeTerm(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -160,22 +153,15 @@ bool roundingIsSafe(const std::vector<std::array<std::uint32_t, 3>>& kept,
   // A small uniform grid over the kept faces: far cheaper here than box_intersection_d's sorting, since
   // the moved faces are a thin ring and each meets a dozen neighbours.
   auto boxOf = [&](const std::array<std::uint32_t, 3>& t) {
-    csg::Box3 b = emptyBox();
-    for (std::uint32_t uid : t) {
-      const IK::Point_3& v = points[uid];
-      for (int i = 0; i < 3; ++i) {
-        b.lo[i] = std::min(b.lo[i], v[i]);
-        b.hi[i] = std::max(b.hi[i], v[i]);
-      }
-    }
+    csg::Box3 b = csg::Box3::empty();
+    for (std::uint32_t uid : t) b.add(Vec3{points[uid].x(), points[uid].y(), points[uid].z()});
     return b;
   };
   std::vector<csg::Box3> keptBoxes(kept.size());
   Bounds domain;
   for (std::size_t i = 0; i < kept.size(); ++i) {
     keptBoxes[i] = boxOf(kept[i]);
-    domain.add(Vec3{keptBoxes[i].lo[0], keptBoxes[i].lo[1], keptBoxes[i].lo[2]});
-    domain.add(Vec3{keptBoxes[i].hi[0], keptBoxes[i].hi[1], keptBoxes[i].hi[2]});
+    domain.add(keptBoxes[i].bounds());
   }
   csg::TriangleGrid grid;
   grid.init(domain, kept.size(), 4.0);
@@ -284,29 +270,18 @@ class SideGroups {
   std::vector<Side> side_;
 };
 
-// Joins each far face to the far faces and near components across its edges. `triangleOf(j)` gives far
-// face j in vertex ids; `nearAcross(b, a)` the near component whose face has the directed edge b → a, or −1.
-template <class TriangleOf, class NearAcross>
-void joinFarFaces(SideGroups& groups, std::size_t farCount, TriangleOf&& triangleOf, NearAcross&& nearAcross) {
-  std::unordered_map<std::uint64_t, std::uint32_t> farEdge;
-  farEdge.reserve(3 * farCount);
-  for (std::size_t j = 0; j < farCount; ++j) {
-    const auto t = triangleOf(j);
-    for (int i = 0; i < 3; ++i) farEdge.emplace(directedKey(t[i], t[(i + 1) % 3]), std::uint32_t(j));
-  }
+// Joins each far face j to the faces across its edges i: far ones (`farAcross(j, i)`, their far index or
+// kNone) and near ones (`nearAcross(j, i)`, their component or −1).
+template <class FarAcross, class NearAcross>
+void joinFarFaces(SideGroups& groups, std::size_t farCount, FarAcross&& farAcross, NearAcross&& nearAcross) {
   const std::size_t base = groups.nearCount();
-  for (std::size_t j = 0; j < farCount; ++j) {
-    const auto t = triangleOf(j);
+  for (std::size_t j = 0; j < farCount; ++j)
     for (int i = 0; i < 3; ++i) {
-      const std::uint32_t a = t[i], b = t[(i + 1) % 3];
-      const auto twin = farEdge.find(directedKey(b, a));
-      if (twin != farEdge.end()) {
-        groups.join(base + j, base + twin->second);
-      } else if (const int c = nearAcross(b, a); c >= 0) {
+      if (const std::uint32_t f = farAcross(j, i); f != kNone)
+        groups.join(base + j, base + f);
+      else if (const int c = nearAcross(j, i); c >= 0)
         groups.join(base + j, std::size_t(c));
-      }
     }
-  }
 }
 
 double elapsedMs(std::chrono::steady_clock::time_point start) {
@@ -344,17 +319,13 @@ struct LocalSubtractor::Impl {
     return P(p.x, p.y, p.z);
   }
   Box3 boxOf(const Triangle& t) const {
-    Box3 b = emptyBox();
+    Box3 b = Box3::empty();
     for (std::uint32_t v : t) {
       const auto it = exact.find(v);
       if (it != exact.end()) {
         grow(b, it->second);
       } else {
-        const Vec3& p = state.vertex(v);
-        for (int i = 0; i < 3; ++i) {
-          b.lo[i] = std::min(b.lo[i], p[i]);
-          b.hi[i] = std::max(b.hi[i], p[i]);
-        }
+        b.add(state.vertex(v));
       }
     }
     return b;
@@ -401,7 +372,7 @@ Side LocalSubtractor::Impl::insideBone(const P& q) {
   std::vector<std::uint32_t> slots;
   for (int axis = 0; axis < 3; ++axis) {
     for (int dir : {1, -1}) {
-      Box3 probe = emptyBox();
+      Box3 probe = Box3::empty();
       grow(probe, q);
       constexpr double inf = std::numeric_limits<double>::infinity();
       if (dir > 0) probe.hi[axis] = inf; else probe.lo[axis] = -inf;
@@ -496,17 +467,14 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   cut.facesAfter = state.liveTriangleCount();
 
   // The tool: checked on its indices (closed, oriented, outward); its box bounds everything it can touch.
-  Box3 toolBox = emptyBox();
+  Box3 toolBox = Box3::empty();
   for (const Vec3& p : toolMesh.vertices) {
     if (!isFinite(p)) throw CutError(CutError::Kind::BadTool, "tool has a non-finite coordinate");
-    for (int i = 0; i < 3; ++i) {
-      toolBox.lo[i] = std::min(toolBox.lo[i], p[i]);
-      toolBox.hi[i] = std::max(toolBox.hi[i], p[i]);
-    }
+    toolBox.add(p);
   }
   const ToolTopology& topology = checkTool(toolMesh, toolTopology);
   // A margin so that faces within rounding distance of the new ones are in the patch too (see below).
-  std::array<double, 3> margin{};
+  Vec3 margin;
   for (int i = 0; i < 3; ++i) {
     margin[i] = 1e-9 * (1 + std::abs(toolBox.lo[i]) + std::abs(toolBox.hi[i]));
     toolBox.lo[i] -= margin[i];
@@ -556,17 +524,13 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   std::vector<char> nearBone(patchSlots.size(), 0), nearTool(toolMesh.triangles.size(), 0);
   {
     csg::TriangleGrid toolGrid;
-    Bounds domain;
-    domain.add(Vec3{toolBox.lo[0], toolBox.lo[1], toolBox.lo[2]});
-    domain.add(Vec3{toolBox.hi[0], toolBox.hi[1], toolBox.hi[2]});
-    toolGrid.init(domain, toolMesh.triangles.size(), 4.0);
+    toolGrid.init(toolBox.bounds(), toolMesh.triangles.size(), 4.0);
     for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i) {
-      Box3 b = emptyBox();
-      for (std::uint32_t v : toolMesh.triangles[i])
-        for (int k = 0; k < 3; ++k) {
-          b.lo[k] = std::min(b.lo[k], toolMesh.vertices[v][k] - margin[k]);
-          b.hi[k] = std::max(b.hi[k], toolMesh.vertices[v][k] + margin[k]);
-        }
+      Box3 b = Box3::empty();
+      for (std::uint32_t v : toolMesh.triangles[i]) {
+        b.add(toolMesh.vertices[v] - margin);
+        b.add(toolMesh.vertices[v] + margin);
+      }
       toolGrid.insert(i, b);
     }
     std::vector<std::uint32_t> hits;
@@ -749,31 +713,42 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i)
     if (!nearTool[i]) farTool.push_back(i);
   SideGroups boneGroups(std::size_t(nPC), farBone.size()), toolGroups(std::size_t(nTC), farTool.size());
-  joinFarFaces(boneGroups, farBone.size(), [&](std::size_t j) { return state.triangle(patchSlots[farBone[j]]); },
-               [&](std::uint32_t a, std::uint32_t b) -> int {
-                 const auto ia = patchVertex.find(a), ib = patchVertex.find(b);
-                 if (ia == patchVertex.end() || ib == patchVertex.end()) return -1;
-                 const auto h = CGAL::halfedge(ia->second, ib->second, patch);
-                 return h.second && !patch.is_border(h.first) ? pcomp[patch.face(h.first).idx()] : -1;
-               });
+  // The component of the near face with the directed edge b → a in `mesh`, or −1.
+  auto nearComponent = [](const SM& mesh, const std::vector<int>& comp, VI b, VI a) {
+    if (b == SM::null_vertex() || a == SM::null_vertex()) return -1;
+    const auto h = CGAL::halfedge(b, a, mesh);
+    return h.second && !mesh.is_border(h.first) ? comp[mesh.face(h.first).idx()] : -1;
+  };
+  {  // far bone faces: through a map of their directed edges
+    auto boneTriangle = [&](std::size_t j) -> const Triangle& { return state.triangle(patchSlots[farBone[j]]); };
+    std::unordered_map<std::uint64_t, std::uint32_t> farEdge;
+    farEdge.reserve(3 * farBone.size());
+    for (std::uint32_t j = 0; j < farBone.size(); ++j)
+      for (int i = 0; i < 3; ++i) farEdge.emplace(directedKey(boneTriangle(j)[i], boneTriangle(j)[(i + 1) % 3]), j);
+    auto patchVertexOf = [&](std::uint32_t slot) {
+      const auto it = patchVertex.find(slot);
+      return it == patchVertex.end() ? SM::null_vertex() : it->second;
+    };
+    joinFarFaces(
+        boneGroups, farBone.size(),
+        [&](std::size_t j, int i) {
+          const auto it = farEdge.find(directedKey(boneTriangle(j)[(i + 1) % 3], boneTriangle(j)[i]));
+          return it == farEdge.end() ? kNone : it->second;
+        },
+        [&](std::size_t j, int i) {
+          return nearComponent(patch, pcomp, patchVertexOf(boneTriangle(j)[(i + 1) % 3]),
+                               patchVertexOf(boneTriangle(j)[i]));
+        });
+  }
   {  // far tool faces: through the tool's face adjacency
     std::vector<std::uint32_t> farIndex(toolMesh.triangles.size(), kNone);
     for (std::uint32_t j = 0; j < farTool.size(); ++j) farIndex[farTool[j]] = j;
-    for (std::size_t j = 0; j < farTool.size(); ++j) {
-      const Triangle& t = toolMesh.triangles[farTool[j]];
-      for (int i = 0; i < 3; ++i) {
-        const std::uint32_t n = topology.across[farTool[j]][i];
-        if (farIndex[n] != kNone) {
-          toolGroups.join(std::size_t(nTC) + j, std::size_t(nTC) + farIndex[n]);
-          continue;
-        }
-        const VI a = toolVertex[t[i]], b = toolVertex[t[(i + 1) % 3]];
-        if (a == SM::null_vertex() || b == SM::null_vertex()) continue;
-        const auto h = CGAL::halfedge(b, a, tool);
-        if (h.second && !tool.is_border(h.first))
-          toolGroups.join(std::size_t(nTC) + j, std::size_t(tcomp[tool.face(h.first).idx()]));
-      }
-    }
+    joinFarFaces(
+        toolGroups, farTool.size(), [&](std::size_t j, int i) { return farIndex[topology.across[farTool[j]][i]]; },
+        [&](std::size_t j, int i) {
+          const Triangle& t = toolMesh.triangles[farTool[j]];
+          return nearComponent(tool, tcomp, toolVertex[t[(i + 1) % 3]], toolVertex[t[i]]);
+        });
   }
   for (int c = 0; c < nPC; ++c)
     if (!boneGroups.setSide(std::size_t(c), pside[c]))

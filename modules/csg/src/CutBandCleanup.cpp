@@ -103,12 +103,7 @@ class Cleanup {
     }
     std::vector<std::uint32_t> slots;
     boneGrid_.query(region_, slots);
-    Bounds domain;
-    for (int i = 0; i < 3; ++i) {
-      domain.min[i] = region_.lo[i];
-      domain.max[i] = region_.hi[i];
-    }
-    local_.init(domain, slots.size(), 2.0);
+    local_.init(region_.bounds(), slots.size(), 2.0);
     std::unordered_map<std::uint32_t, std::uint32_t> localUse;
     localUse.reserve(slots.size());
     localOfSlot_.reserve(slots.size());
@@ -137,11 +132,8 @@ class Cleanup {
     return {p.x, p.y, p.z};
   }
   Box3 boxOf(const Tri& t) const {
-    Box3 b;
-    for (int i = 0; i < 3; ++i) {
-      b.lo[i] = std::min({at(t[0])[i], at(t[1])[i], at(t[2])[i]});
-      b.hi[i] = std::max({at(t[0])[i], at(t[1])[i], at(t[2])[i]});
-    }
+    Box3 b = Box3::empty();
+    for (std::uint32_t v : t) b.add(at(v));
     return b;
   }
   bool insideRegion(const Box3& b) const {

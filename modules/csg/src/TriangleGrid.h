@@ -3,8 +3,10 @@
 // cells the tool's box covers. Boxes are closed and conservative (they contain the exact triangle), so
 // a face whose box misses the query box cannot touch anything inside it. Coordinates outside the
 // domain are clamped to the border cells, so faces created outside it are still found.
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "reamsim/mesh/Bounds.h"
@@ -13,6 +15,23 @@ namespace reamsim::csg {
 
 struct Box3 {
   std::array<double, 3> lo{}, hi{};
+  // The empty box (lo = +inf, hi = -inf), which add() grows.
+  static Box3 empty() {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    return {{inf, inf, inf}, {-inf, -inf, -inf}};
+  }
+  void add(const Vec3& p) {
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], p[i]);
+      hi[i] = std::max(hi[i], p[i]);
+    }
+  }
+  Bounds bounds() const {
+    Bounds b;
+    b.add(Vec3{lo[0], lo[1], lo[2]});
+    b.add(Vec3{hi[0], hi[1], hi[2]});
+    return b;
+  }
   bool overlaps(const Box3& o) const {
     for (int i = 0; i < 3; ++i)
       if (hi[i] < o.lo[i] || o.hi[i] < lo[i]) return false;
