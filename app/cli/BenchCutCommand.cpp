@@ -155,13 +155,7 @@ double percentile(std::vector<double> v, double q) {
 }
 
 double smallestAngleDeg(const TriangleMesh& m, const Triangle& t) {
-  double best = 180;
-  for (int i = 0; i < 3; ++i) {
-    const Vec3 a = m.vertices[t[(i + 1) % 3]] - m.vertices[t[i]], b = m.vertices[t[(i + 2) % 3]] - m.vertices[t[i]];
-    const double c = dot(a, b) / std::max(1e-300, norm(a) * norm(b));
-    best = std::min(best, std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI);
-  }
-  return best;
+  return smallestAngle(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]) * 180 / M_PI;
 }
 
 double minAngleDeg(const TriangleMesh& m) {

@@ -31,14 +31,6 @@ struct LocalFace {
   bool exactVertex = false;  // has a vertex known exactly (only rounded here): no new face may come near it
 };
 
-double smallestAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    const Vec3 u = q - p, w = r - p;
-    return std::atan2(norm(cross(u, w)), dot(u, w));
-  };
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
-}
-
 class Cleanup {
  public:
   Cleanup(const BoneState& state, TriangleGrid& grid, const std::function<bool(std::uint32_t)>& frozenVertex,
