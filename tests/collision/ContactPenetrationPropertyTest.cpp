@@ -13,6 +13,7 @@
 #include "reamsim/collision/FirstContact.h"
 #include "reamsim/collision/PenetrationQuery.h"
 #include "reamsim/collision/TriangleGeometry.h"
+#include "reamsim/tools/ReamerGeometry.h"
 
 using namespace reamsim;
 using namespace reamsim::test;  // the shared property-test bones (PropertyBones.h)
@@ -68,11 +69,14 @@ struct Counts {
 
 Counts checkFirstContact(const TriangleMesh& bone, std::size_t n, std::size_t independentEvery, std::uint64_t seed) {
   const TriangleBvh bvh = TriangleBvh::fromMesh(bone);
-  const ReamerModel reamers[2] = {ReamerModel::fromSpec(test::smallSpec(false)), ReamerModel::fromSpec(test::smallSpec(true))};
+  // Parametric reamers (searched through their ideal solid) and a reamer read as a plain solid (no ideal
+  // solid: the two trees are paired), so both search paths meet the brute force.
+  const ReamerModel reamers[3] = {ReamerModel::fromSpec(test::smallSpec(false)), ReamerModel::fromSpec(test::smallSpec(true)),
+                                  ReamerModel::fromSolid(buildCuttingSolid(test::smallSpec(false)))};
   std::mt19937_64 rng(seed);
   Counts c;
   for (std::size_t i = 0; i < n; ++i) {
-    const ReamerModel& reamer = reamers[i % 2];
+    const ReamerModel& reamer = reamers[i % 3];
     const auto [from, to] = randomMotion(bone, rng, i);
     const FirstContactResult ref = bruteForceFirstContact(bone, reamer, from, to);
     const FirstContactResult got = queryFirstContact(bvh, reamer, from, to);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 
 #include "Cubic.h"
@@ -150,6 +151,83 @@ void projectBox(const Vec3& axis, const Vec3& lo, const Vec3& hi, double& plo, d
   phi = pc + ph + pad;
 }
 
+BallSweep ballSweep(const SegmentMotion& m, const Vec3& centreLocal, double radius) {
+  BallSweep b;
+  b.c0 = m.tip0 + m.R0 * centreLocal;
+  b.d = m.tipAt(1) + m.rotationAt(1) * centreLocal - b.c0;
+  // The centre R(s) q + tip(s) strays from the chord c0 + s d by at most |q| (tau^2/2 + 0.77 tau^3): the
+  // rational turn's sine and versine terms differ from their linear interpolants by those amounts.
+  const double t = m.tau, q = norm(centreLocal);
+  const double stray = q * (0.5 * t * t + 0.78 * t * t * t) * (1 + 1e-9);
+  const double scale = std::max({std::abs(b.c0.x), std::abs(b.c0.y), std::abs(b.c0.z)}) + norm(b.d) + radius + q;
+  b.radius = radius + stray + 1e-9 * scale;
+  return b;
+}
+
+AxisSweep ballAlong(const BallSweep& b, const Vec3& axis) {
+  AxisSweep a;
+  a.axis = axis;
+  const double c = dot(axis, b.c0), rate = dot(axis, b.d);
+  const double pad = 1e-12 * (std::abs(c) + b.radius + std::abs(rate)) + 1e-300;
+  a.lo0 = c - b.radius - pad;
+  a.hi0 = c + b.radius + pad;
+  a.rateLo = rate - pad;
+  a.rateHi = rate + pad;
+  return a;
+}
+
+double ballSweepTime(const BallSweep& b, const Vec3& lo, const Vec3& hi, double smax) {
+  const double rho = b.radius;
+  // First the box grown by the radius (a slab per axis), then the rounded corners and edges: the squared
+  // distance from the centre to the box is a convex piecewise quadratic in s, with breaks where a
+  // coordinate of the centre crosses a face plane of the box.
+  TimeWindow w(smax);
+  for (int i = 0; i < 3; ++i) {
+    w.clip(lo[i] - rho - b.c0[i], -b.d[i]);
+    w.clip(b.c0[i] - hi[i] - rho, b.d[i]);
+  }
+  if (!(w.lo <= w.hi)) return std::numeric_limits<double>::infinity();
+  double breaks[8];
+  int nb = 0;
+  breaks[nb++] = w.lo;
+  for (int i = 0; i < 3; ++i) {
+    if (b.d[i] == 0) continue;
+    for (const double plane : {lo[i], hi[i]}) {
+      const double s = (plane - b.c0[i]) / b.d[i];
+      if (!(s > w.lo && s < w.hi)) continue;
+      int j = nb++;  // insertion sort: at most six breaks
+      for (; j > 1 && breaks[j - 1] > s; --j) breaks[j] = breaks[j - 1];
+      breaks[j] = s;
+    }
+  }
+  breaks[nb++] = w.hi;
+  const double rho2 = rho * rho;
+  for (int k = 0; k + 1 < nb; ++k) {
+    const double s0 = breaks[k], s1 = breaks[k + 1], mid = 0.5 * (s0 + s1);
+    double A = 0, B = 0, C = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double x = b.c0[i] + mid * b.d[i];
+      const double face = x < lo[i] ? lo[i] : (x > hi[i] ? hi[i] : x);
+      if (face == x) continue;
+      const double e = b.c0[i] - face;
+      A += b.d[i] * b.d[i];
+      B += 2 * b.d[i] * e;
+      C += e * e;
+    }
+    C -= rho2;
+    if ((A * s0 + B) * s0 + C <= 0) return s0 * (1 - 1e-12);
+    if (A <= 0) continue;
+    const double disc = B * B - 4 * A * C;
+    if (disc < 0) continue;
+    // The smaller root, without cancellation.
+    const double qq = -0.5 * (B + std::copysign(std::sqrt(disc), B));
+    const double r1 = qq / A, r2 = qq != 0 ? C / qq : r1;
+    const double first = std::min(r1, r2), last = std::max(r1, r2);
+    if (first <= s1 && last >= s0) return std::max(s0, first - 1e-9) * (1 - 1e-12);
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
 double approachRate(const SegmentMotion& m, const Vec3& n, const Vec3& q, double side) {
   // d/ds of side * n.x <= side * n.delta + 2 tau max(0, side * n.(k x q)) + |n| g, negated as a decrease.
   const double lin = side * dot(n, m.delta);
@@ -179,9 +257,53 @@ PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const V
   const double t2 = m.tau * m.tau;
   bool degenerateVertexFace = false;
 
+  // Boxes of each reamer vertex's path over [0, smax] and of the bone triangle and its edges: a feature
+  // pair whose boxes are apart cannot meet, so its cubic is not solved. Most pairs that reach this function
+  // are of this kind where the surfaces nearly conform (a vertex crosses the plane of a bone triangle it
+  // never gets near).
+  Vec3 plo[3], phi[3];
+  {
+    const Mat3 turn = m.tau == 0 ? Mat3{} : m.turnAt(smax);
+    const Vec3 t1 = m.tipAt(smax);
+    const Vec3 tlo{std::min(m.tip0.x, t1.x), std::min(m.tip0.y, t1.y), std::min(m.tip0.z, t1.z)};
+    const Vec3 thi{std::max(m.tip0.x, t1.x), std::max(m.tip0.y, t1.y), std::max(m.tip0.z, t1.z)};
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 e = turn * q[i];
+      const double r = norm(q[i]);
+      const double pad = m.sag(r, smax) * (1 + 1e-9) + 1e-9 * (r + norm(m.delta)) +
+                         1e-12 * (1 + std::abs(tlo.x) + std::abs(tlo.y) + std::abs(tlo.z));
+      plo[i] = Vec3{std::min(q[i].x, e.x), std::min(q[i].y, e.y), std::min(q[i].z, e.z)} + tlo - Vec3{pad, pad, pad};
+      phi[i] = Vec3{std::max(q[i].x, e.x), std::max(q[i].y, e.y), std::max(q[i].z, e.z)} + thi + Vec3{pad, pad, pad};
+    }
+  }
+  // The features' own tolerances (barycentric and segment slack, 1e-9 of their sizes) fit well inside this.
+  const double slack = 1e-8 * (norm(B[1] - B[0]) + norm(B[2] - B[1]) + norm(B[0] - B[2]) + norm(q[1] - q[0]) +
+                               norm(q[2] - q[1]) + norm(q[0] - q[2]));
+  auto pointsBox = [&](std::initializer_list<Vec3> pts, Vec3& lo, Vec3& hi) {
+    lo = hi = *pts.begin();
+    for (const Vec3& v : pts) {
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+    }
+    lo -= Vec3{slack, slack, slack};
+    hi += Vec3{slack, slack, slack};
+  };
+  auto apart = [](const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi) {
+    return alo.x > bhi.x || blo.x > ahi.x || alo.y > bhi.y || blo.y > ahi.y || alo.z > bhi.z || blo.z > ahi.z;
+  };
+  auto join = [](const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi, Vec3& lo, Vec3& hi) {
+    lo = {std::min(alo.x, blo.x), std::min(alo.y, blo.y), std::min(alo.z, blo.z)};
+    hi = {std::max(ahi.x, bhi.x), std::max(ahi.y, bhi.y), std::max(ahi.z, bhi.z)};
+  };
+  Vec3 boneLo, boneHi, reamerLo, reamerHi;
+  pointsBox({B[0], B[1], B[2]}, boneLo, boneHi);
+  join(plo[0], phi[0], plo[1], phi[1], reamerLo, reamerHi);
+  join(reamerLo, reamerHi, plo[2], phi[2], reamerLo, reamerHi);
+
   // (a) reamer vertex reaches the bone face: n . D(s)(x(s) - B0) = 0.
   const Vec3 n = cross(B[1] - B[0], B[2] - B[0]);
   for (int i = 0; i < 3; ++i) {
+    if (apart(plo[i], phi[i], boneLo, boneHi)) continue;
     Vec3 c[4];
     m.pointPoly(q[i], B[0], c);
     const double f[4] = {dot(n, c[0]), dot(n, c[1]), dot(n, c[2]), dot(n, c[3])};
@@ -204,6 +326,7 @@ PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const V
   m.vecPoly(m0, M);
   const double mq = dot(m0, q[0]);
   for (int j = 0; j < 3; ++j) {
+    if (apart(B[j], B[j], reamerLo, reamerHi)) continue;
     const Vec3 V0 = B[j] - m.tip0, V1 = -m.delta;
     const double f[4] = {dot(M[0], V0) - mq, dot(M[0], V1) + dot(M[1], V0), dot(M[1], V1) + dot(M[2], V0) - t2 * mq,
                          dot(M[2], V1)};
@@ -229,7 +352,12 @@ PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const V
     Vec3 G[3], H[3];
     m.vecPoly(E, G);
     m.vecPoly(cross(E, q[i]), H);
+    Vec3 elo, ehi;
+    join(plo[i], phi[i], plo[(i + 1) % 3], phi[(i + 1) % 3], elo, ehi);
     for (int j = 0; j < 3; ++j) {
+      Vec3 blo, bhi;
+      pointsBox({B[j], B[(j + 1) % 3]}, blo, bhi);
+      if (apart(elo, ehi, blo, bhi)) continue;
       const Vec3 eb = B[(j + 1) % 3] - B[j];
       const Vec3 g[3] = {cross(eb, G[0]), cross(eb, G[1]), cross(eb, G[2])};
       if (!(sum3(g) > 1e-11 * l1(eb) * sum3(G))) continue;

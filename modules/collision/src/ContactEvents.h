@@ -48,6 +48,20 @@ double axisSweepTime(const AxisSweep& a, double blo, double bhi, double smax);
 // The projection of a fixed box on the sweep's axis, padded for rounding.
 void projectBox(const Vec3& axis, const Vec3& lo, const Vec3& hi, double& plo, double& phi);
 
+// A ball of fixed radius whose centre moves linearly from c0 by d over the segment: it holds the convex
+// ideal solid of a parametric reamer at every s (the turn's deviation of the centre from that line is
+// folded into the radius). Tight where boxes are loose: in front of a curved cutting face.
+struct BallSweep {
+  Vec3 c0, d;
+  double radius = 0;
+};
+// The ball of `radius` about the reamer-local point `centreLocal`, moving with the reamer.
+BallSweep ballSweep(const SegmentMotion& m, const Vec3& centreLocal, double radius);
+// The ball seen along a fixed world axis (unit): an AxisSweep for axisSweepTime against a slab.
+AxisSweep ballAlong(const BallSweep& b, const Vec3& axis);
+// Earliest s in [0, smax] at which the ball can meet the fixed box [lo, hi]; +inf when it cannot.
+double ballSweepTime(const BallSweep& b, const Vec3& lo, const Vec3& hi, double smax);
+
 // Fastest rate at which the signed height n.(x - a) of the point with offset q can move towards zero, given
 // its current side (sign of the height).
 double approachRate(const SegmentMotion& m, const Vec3& n, const Vec3& q, double side);

@@ -1,6 +1,6 @@
 #pragma once
 // Internal: roots of a cubic on [0, smax] in increasing order, to rounding. The interval is cut at the
-// critical points into monotone pieces; a sign change is bisected; a value within the tolerance at a piece
+// critical points into monotone pieces; a sign change is bracketed down to adjacent doubles; a value within the tolerance at a piece
 // end (a tangential touch or a root at the end) is a root too.
 #include <algorithm>
 #include <cmath>
@@ -52,13 +52,29 @@ RootScan earliestRoot(const double (&c)[4], double smax, double reference, Accep
     double lo = pts[i - 1], hi = pts[i];
     const double fhi = f(hi);
     if (std::abs(prev) > kZero && std::abs(fhi) > kZero && (prev < 0) != (fhi < 0)) {
-      double flo = prev;
-      for (int it = 0; it < 200; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        if (!(mid > lo && mid < hi)) break;
+      // Illinois false position (superlinear), with a bisection every third step so the bracket always at
+      // least halves; it ends, like plain bisection, at two adjacent doubles around the sign change.
+      double flo = prev, fh = fhi;
+      int side = 0;
+      for (int it = 0; it < 300; ++it) {
+        double mid = it % 3 == 2 ? 0.5 * (lo + hi) : (lo * fh - hi * flo) / (fh - flo);
+        if (!(mid > lo && mid < hi)) {
+          mid = 0.5 * (lo + hi);
+          if (!(mid > lo && mid < hi)) break;
+        }
         const double fm = f(mid);
         if (fm == 0) { lo = hi = mid; break; }
-        if ((fm < 0) == (flo < 0)) { lo = mid; flo = fm; } else { hi = mid; }
+        if ((fm < 0) == (flo < 0)) {
+          lo = mid;
+          flo = fm;
+          if (side == -1) fh *= 0.5;
+          side = -1;
+        } else {
+          hi = mid;
+          fh = fm;
+          if (side == 1) flo *= 0.5;
+          side = 1;
+        }
       }
       // The contact time is the earliest: take the lower end (the crossing lies in [lo, hi]).
       if (accept(lo)) { sOut = lo; return RootScan::Found; }

@@ -29,6 +29,11 @@ struct ToiScratch {
   std::vector<detail::AxisSweep> slab;
   std::vector<std::array<Vec3, 3>> q;
   std::vector<detail::AxisSweep> plane;
+  std::vector<std::uint32_t> movingStamp;
+  struct Moving {
+    Vec3 lo, hi, rateLo, rateHi;  // the triangle's box at s = 0 and its face rates
+  };
+  std::vector<Moving> moving;
   std::uint32_t stamp = 0;
   void begin(std::size_t nodes, std::size_t tris) {
     if (nodeStamp.size() < nodes) {
@@ -42,25 +47,38 @@ struct ToiScratch {
     if (triStamp.size() < tris) {
       triStamp.resize(tris, 0);
       planeStamp.resize(tris, 0);
+      movingStamp.resize(tris, 0);
       q.resize(tris);
       plane.resize(tris);
+      moving.resize(tris);
     }
     if (++stamp == 0) {
       std::fill(nodeStamp.begin(), nodeStamp.end(), 0);
       std::fill(triStamp.begin(), triStamp.end(), 0);
       std::fill(planeStamp.begin(), planeStamp.end(), 0);
+      std::fill(movingStamp.begin(), movingStamp.end(), 0);
       stamp = 1;
     }
   }
 };
 thread_local ToiScratch tlsScratch;
 
-// Best-first search over (bone node, reamer node) pairs ordered by the earliest time they can meet: the
-// later of the time their boxes can meet (the reamer box at s = 0 moved along the tip's travel and grown by
-// the rotation's reach: sweptBoxTime, exact for translations) and the time the reamer node's slab along its
-// own normal can reach the bone box (axisSweepTime: what keeps a tilted face patch thin). Pairs that cannot
-// meet before the best contact so far are dropped; triangle pairs that survive get the same two bounds plus
-// a plane bound, then the exact cubic events.
+// Best-first search for the earliest contact along one segment, on lower bounds of the time things can
+// first meet; everything that cannot meet before the best contact so far is dropped, and triangle pairs
+// that survive get the exact cubic events.
+//
+// A parametric reamer (its mesh inscribed in a convex ideal solid) is searched in two stages:
+//  1. the bone tree alone against the moving ideal solid (a ball about the sphere's centre and five slabs,
+//     initHull), each bone node bounded by its box and its slab, each bone triangle by its plane, box and
+//     corners: only bone the cutting face can actually get to is visited, and no (bone node, reamer node)
+//     pairs are formed;
+//  2. each bone triangle that survives, in order of its bound s0: the reamer triangles it can meet within
+//     [s0, best], found by a plain box descent of the reamer tree in the reamer's frame (pairWithinWindow),
+//     then queued with their own pair bounds.
+// Other reamers (a solid from a file) pair the two trees: the later of the time a bone box and a moving
+// reamer box can meet (sweptBoxTime, exact for translations, the rotation's reach added) and the time the
+// reamer node's slab along its own normal can reach the bone node (axisSweepTime: what keeps a tilted face
+// patch thin).
 class ToiSearch {
  public:
   ToiSearch(const TriangleBvh& bone, const ReamerModel& reamer, const SegmentMotion& m, FirstContactResult& out)
@@ -68,11 +86,16 @@ class ToiSearch {
         m_(m), out_(out),
         sc_(tlsScratch) {
     sc_.begin(rtree_.nodes().size(), rtree_.slotCapacity());
+    initHull(reamer);
   }
 
   bool run(double& sHit) {
     heap_.clear();
-    pushNodes(bone_.root(), rtree_.root());
+    if (hull_) {
+      pushBone(bone_.root());
+    } else {
+      pushNodes(bone_.root(), rtree_.root());
+    }
     const auto& bn = bone_.nodes();
     const auto& rn = rtree_.nodes();
     while (!heap_.empty()) {
@@ -80,8 +103,26 @@ class ToiSearch {
       const Item it = heap_.back();
       heap_.pop_back();
       if (found_ ? it.slb >= best_ : it.slb > best_) break;  // every remaining item starts later
-      if (it.triangles) {
+      if (it.kind == Item::Triangles) {
         exact(it.b, it.r);
+        continue;
+      }
+      if (it.kind == Item::BoneTriangle) {
+        pairWithinWindow(static_cast<std::uint32_t>(it.b), it.slb);
+        continue;
+      }
+      if (it.kind == Item::BoneOnly) {
+        const BvhNode& B = bn[it.b];
+        if (B.isLeaf()) {
+          const std::uint32_t* bs = bone_.leafSlots(B);
+          for (int i = 0; i < B.count; ++i) {
+            const double t = std::max(it.slb, triangleHullTime(bone_.triangle(bs[i])));
+            if (promising(t)) push({t, static_cast<std::int32_t>(bs[i]), -1, Item::BoneTriangle});
+          }
+        } else {
+          pushBone(B.left);
+          pushBone(B.right);
+        }
         continue;
       }
       const BvhNode& B = bn[it.b];
@@ -126,7 +167,7 @@ class ToiSearch {
     if (!promising(t)) return t;
     const detail::AxisSweep& slab = sc_.slab[r];
     double plo, phi;
-    detail::projectBox(slab.axis, B.lo, B.hi, plo, phi);
+    regionRange(B.lo, B.hi, bone_.slab(b), slab.axis, plo, phi);
     const double ts = std::max(t, detail::axisSweepTime(slab, plo, phi, best_));
     if (!promising(ts) || !B.isLeaf()) return ts;
     // A bone leaf: its triangles' own extent along the axis, much thinner than its box's when the patch
@@ -155,9 +196,12 @@ class ToiSearch {
   }
 
   struct Item {
+    enum Kind : std::uint8_t { Nodes, Triangles, BoneOnly, BoneTriangle };
     double slb;
-    std::int32_t b, r;  // node pair, or (bone slot, reamer slot) when `triangles`
-    bool triangles;
+    // Nodes: (bone node, reamer node); Triangles: (bone slot, reamer slot); BoneOnly: bone node;
+    // BoneTriangle: bone slot.
+    std::int32_t b, r;
+    Kind kind;
     bool operator<(const Item& o) const { return slb > o.slb; }  // min-heap
   };
   bool promising(double t) const { return found_ ? t < best_ : t <= best_; }
@@ -167,50 +211,215 @@ class ToiSearch {
   }
   void pushNodes(std::int32_t b, std::int32_t r) {
     const double t = bound(b, r);
-    if (promising(t)) push({t, b, r, false});
+    if (promising(t)) push({t, b, r, Item::Nodes});
+  }
+
+  // The convex ideal solid a parametric reamer's mesh lies in, moving: a ball about the sphere's centre (or
+  // the flat reamer's middle) holding all of it, the slab of its length along the axis and four slabs
+  // across the axis (an octagon about the cylinder). A bone node none of them can reach before the best
+  // contact so far is dropped whole, without pairing it with the reamer's nodes: the search then visits
+  // the bone only where the cutting face can get to it, and pairs with the reamer tree only at leaves.
+  void initHull(const ReamerModel& reamer) {
+    const ReamerModel::IdealSolid& id = reamer.idealSolid();
+    if (!id.valid) return;
+    hull_ = true;
+    const double pad = 1e-8 * (1 + id.radius + id.sphereRadius + std::abs(id.zBack));
+    const double zTop = id.flat ? 0.0 : id.sphereCentreZ + id.sphereRadius;
+    const Vec3 centre{0, 0, id.flat ? 0.5 * id.zBack : id.sphereCentreZ};
+    const double reach = id.flat ? std::hypot(id.radius, 0.5 * id.zBack)
+                                 : std::max(id.sphereRadius, std::hypot(id.radius, id.zBack - id.sphereCentreZ));
+    ball_ = detail::ballSweep(m_, centre, reach + pad);
+    const BvhNode& root = rtree_.nodes()[rtree_.root()];
+    const double r = reamer.radius();
+    hullSlabs_[0] = detail::axisSweep(m_, Vec3{0, 0, 1}, id.zBack - pad, zTop + pad, root.lo, root.hi, r);
+    const double h = std::sqrt(0.5);
+    const Vec3 across[4] = {{1, 0, 0}, {0, 1, 0}, {h, h, 0}, {h, -h, 0}};
+    for (int i = 0; i < 4; ++i)
+      hullSlabs_[1 + i] = detail::axisSweep(m_, across[i], -id.radius - pad, id.radius + pad, root.lo, root.hi, r);
+  }
+
+  // Bone node b is the region of its box and its slab (BvhSlab). The ball against the slab first: for a
+  // patch of bone facing the cutting face that alone is nearly the exact time.
+  double hullTime(std::int32_t b) const {
+    const BvhNode& B = bone_.nodes()[b];
+    const BvhSlab& slab = bone_.slab(b);
+    double t = detail::axisSweepTime(detail::ballAlong(ball_, slab.axis), slab.lo, slab.hi, best_);
+    if (!promising(t)) return t;
+    t = std::max(t, detail::ballSweepTime(ball_, B.lo, B.hi, best_));
+    for (const detail::AxisSweep& sweep : hullSlabs_) {
+      if (!promising(t)) return t;
+      double plo, phi;
+      regionRange(B.lo, B.hi, slab, sweep.axis, plo, phi);
+      t = std::max(t, detail::axisSweepTime(sweep, plo, phi, best_));
+    }
+    return t;
+  }
+
+  void pushBone(std::int32_t b) {
+    const double t = hullTime(b);
+    if (promising(t)) push({t, b, -1, Item::BoneOnly});
   }
 
   // Triangle pairs of two leaves, queued by their own bounds so the exact events run earliest-first.
   void leafPair(const BvhNode& B, const BvhNode& R) {
     const std::uint32_t* bs = bone_.leafSlots(B);
     const std::uint32_t* rs = rtree_.leafSlots(R);
-    Vec3 blo[TriangleBvh::kLeafCapacity], bhi[TriangleBvh::kLeafCapacity];
-    for (int i = 0; i < B.count; ++i) TriangleBvh::paddedBox(bone_.triangle(bs[i]), blo[i], bhi[i]);
-    for (int j = 0; j < R.count; ++j) {
-      const auto& qa = rotatedTriangle(rs[j]);
-      const Vec3 X[3] = {m_.tip0 + qa[0], m_.tip0 + qa[1], m_.tip0 + qa[2]};
-      Vec3 tlo, thi, qlo, qhi, rlo, rhi;
-      TriangleBvh::paddedBox({X[0], X[1], X[2]}, tlo, thi);
-      TriangleBvh::paddedBox({qa[0], qa[1], qa[2]}, qlo, qhi);
-      detail::boxRates(m_, qlo, qhi, std::max({norm(qa[0]), norm(qa[1]), norm(qa[2])}), rlo, rhi);
-      const detail::AxisSweep& plane = planeSweep(rs[j]);
-      for (int i = 0; i < B.count; ++i) {
-        const BvhTriangle& bt = bone_.triangle(bs[i]);
-        double t = detail::sweptBoxTime(tlo, thi, rlo, rhi, blo[i], bhi[i], best_);
-        if (!promising(t)) continue;
-        // The reamer triangle's own plane, moving: the bone triangle's extent along its normal.
-        const double h0 = dot(plane.axis, bt.a), h1 = dot(plane.axis, bt.b), h2 = dot(plane.axis, bt.c);
-        const double hlo = std::min({h0, h1, h2}), hhi = std::max({h0, h1, h2});
-        const double pad = 1e-12 * (std::abs(hlo) + std::abs(hhi)) + 1e-300;
-        t = std::max(t, detail::axisSweepTime(plane, hlo - pad, hhi + pad, best_));
-        if (!promising(t)) continue;
-        // Plane bound: each reamer vertex needs at least h / (its fastest approach) to reach the bone
-        // triangle's plane, and the triangle cannot touch before its first vertex or edge does.
-        const Vec3 n = cross(bt.b - bt.a, bt.c - bt.a);
-        const double h[3] = {dot(n, X[0] - bt.a), dot(n, X[1] - bt.a), dot(n, X[2] - bt.a)};
-        if ((h[0] > 0 && h[1] > 0 && h[2] > 0) || (h[0] < 0 && h[1] < 0 && h[2] < 0)) {
-          const double side = h[0] > 0 ? 1.0 : -1.0;
-          double tp = std::numeric_limits<double>::infinity();
-          for (int k = 0; k < 3; ++k) {
-            const double rate = detail::approachRate(m_, n, qa[k], side);
-            if (rate > 0) tp = std::min(tp, side * h[k] / rate * (1 - 1e-12));
-          }
-          t = std::max(t, tp);
-          if (!promising(t)) continue;
-        }
-        push({t, static_cast<std::int32_t>(bs[i]), static_cast<std::int32_t>(rs[j]), true});
+    for (int j = 0; j < R.count; ++j)
+      for (int i = 0; i < B.count; ++i) pushTrianglePair(bs[i], rs[j], 0);
+  }
+
+  // The reamer triangle at s = 0 (its box) and how fast its box's faces can move (cached per query).
+  const ToiScratch::Moving& moving(std::uint32_t slot) {
+    ToiScratch::Moving& mv = sc_.moving[slot];
+    if (sc_.movingStamp[slot] == sc_.stamp) return mv;
+    const auto& qa = rotatedTriangle(slot);
+    TriangleBvh::paddedBox({m_.tip0 + qa[0], m_.tip0 + qa[1], m_.tip0 + qa[2]}, mv.lo, mv.hi);
+    Vec3 qlo, qhi;
+    TriangleBvh::paddedBox({qa[0], qa[1], qa[2]}, qlo, qhi);
+    detail::boxRates(m_, qlo, qhi, std::max({norm(qa[0]), norm(qa[1]), norm(qa[2])}), mv.rateLo, mv.rateHi);
+    sc_.movingStamp[slot] = sc_.stamp;
+    return mv;
+  }
+
+  // One (bone triangle, reamer triangle) pair, queued for the exact events unless a bound shows it cannot
+  // meet before the best contact so far; `floor` is a lower bound already known for the pair.
+  void pushTrianglePair(std::uint32_t boneSlot, std::uint32_t reamerSlot, double floor) {
+    Vec3 blo, bhi;
+    TriangleBvh::paddedBox(bone_.triangle(boneSlot), blo, bhi);
+    pushTrianglePair(boneSlot, blo, bhi, reamerSlot, floor);
+  }
+  // The same with the bone triangle's padded box already at hand.
+  void pushTrianglePair(std::uint32_t boneSlot, const Vec3& blo, const Vec3& bhi, std::uint32_t reamerSlot, double floor) {
+    const BvhTriangle& bt = bone_.triangle(boneSlot);
+    const ToiScratch::Moving& mv = moving(reamerSlot);
+    double t = std::max(floor, detail::sweptBoxTime(mv.lo, mv.hi, mv.rateLo, mv.rateHi, blo, bhi, best_));
+    if (!promising(t)) return;
+    // The reamer triangle's own plane, moving: the bone triangle's extent along its normal.
+    const detail::AxisSweep& plane = planeSweep(reamerSlot);
+    const double h0 = dot(plane.axis, bt.a), h1 = dot(plane.axis, bt.b), h2 = dot(plane.axis, bt.c);
+    const double hlo = std::min({h0, h1, h2}), hhi = std::max({h0, h1, h2});
+    const double pad = 1e-12 * (std::abs(hlo) + std::abs(hhi)) + 1e-300;
+    t = std::max(t, detail::axisSweepTime(plane, hlo - pad, hhi + pad, best_));
+    if (!promising(t)) return;
+    // Plane bound: each reamer vertex needs at least h / (its fastest approach) to reach the bone
+    // triangle's plane, and the triangle cannot touch before its first vertex or edge does.
+    const auto& qa = rotatedTriangle(reamerSlot);
+    const Vec3 n = cross(bt.b - bt.a, bt.c - bt.a);
+    const double h[3] = {dot(n, m_.tip0 + qa[0] - bt.a), dot(n, m_.tip0 + qa[1] - bt.a), dot(n, m_.tip0 + qa[2] - bt.a)};
+    if ((h[0] > 0 && h[1] > 0 && h[2] > 0) || (h[0] < 0 && h[1] < 0 && h[2] < 0)) {
+      const double side = h[0] > 0 ? 1.0 : -1.0;
+      double tp = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) {
+        const double rate = detail::approachRate(m_, n, qa[k], side);
+        if (rate > 0) tp = std::min(tp, side * h[k] / rate * (1 - 1e-12));
+      }
+      t = std::max(t, tp);
+      if (!promising(t)) return;
+    }
+    push({t, static_cast<std::int32_t>(boneSlot), static_cast<std::int32_t>(reamerSlot), Item::Triangles});
+  }
+
+  // A long window would gather much of the reamer: the window is cut to what moves the triangle by about
+  // kWindowReachMm, and the rest of it is queued again (as the same bone triangle from s1 on), so it is
+  // only looked at if no contact is found first.
+  void pairWithinWindow(std::uint32_t boneSlot, double s0) {
+    constexpr double kWindowReachMm = 0.5;
+    const BvhTriangle& bt = bone_.triangle(boneSlot);
+    const Mat3 R = m_.rotationAt(s0), Rt = R.transposed();
+    const Vec3 tip = m_.tipAt(s0);
+    const Vec3 p[3] = {Rt * (bt.a - tip), Rt * (bt.b - tip), Rt * (bt.c - tip)};
+    Vec3 boneLo, boneHi;
+    TriangleBvh::paddedBox(bt, boneLo, boneHi);
+    const double speed = norm(m_.delta) + 2 * m_.tau * (std::max({norm(p[0]), norm(p[1]), norm(p[2])}) + norm(m_.delta));
+    double s1 = best_;
+    if (speed * (best_ - s0) > kWindowReachMm) {
+      s1 = s0 + kWindowReachMm / speed;
+      push({s1, static_cast<std::int32_t>(boneSlot), -1, Item::BoneTriangle});
+    }
+    const double ds = s1 - s0;
+    const double turn = m_.tau == 0 ? 0.0 : m_.phi(s1) - m_.phi(s0);
+    const double travel = norm(m_.delta) * ds;
+    const double far = std::max({norm(p[0]), norm(p[1]), norm(p[2])}) + travel;
+    const double grow = (travel + turn * far) * (1 + 1e-9) + 1e-9 * (1 + far);
+    Vec3 lo, hi;
+    TriangleBvh::paddedBox({p[0], p[1], p[2]}, lo, hi);
+    lo -= Vec3{grow, grow, grow};
+    hi += Vec3{grow, grow, grow};
+    const auto& rn = rtree_.nodes();
+    rstack_.clear();
+    rstack_.push_back(rtree_.root());
+    while (!rstack_.empty()) {
+      const BvhNode& N = rn[rstack_.back()];
+      rstack_.pop_back();
+      if (N.lo.x > hi.x || N.hi.x < lo.x || N.lo.y > hi.y || N.hi.y < lo.y || N.lo.z > hi.z || N.hi.z < lo.z) continue;
+      if (N.isLeaf()) {
+        const std::uint32_t* rs = rtree_.leafSlots(N);
+        for (int j = 0; j < N.count; ++j)
+          if (firstVisit(boneSlot, rs[j])) pushTrianglePair(boneSlot, boneLo, boneHi, rs[j], s0);
+      } else {
+        rstack_.push_back(N.left);
+        rstack_.push_back(N.right);
       }
     }
+  }
+
+  // True the first time a (bone slot, reamer slot) pair is offered: its exact events cover the whole
+  // segment, so a later window need not queue it again.
+  bool firstVisit(std::uint32_t boneSlot, std::uint32_t reamerSlot) {
+    const std::uint64_t key = (std::uint64_t(boneSlot) << 32 | reamerSlot) + 1;  // 0 marks an empty cell
+    if (seen_.size() < 2 * seenCount_ + 64) {
+      std::vector<std::uint64_t> old(std::max<std::size_t>(256, seen_.size() * 2), 0);
+      old.swap(seen_);
+      seenCount_ = 0;
+      seenShift_ = 64;
+      for (std::size_t n = seen_.size(); n > 1; n >>= 1) --seenShift_;
+      for (std::uint64_t k : old)
+        if (k) insertSeen(k);
+    }
+    return insertSeen(key);
+  }
+  bool insertSeen(std::uint64_t key) {
+    const std::size_t mask = seen_.size() - 1;
+    // Fibonacci hashing: the product's top bits mix both slots.
+    for (std::size_t i = std::size_t((key * 0x9E3779B97F4A7C15ull) >> seenShift_);; i = (i + 1) & mask) {
+      if (seen_[i] == key) return false;
+      if (seen_[i] == 0) {
+        seen_[i] = key;
+        ++seenCount_;
+        return true;
+      }
+    }
+  }
+
+  // The ideal solid against one bone triangle: the ball against its plane and its box, the slabs against
+  // its corners.
+  double triangleHullTime(const BvhTriangle& bt) const {
+    const Vec3 n = normalized(cross(bt.b - bt.a, bt.c - bt.a));
+    double lo, hi, t = 0;
+    if (isFinite(n)) {
+      vertexRange(bt, n, lo, hi);
+      t = detail::axisSweepTime(detail::ballAlong(ball_, n), lo, hi, best_);
+      if (!promising(t)) return t;
+    }
+    Vec3 blo, bhi;
+    TriangleBvh::paddedBox(bt, blo, bhi);
+    t = std::max(t, detail::ballSweepTime(ball_, blo, bhi, best_));
+    for (const detail::AxisSweep& sweep : hullSlabs_) {
+      if (!promising(t)) return t;
+      vertexRange(bt, sweep.axis, lo, hi);
+      t = std::max(t, detail::axisSweepTime(sweep, lo, hi, best_));
+    }
+    return t;
+  }
+
+  // The corners' range along a unit axis, padded for rounding.
+  static void vertexRange(const BvhTriangle& bt, const Vec3& axis, double& lo, double& hi) {
+    const double d0 = dot(axis, bt.a), d1 = dot(axis, bt.b), d2 = dot(axis, bt.c);
+    lo = std::min({d0, d1, d2});
+    hi = std::max({d0, d1, d2});
+    const double pad = 1e-12 * (std::abs(lo) + std::abs(hi)) + 1e-300;
+    lo -= pad;
+    hi += pad;
   }
 
   // The sweep of a reamer triangle along its own normal (cached: a triangle meets many bone leaves).
@@ -257,7 +466,14 @@ class ToiSearch {
   ToiScratch& sc_;
   bool found_ = false;
   double best_ = 1;
+  bool hull_ = false;
+  detail::BallSweep ball_;
+  std::array<detail::AxisSweep, 5> hullSlabs_;
   std::vector<Item> heap_;
+  std::vector<std::int32_t> rstack_;
+  std::vector<std::uint64_t> seen_;  // open addressing, size a power of two
+  std::size_t seenCount_ = 0;
+  int seenShift_ = 64;
 };
 
 }  // namespace

@@ -34,6 +34,26 @@ const Vec3 kEmptyHi{-kInf, -kInf, -kInf};
 
 }  // namespace
 
+void regionRange(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& u, double& outLo, double& outHi) {
+  const Vec3 c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
+  auto boxRange = [&](const Vec3& v, double& rlo, double& rhi) {
+    const double vc = dot(v, c), vh = std::abs(v.x) * h.x + std::abs(v.y) * h.y + std::abs(v.z) * h.z;
+    rlo = vc - vh;
+    rhi = vc + vh;
+  };
+  double blo, bhi;
+  boxRange(u, blo, bhi);
+  const double a = dot(u, slab.axis);
+  const Vec3 w = u - slab.axis * a;
+  double wlo, whi;
+  boxRange(w, wlo, whi);
+  const double slo = a >= 0 ? a * slab.lo : a * slab.hi, shi = a >= 0 ? a * slab.hi : a * slab.lo;
+  // Rounding of the products and sums above: relative to the magnitudes involved.
+  const double pad = 1e-12 * (std::abs(dot(u, c)) + std::abs(slab.lo) + std::abs(slab.hi) + h.x + h.y + h.z) + 1e-300;
+  outLo = std::max(blo, slo + wlo) - pad;
+  outHi = std::min(bhi, shi + whi) + pad;
+}
+
 struct TriangleBvh::BuildRef {
   Vec3 lo, hi, centroid;
   std::uint32_t slot;
@@ -101,6 +121,7 @@ void TriangleBvh::rebuild() {
     refs.push_back(r);
   }
   nodes_.clear();
+  slabs_.clear();
   size_.clear();
   edits_.clear();
   dirty_.clear();
@@ -111,6 +132,7 @@ void TriangleBvh::rebuild() {
   freeBlocks_.clear();
   const std::size_t expectNodes = refs.size() + 16;  // ~2 n / leaf size, with room for later edits
   nodes_.reserve(expectNodes);
+  slabs_.reserve(expectNodes);
   size_.reserve(expectNodes);
   edits_.reserve(expectNodes);
   dirty_.reserve(expectNodes);
@@ -126,6 +148,7 @@ std::int32_t TriangleBvh::allocNode() {
     const std::int32_t n = freeNodes_.back();
     freeNodes_.pop_back();
     nodes_[n] = BvhNode{};
+    slabs_[n] = BvhSlab{};
     size_[n] = 0;
     edits_[n] = 0;
     dirty_[n] = 0;
@@ -133,6 +156,7 @@ std::int32_t TriangleBvh::allocNode() {
     return n;
   }
   nodes_.emplace_back();
+  slabs_.emplace_back();
   size_.push_back(0);
   edits_.push_back(0);
   dirty_.push_back(0);
@@ -168,6 +192,7 @@ std::int32_t TriangleBvh::makeLeaf(const BuildRef* refs, std::size_t n, std::int
   nd.right = -1;
   nd.count = static_cast<std::int32_t>(n);
   size_[node] = static_cast<std::int32_t>(n);
+  fitLeafSlab(node);
   return node;
 }
 
@@ -267,6 +292,7 @@ std::int32_t TriangleBvh::buildRange(std::vector<BuildRef>& refs, std::size_t be
   nd.lo = lo;
   nd.hi = hi;
   size_[node] = static_cast<std::int32_t>(n);
+  fitInternalSlab(node);
   return node;
 }
 
@@ -365,6 +391,7 @@ std::int32_t TriangleBvh::settle(std::int32_t n, std::int32_t& removedBelow, Bvh
   M.lo = nodes_[l].lo;
   M.hi = nodes_[l].hi;
   grow(M.lo, M.hi, nodes_[r].lo, nodes_[r].hi);
+  fitInternalSlab(n);
   return n;
 }
 
@@ -451,6 +478,7 @@ void TriangleBvh::graft(std::int32_t sub, BvhUpdateStats& stats) {
   P.hi = nodes_[sibling].hi;
   grow(P.lo, P.hi, S.lo, S.hi);
   size_[p] = size_[sibling] + k;
+  fitInternalSlab(p);
   edits_[p] = std::min(size_[sibling], k);  // the part that was not built together
   replaceChild(grand, sibling, p);
   nodes_[sibling].parent = p;
@@ -476,6 +504,51 @@ void TriangleBvh::recomputeLeafBox(std::int32_t leaf) {
   }
   l.lo = lo;
   l.hi = hi;
+  fitLeafSlab(leaf);
+}
+
+void TriangleBvh::fitLeafSlab(std::int32_t leaf) {
+  const BvhNode& l = nodes_[leaf];
+  BvhSlab& sl = slabs_[leaf];
+  const std::uint32_t* s = leafSlots(l);
+  Vec3 sum;
+  for (int i = 0; i < l.count; ++i) {
+    const BvhTriangle& t = tris_[s[i]];
+    sum += cross(t.b - t.a, t.c - t.a);
+  }
+  const double len = norm(sum);
+  sl.normalSum = sum;
+  sl.axis = len > 1e-300 ? sum / len : Vec3{0, 0, 1};
+  double lo = kInf, hi = -kInf;
+  for (int i = 0; i < l.count; ++i) {
+    const BvhTriangle& t = tris_[s[i]];
+    for (const Vec3* v : {&t.a, &t.b, &t.c}) {
+      const double d = dot(sl.axis, *v);
+      lo = mn(lo, d);
+      hi = mx(hi, d);
+    }
+  }
+  // As wide a pad as the boxes' (paddedBox), so the slab never cuts off what a box test would keep.
+  const Vec3 d = l.hi - l.lo;
+  const double mag = std::max({std::abs(l.lo.x), std::abs(l.lo.y), std::abs(l.lo.z), std::abs(l.hi.x),
+                               std::abs(l.hi.y), std::abs(l.hi.z)});
+  const double pad = kBoxPadRelative * (d.x + d.y + d.z) + 1e-12 * (1 + mag);
+  sl.lo = lo - pad;
+  sl.hi = hi + pad;
+}
+
+void TriangleBvh::fitInternalSlab(std::int32_t node) {
+  const BvhNode& n = nodes_[node];
+  BvhSlab& sl = slabs_[node];
+  const BvhSlab &a = slabs_[n.left], &b = slabs_[n.right];
+  sl.normalSum = a.normalSum + b.normalSum;
+  const double len = norm(sl.normalSum);
+  sl.axis = len > 1e-300 ? sl.normalSum / len : Vec3{0, 0, 1};
+  double alo, ahi, blo, bhi;
+  regionRange(nodes_[n.left].lo, nodes_[n.left].hi, a, sl.axis, alo, ahi);
+  regionRange(nodes_[n.right].lo, nodes_[n.right].hi, b, sl.axis, blo, bhi);
+  sl.lo = mn(alo, blo);
+  sl.hi = mx(ahi, bhi);
 }
 
 void TriangleBvh::refit(std::int32_t node, BvhUpdateStats& stats) {
@@ -493,6 +566,7 @@ void TriangleBvh::refit(std::int32_t node, BvhUpdateStats& stats) {
   n.lo = nodes_[l].lo;
   n.hi = nodes_[l].hi;
   grow(n.lo, n.hi, nodes_[r].lo, nodes_[r].hi);
+  fitInternalSlab(node);
 }
 
 // Quality maintenance (see the header): among the nodes on the paths this update touched, rebuild those
@@ -657,6 +731,15 @@ std::string TriangleBvh::validate() const {
         Vec3 lo, hi;
         paddedBox(tris_[s[k]], lo, hi);
         if (!encloses(n, lo, hi)) return "leaf " + std::to_string(i) + " does not enclose slot " + std::to_string(s[k]);
+        // Every slab on the path to the root holds the triangle's corners.
+        for (std::int32_t a = i; a >= 0; a = nodes_[a].parent) {
+          const BvhSlab& sl = slabs_[a];
+          for (const Vec3* v : {&tris_[s[k]].a, &tris_[s[k]].b, &tris_[s[k]].c}) {
+            const double dv = dot(sl.axis, *v);
+            if (!(dv >= sl.lo && dv <= sl.hi))
+              return "slab of node " + std::to_string(a) + " does not hold slot " + std::to_string(s[k]);
+          }
+        }
       }
       seen += std::size_t(n.count);
     } else {

@@ -43,6 +43,21 @@ struct BvhNode {
   bool isLeaf() const { return right < 0; }
 };
 
+// A slab beside each node's box: its triangles lie (padded like the boxes) between two planes normal to
+// `axis`, the node's area-weighted triangle normal. A patch of surface is thin along its own normal however
+// it is tilted against x, y and z, where its box is as thick as it is wide; queries bound a node by the
+// box and the slab together. `normalSum` (the unnormalised area-weighted normal) gives a parent its axis.
+struct BvhSlab {
+  Vec3 axis{0, 0, 1};
+  double lo = 0, hi = 0;
+  Vec3 normalSum;
+};
+
+// Range of u.x over the region box [lo, hi] ∩ slab, conservatively (padded for rounding): u = a n + w with
+// w normal to the slab's axis n, so u.x lies within a [slab.lo, slab.hi] + the box's range of w.x; the
+// box's own range of u.x also holds, and the tighter of the two is returned.
+void regionRange(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& u, double& outLo, double& outHi);
+
 struct BvhUpdateStats {
   std::size_t removed = 0;
   std::size_t added = 0;
@@ -92,6 +107,7 @@ class TriangleBvh {
   bool empty() const { return root_ < 0; }
   std::int32_t root() const { return root_; }
   const std::vector<BvhNode>& nodes() const { return nodes_; }
+  const BvhSlab& slab(std::int32_t node) const { return slabs_[std::size_t(node)]; }
   const std::uint32_t* leafSlots(const BvhNode& leaf) const { return &blocks_[std::size_t(leaf.left) * kLeafCapacity]; }
   bool contains(std::uint32_t slot) const { return slot < leafOf_.size() && leafOf_[slot] >= 0; }
   const BvhTriangle& triangle(std::uint32_t slot) const { return tris_[slot]; }
@@ -129,9 +145,12 @@ class TriangleBvh {
   void markDirty(std::int32_t node);
   void refit(std::int32_t node, BvhUpdateStats& stats);
   void recomputeLeafBox(std::int32_t leaf);
+  void fitLeafSlab(std::int32_t leaf);
+  void fitInternalSlab(std::int32_t node);
   void maintainQuality(std::size_t editSize, BvhUpdateStats& stats);
 
   std::vector<BvhNode> nodes_;
+  std::vector<BvhSlab> slabs_;         // by node, see BvhSlab
   std::vector<std::int32_t> size_;     // triangles in each node's subtree
   std::vector<std::int32_t> edits_;    // inserts + removals below each node since its subtree was built
   std::vector<std::uint8_t> dirty_;    // box must be refitted
