@@ -59,7 +59,7 @@ class FaceDistanceSearch {
  private:
   double nodeBound(std::int32_t b) const {
     const BvhNode& B = bone_.nodes()[b];
-    return std::max(boxSquaredDistance(B.lo, B.hi, faceLo_, faceHi_), region_.node(B.lo, B.hi, bone_.slab(b)));
+    return std::max(boxSquaredDistance(B.lo, B.hi, faceLo_, faceHi_), region_.box(B.lo, B.hi));
   }
 
   // Best-first over the bone tree (a min-heap on the lower bound), so the first triangles measured are the

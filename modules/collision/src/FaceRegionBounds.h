@@ -20,22 +20,6 @@ class FaceRegionBounds {
     z0_ = dot(axis_, frame.t);  // local z = axis . x - z0
   }
 
-  // A bone node: its box and its slab (BvhSlab). The slab keeps a flat patch's bound as thin as the patch
-  // where its box, tilted against the face, is as thick as it is wide.
-  double node(const Vec3& lo, const Vec3& hi, const BvhSlab& slab) const {
-    double zlo, zhi;
-    regionRange(lo, hi, slab, axis_, zlo, zhi);
-    zlo -= z0_;
-    zhi -= z0_;
-    double gap = std::max({0.0, zlo - r_.zMax, r_.zMin - zhi});
-    if (r_.shell) {
-      const double c = dot(slab.axis, centre_);
-      const double slabGap = std::max({0.0, slab.lo - c, c - slab.hi});
-      gap = std::max(gap, slabGap - r_.rOut);
-    }
-    return std::max(gap * gap, box(lo, hi));
-  }
-
   double box(const Vec3& lo, const Vec3& hi) const {
     double zlo = -z0_, zhi = -z0_;
     for (int k = 0; k < 3; ++k) {

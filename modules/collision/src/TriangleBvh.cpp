@@ -605,22 +605,32 @@ BvhUpdateStats TriangleBvh::update(const std::vector<std::uint32_t>& removedSlot
   const auto start = std::chrono::steady_clock::now();
   if (addedSlots.size() != addedTriangles.size())
     throw std::invalid_argument("TriangleBvh::update: added slots and triangles differ in number");
-  // Validate everything before touching the tree.
-  std::vector<std::uint32_t> removed = removedSlots, added = addedSlots;
-  std::sort(removed.begin(), removed.end());
-  std::sort(added.begin(), added.end());
-  for (std::size_t i = 0; i < removed.size(); ++i) {
-    if (!contains(removed[i]))
-      throw std::invalid_argument("TriangleBvh::update: removed slot " + std::to_string(removed[i]) + " is not in the tree");
-    if (i > 0 && removed[i] == removed[i - 1])
-      throw std::invalid_argument("TriangleBvh::update: slot " + std::to_string(removed[i]) + " removed twice");
+  // Validate everything before touching the tree: one mark per slot (this call's stamp; +1 = removed,
+  // +2 = added) instead of sorting both lists, which cost a third of a typical update.
+  std::uint32_t largest = 0, largestAdded = 0;
+  for (std::uint32_t s : removedSlots) largest = std::max(largest, s);
+  for (std::uint32_t s : addedSlots) largestAdded = std::max(largestAdded, s);
+  largest = std::max(largest, largestAdded);
+  if (slotMark_.size() <= largest) slotMark_.resize(std::size_t(largest) + 1, 0);
+  if (markStamp_ >= 0xFFFFFFF0u) {
+    std::fill(slotMark_.begin(), slotMark_.end(), 0);
+    markStamp_ = 0;
   }
-  for (std::size_t i = 0; i < added.size(); ++i) {
-    if (i > 0 && added[i] == added[i - 1])
-      throw std::invalid_argument("TriangleBvh::update: slot " + std::to_string(added[i]) + " added twice");
-    if (contains(added[i]) && !std::binary_search(removed.begin(), removed.end(), added[i]))
-      throw std::invalid_argument("TriangleBvh::update: added slot " + std::to_string(added[i]) + " is already in the tree");
+  const std::uint32_t removedMark = markStamp_ + 1, addedMark = markStamp_ + 2;
+  markStamp_ += 2;
+  for (std::uint32_t s : removedSlots) {
+    if (!contains(s)) throw std::invalid_argument("TriangleBvh::update: removed slot " + std::to_string(s) + " is not in the tree");
+    if (slotMark_[s] == removedMark)
+      throw std::invalid_argument("TriangleBvh::update: slot " + std::to_string(s) + " removed twice");
+    slotMark_[s] = removedMark;
   }
+  for (std::uint32_t s : addedSlots) {
+    if (slotMark_[s] == addedMark) throw std::invalid_argument("TriangleBvh::update: slot " + std::to_string(s) + " added twice");
+    if (contains(s) && slotMark_[s] != removedMark)
+      throw std::invalid_argument("TriangleBvh::update: added slot " + std::to_string(s) + " is already in the tree");
+    slotMark_[s] = addedMark;
+  }
+  // A slot both removed and added now carries the added mark; only duplicates within one list matter above.
   for (const BvhTriangle& t : addedTriangles)
     if (!isFinite(t.a) || !isFinite(t.b) || !isFinite(t.c))
       throw std::invalid_argument("TriangleBvh::update: an added triangle has a non-finite coordinate");
@@ -636,8 +646,8 @@ BvhUpdateStats TriangleBvh::update(const std::vector<std::uint32_t>& removedSlot
     root_ = settle(root_, removed, stats);
     if (root_ >= 0) nodes_[root_].parent = -1;
   }
-  if (!added.empty() && added.back() >= tris_.size()) {
-    const std::size_t need = std::size_t(added.back()) + 1;
+  if (!addedSlots.empty() && largestAdded >= tris_.size()) {
+    const std::size_t need = std::size_t(largestAdded) + 1;
     if (need > tris_.capacity()) {  // grow by a quarter at least, not to the exact size
       tris_.reserve(need + need / 4);
       leafOf_.reserve(need + need / 4);

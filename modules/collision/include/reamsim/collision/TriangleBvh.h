@@ -161,6 +161,8 @@ class TriangleBvh {
   std::vector<std::int32_t> freeNodes_, freeBlocks_;
   std::vector<BvhTriangle> tris_;      // by slot
   std::vector<std::int32_t> leafOf_;   // by slot; -1 when the slot is not in the tree
+  std::vector<std::uint32_t> slotMark_;  // by slot: update()'s duplicate checks (stamped, never cleared)
+  std::uint32_t markStamp_ = 0;
   std::int32_t root_ = -1;
   std::size_t triangleCount_ = 0;
   double rebuildCredit_ = 0;  // triangles the quality maintenance may still re-sort (see update())
