@@ -217,8 +217,9 @@ class ToiSearch {
   // The convex ideal solid a parametric reamer's mesh lies in, moving: a ball about the sphere's centre (or
   // the flat reamer's middle) holding all of it, the slab of its length along the axis and four slabs
   // across the axis (an octagon about the cylinder). A bone node none of them can reach before the best
-  // contact so far is dropped whole, without pairing it with the reamer's nodes: the search then visits
-  // the bone only where the cutting face can get to it, and pairs with the reamer tree only at leaves.
+  // contact so far is dropped whole, without pairing it with the reamer's nodes: the search visits the
+  // bone only where the reamer can get to it, and a bone triangle meets the reamer tree only once it
+  // comes first (pairWithinWindow).
   void initHull(const ReamerModel& reamer) {
     const ReamerModel::IdealSolid& id = reamer.idealSolid();
     if (!id.valid) return;
