@@ -288,9 +288,6 @@ PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const V
     lo -= Vec3{slack, slack, slack};
     hi += Vec3{slack, slack, slack};
   };
-  auto apart = [](const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi) {
-    return alo.x > bhi.x || blo.x > ahi.x || alo.y > bhi.y || blo.y > ahi.y || alo.z > bhi.z || blo.z > ahi.z;
-  };
   auto join = [](const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi, Vec3& lo, Vec3& hi) {
     lo = {std::min(alo.x, blo.x), std::min(alo.y, blo.y), std::min(alo.z, blo.z)};
     hi = {std::max(ahi.x, bhi.x), std::max(ahi.y, bhi.y), std::max(ahi.z, bhi.z)};
@@ -303,7 +300,7 @@ PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const V
   // (a) reamer vertex reaches the bone face: n . D(s)(x(s) - B0) = 0.
   const Vec3 n = cross(B[1] - B[0], B[2] - B[0]);
   for (int i = 0; i < 3; ++i) {
-    if (apart(plo[i], phi[i], boneLo, boneHi)) continue;
+    if (!boxesOverlap(plo[i], phi[i], boneLo, boneHi)) continue;
     Vec3 c[4];
     m.pointPoly(q[i], B[0], c);
     const double f[4] = {dot(n, c[0]), dot(n, c[1]), dot(n, c[2]), dot(n, c[3])};
@@ -326,7 +323,7 @@ PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const V
   m.vecPoly(m0, M);
   const double mq = dot(m0, q[0]);
   for (int j = 0; j < 3; ++j) {
-    if (apart(B[j], B[j], reamerLo, reamerHi)) continue;
+    if (!boxesOverlap(B[j], B[j], reamerLo, reamerHi)) continue;
     const Vec3 V0 = B[j] - m.tip0, V1 = -m.delta;
     const double f[4] = {dot(M[0], V0) - mq, dot(M[0], V1) + dot(M[1], V0), dot(M[1], V1) + dot(M[2], V0) - t2 * mq,
                          dot(M[2], V1)};
@@ -357,7 +354,7 @@ PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const V
     for (int j = 0; j < 3; ++j) {
       Vec3 blo, bhi;
       pointsBox({B[j], B[(j + 1) % 3]}, blo, bhi);
-      if (apart(elo, ehi, blo, bhi)) continue;
+      if (!boxesOverlap(elo, ehi, blo, bhi)) continue;
       const Vec3 eb = B[(j + 1) % 3] - B[j];
       const Vec3 g[3] = {cross(eb, G[0]), cross(eb, G[1]), cross(eb, G[2])};
       if (!(sum3(g) > 1e-11 * l1(eb) * sum3(G))) continue;

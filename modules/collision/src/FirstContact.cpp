@@ -297,10 +297,9 @@ class ToiSearch {
     if (!promising(t)) return;
     // The reamer triangle's own plane, moving: the bone triangle's extent along its normal.
     const detail::AxisSweep& plane = planeSweep(reamerSlot);
-    const double h0 = dot(plane.axis, bt.a), h1 = dot(plane.axis, bt.b), h2 = dot(plane.axis, bt.c);
-    const double hlo = std::min({h0, h1, h2}), hhi = std::max({h0, h1, h2});
-    const double pad = 1e-12 * (std::abs(hlo) + std::abs(hhi)) + 1e-300;
-    t = std::max(t, detail::axisSweepTime(plane, hlo - pad, hhi + pad, best_));
+    double hlo, hhi;
+    vertexRange(bt, plane.axis, hlo, hhi);
+    t = std::max(t, detail::axisSweepTime(plane, hlo, hhi, best_));
     if (!promising(t)) return;
     // Plane bound: each reamer vertex needs at least h / (its fastest approach) to reach the bone
     // triangle's plane, and the triangle cannot touch before its first vertex or edge does.
@@ -352,7 +351,7 @@ class ToiSearch {
     while (!rstack_.empty()) {
       const BvhNode& N = rn[rstack_.back()];
       rstack_.pop_back();
-      if (N.lo.x > hi.x || N.hi.x < lo.x || N.lo.y > hi.y || N.hi.y < lo.y || N.lo.z > hi.z || N.hi.z < lo.z) continue;
+      if (!boxesOverlap(N.lo, N.hi, lo, hi)) continue;
       if (N.isLeaf()) {
         const std::uint32_t* rs = rtree_.leafSlots(N);
         for (int j = 0; j < N.count; ++j)
