@@ -20,6 +20,36 @@ TEST(Validation, CleanBoxIsASolid) {
   EXPECT_TRUE(r.isCleanSolid());
 }
 
+TEST(Validation, CoincidentVerticesAreToldApartFromRealBordersAndIntersections) {
+  const TriangleMesh box = test::unitBox(10, 2);
+  EXPECT_EQ(countCoincidentVertices(box), 0u);
+  EXPECT_FALSE(validateMesh(box).afterMergingCoincident.has_value());
+
+  // The same box written as a triangle soup: every triangle its own three vertices.
+  TriangleMesh soup;
+  for (const Triangle& t : box.triangles) {
+    const std::uint32_t base = static_cast<std::uint32_t>(soup.vertices.size());
+    for (std::uint32_t v : t) soup.vertices.push_back(box.vertices[v]);
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  const ValidationReport r = validateMesh(soup);
+  EXPECT_EQ(r.coincidentVertices, soup.vertices.size() - box.vertices.size());
+  EXPECT_EQ(r.topology.boundaryEdges, 3 * soup.triangles.size());
+  EXPECT_GT(r.selfIntersectingPairs.value(), 0u);  // neighbours touch at points they do not share by index
+  ASSERT_TRUE(r.afterMergingCoincident.has_value());
+  EXPECT_EQ(r.afterMergingCoincident->boundaryEdges, 0u);
+  EXPECT_EQ(r.afterMergingCoincident->nonManifoldEdges, 0u);
+  EXPECT_EQ(r.afterMergingCoincident->selfIntersectingPairs.value(), 0u);
+  EXPECT_NE(toText(r).find("coincident vertices:    " + std::to_string(r.coincidentVertices)), std::string::npos);
+  EXPECT_NE(toJson(r).find("after_merging_coincident"), std::string::npos);
+
+  std::size_t merged = 0;
+  const TriangleMesh welded = mergeCoincidentVertices(soup, &merged);
+  EXPECT_EQ(merged, r.coincidentVertices);
+  EXPECT_EQ(welded.vertices.size(), box.vertices.size());
+  EXPECT_TRUE(validateMesh(welded).isCleanSolid());
+}
+
 TEST(Validation, OpenMeshHasBoundaryAndNoVolume) {
   TriangleMesh m = test::unitBox(10, 2);
   m.triangles.pop_back();

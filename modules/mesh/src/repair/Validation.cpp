@@ -22,6 +22,17 @@ ValidationReport validateMesh(const TriangleMesh& mesh, const ValidationOptions&
   }
   if (options.checkSelfIntersections)
     r.selfIntersectingPairs = countSelfIntersections(mesh, options.maxSelfIntersectionPairs);
+  r.coincidentVertices = countCoincidentVertices(mesh);
+  if (r.coincidentVertices > 0) {
+    const TriangleMesh merged = mergeCoincidentVertices(mesh);
+    const EdgeTopology t = analyzeEdges(merged);
+    ValidationReport::AfterMerging a;
+    a.boundaryEdges = t.boundaryEdges;
+    a.nonManifoldEdges = t.nonManifoldEdges;
+    if (options.checkSelfIntersections)
+      a.selfIntersectingPairs = countSelfIntersections(merged, options.maxSelfIntersectionPairs);
+    r.afterMergingCoincident = a;
+  }
   return r;
 }
 
@@ -40,7 +51,16 @@ std::string toText(const ValidationReport& r) {
       << (r.selfIntersectingPairs ? std::to_string(*r.selfIntersectingPairs) : std::string("not checked")) << "\n"
       << "degenerate faces:       " << r.topology.degenerateFaces << "\n"
       << "connected components:   " << r.topology.connectedComponents << "\n"
-      << "isolated vertices:      " << r.topology.isolatedVertices << "\n";
+      << "isolated vertices:      " << r.topology.isolatedVertices << "\n"
+      << "coincident vertices:    " << r.coincidentVertices;
+  if (r.afterMergingCoincident) {
+    const auto& a = *r.afterMergingCoincident;
+    out << " (same position, another index); merged: " << a.boundaryEdges << " boundary edges, "
+        << a.nonManifoldEdges << " non-manifold edges, "
+        << (a.selfIntersectingPairs ? std::to_string(*a.selfIntersectingPairs) : std::string("unchecked"))
+        << " self-intersecting pairs (`repair` merges them)";
+  }
+  out << "\n";
   char buf[256];
   if (r.volumeMm3) {
     std::snprintf(buf, sizeof buf, "volume:                 %.3f mm3 (%.3f cm3)\n", *r.volumeMm3, *r.volumeMm3 / 1000);
@@ -73,6 +93,15 @@ nlohmann::json toJsonValue(const ValidationReport& r) {
   j["degenerate_faces"] = r.topology.degenerateFaces;
   j["connected_components"] = r.topology.connectedComponents;
   j["isolated_vertices"] = r.topology.isolatedVertices;
+  j["coincident_vertices"] = r.coincidentVertices;
+  if (r.afterMergingCoincident) {
+    const auto& a = *r.afterMergingCoincident;
+    j["after_merging_coincident"] = {
+        {"boundary_edges", a.boundaryEdges},
+        {"non_manifold_edges", a.nonManifoldEdges},
+        {"self_intersecting_pairs",
+         a.selfIntersectingPairs ? nlohmann::json(*a.selfIntersectingPairs) : nlohmann::json(nullptr)}};
+  }
   j["volume_mm3"] = r.volumeMm3 ? nlohmann::json(*r.volumeMm3) : nlohmann::json(nullptr);
   j["area_mm2"] = r.areaMm2;
   if (!r.bounds.empty())

@@ -27,5 +27,12 @@ double surfaceArea(const TriangleMesh& mesh);
 void scaleInPlace(TriangleMesh& mesh, double factor);
 // Removes vertices no triangle uses and renumbers; returns how many were removed.
 std::size_t removeUnusedVertices(TriangleMesh& mesh);
+// Vertices at exactly the position of an earlier vertex: seams that meet only geometrically (files written
+// strip by strip or patch by patch). Triangles on either side of such a seam share no index, so edge
+// topology sees a border there and self-intersection tests see triangles touching at an unshared point.
+std::size_t countCoincidentVertices(const TriangleMesh& mesh);
+// The same mesh with coincident vertices made one (the first index of each position kept; unused vertices
+// removed). Returns how many vertices were merged away through `merged` when given.
+TriangleMesh mergeCoincidentVertices(const TriangleMesh& mesh, std::size_t* merged = nullptr);
 
 }  // namespace reamsim

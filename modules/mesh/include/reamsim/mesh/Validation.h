@@ -36,6 +36,16 @@ struct ValidationReport {
   bool outwardOriented = false;  // closed, consistent and positive volume
   std::optional<std::size_t> selfIntersectingPairs;  // empty when not checked
   std::optional<double> volumeMm3;                   // only when closed and consistently oriented
+  // Vertices at the position of an earlier vertex (see countCoincidentVertices). When there are any, the
+  // mesh is also analysed with them merged: a seam that only fails to share indices is told apart from a
+  // real border or a real self-intersection.
+  std::size_t coincidentVertices = 0;
+  struct AfterMerging {
+    std::size_t boundaryEdges = 0;
+    std::size_t nonManifoldEdges = 0;
+    std::optional<std::size_t> selfIntersectingPairs;  // empty when not checked
+  };
+  std::optional<AfterMerging> afterMergingCoincident;
   double areaMm2 = 0;
   Bounds bounds;
 
