@@ -10,6 +10,7 @@
 #include "CollisionFixtures.h"
 #include "reamsim/collision/BoneCollider.h"
 #include "reamsim/collision/BruteForce.h"
+#include "reamsim/collision/BvhRayCast.h"
 #include "reamsim/collision/SyntheticCut.h"
 #include "reamsim/csg/ReferenceSubtractor.h"
 
@@ -161,6 +162,39 @@ TEST(collisionBvhUpdate, ExactCgalCutsFollowedBySyncTo) {
     // than the cut itself.
     EXPECT_TRUE(collider.overlap(reamer, T, OverlapMode::AnyContact).overlap);
     expectAgreesWithBruteForce(collider, state, reamer, rng, 15);
+  }
+}
+
+// The graft build sorts added triangles along a Morton curve: coincident centroids (equal codes) and a few
+// triangles far from the rest (lopsided splits) must still give a valid tree that finds every triangle.
+TEST(collisionBvhUpdate, GraftsOfCoincidentAndScatteredTrianglesStayValid) {
+  const TriangleMesh m = test::icosphere(2, 10, {0, 0, 0});
+  TriangleBvh bvh = TriangleBvh::fromMesh(m);
+  std::vector<std::uint32_t> slots;
+  std::vector<BvhTriangle> tris;
+  for (std::uint32_t i = 0; i < 64; ++i) {  // 64 copies of one triangle above the sphere
+    slots.push_back(1000 + i);
+    tris.push_back({{0, 0, 20}, {1, 0, 20}, {0, 1, 20}});
+  }
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (std::uint32_t i = 0; i < 200; ++i) {  // small triangles: most near one point, a few 1000 mm away
+    const double spread = i % 50 == 0 ? 1000 : 3;
+    const Vec3 c{40 + spread * u(rng), spread * u(rng), spread * u(rng)};
+    slots.push_back(2000 + i);
+    tris.push_back({c, c + Vec3{0.1, 0, 0}, c + Vec3{0, 0.1, 0}});
+  }
+  bvh.update({}, slots, tris);
+  ASSERT_EQ(bvh.validate(), "");
+  EXPECT_EQ(bvh.triangleCount(), m.triangles.size() + slots.size());
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    const BvhTriangle& t = tris[i];
+    const Vec3 centroid = (t.a + t.b + t.c) * (1.0 / 3);
+    const std::vector<MeshHit> hits = allHits(bvh, centroid + Vec3{0, 0, 5}, {0, 0, -1});
+    const bool found = std::any_of(hits.begin(), hits.end(), [&](const MeshHit& h) {
+      return std::abs(h.point.z - centroid.z) < 1e-9;
+    });
+    EXPECT_TRUE(found) << "added triangle " << i;
   }
 }
 

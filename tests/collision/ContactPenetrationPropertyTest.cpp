@@ -39,10 +39,11 @@ bool surfacesTouch(const TriangleMesh& bone, const ReamerModel& reamer, const Ri
   return false;
 }
 
-// A motion that starts off the surface and heads towards it, with a lateral drift and a rotation.
+// A motion that starts off the surface and heads towards it, with a lateral drift and a rotation; every
+// fifth starts at or in the bone (the touch at the start).
 std::pair<RigidTransform, RigidTransform> randomMotion(const TriangleMesh& bone, std::mt19937_64& rng, std::size_t i) {
   std::uniform_real_distribution<double> u(0, 1);
-  const Pose start = test::poseNearSurface(bone, rng, 0.3, 3, 30);
+  const Pose start = i % 5 == 4 ? test::poseNearSurface(bone, rng, -1, 0.3, 30) : test::poseNearSurface(bone, rng, 0.3, 3, 30);
   const Vec3 lateral = test::anyPerpendicular(start.axis) * (u(rng) - 0.5);
   const Vec3 tip1 = start.tip + start.axis * (5 * u(rng) - 0.5) + lateral;
   const Vec3 k = normalized(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
@@ -64,7 +65,7 @@ std::pair<RigidTransform, RigidTransform> randomMotion(const TriangleMesh& bone,
 }
 
 struct Counts {
-  std::size_t queries = 0, hits = 0, independent = 0;
+  std::size_t queries = 0, hits = 0, independent = 0, startTouches = 0;
 };
 
 Counts checkFirstContact(const TriangleMesh& bone, std::size_t n, std::size_t independentEvery, std::uint64_t seed) {
@@ -83,6 +84,11 @@ Counts checkFirstContact(const TriangleMesh& bone, std::size_t n, std::size_t in
     EXPECT_EQ(got.hit, ref.hit) << "query " << i << " t " << got.t << " vs " << ref.t;
     if (got.hit && ref.hit) {
       EXPECT_NEAR(got.t, ref.t, 1e-9) << "query " << i;
+    }
+    if (got.hit && got.t == 0) {
+      ++c.startTouches;
+      EXPECT_EQ(got.feature, ContactFeature::Initial) << "query " << i;
+      EXPECT_TRUE(surfacesTouch(bone, reamer, from)) << "query " << i;
     }
     if (got.hit) {
       EXPECT_NEAR(norm(got.normal), 1.0, 1e-9);
@@ -150,17 +156,20 @@ Counts checkPenetration(const TriangleMesh& bone, bool closed, std::size_t n, st
 TEST(collisionFirstContactProperty, Sphere) {
   const Counts c = checkFirstContact(sphere(), kSphereQueries, 40, 31);
   EXPECT_EQ(c.queries, kSphereQueries);
+  EXPECT_GT(c.startTouches, kSphereQueries / 20);
   EXPECT_GT(c.hits, 1000u);
   EXPECT_LT(c.hits, 3300u);
 }
 TEST(collisionFirstContactProperty, Slab) {
   const Counts c = checkFirstContact(slab(), kSlabQueries, 40, 32);
   EXPECT_EQ(c.queries, kSlabQueries);
+  EXPECT_GT(c.startTouches, kSlabQueries / 20);
   EXPECT_GT(c.hits, 1000u);
 }
 TEST(collisionFirstContactProperty, BundledScapula) {
   const Counts c = checkFirstContact(scapula(), kScapulaQueries, 40, 33);
   EXPECT_EQ(c.queries, kScapulaQueries);
+  EXPECT_GT(c.startTouches, kScapulaQueries / 20);
   EXPECT_GT(c.hits, 1000u);
 }
 

@@ -122,10 +122,7 @@ void TriangleBvh::rebuild() {
   }
   nodes_.clear();
   slabs_.clear();
-  size_.clear();
-  edits_.clear();
-  dirty_.clear();
-  touchedStamp_.clear();
+  book_.clear();
   touched_.clear();
   blocks_.clear();
   freeNodes_.clear();
@@ -133,10 +130,7 @@ void TriangleBvh::rebuild() {
   const std::size_t expectNodes = refs.size() + 16;  // ~2 n / leaf size, with room for later edits
   nodes_.reserve(expectNodes);
   slabs_.reserve(expectNodes);
-  size_.reserve(expectNodes);
-  edits_.reserve(expectNodes);
-  dirty_.reserve(expectNodes);
-  touchedStamp_.reserve(expectNodes);
+  book_.reserve(expectNodes);
   blocks_.reserve(std::size_t(kLeafCapacity) * (refs.size() / 2 + 16));
   triangleCount_ = refs.size();
   root_ = refs.empty() ? -1 : buildSubtree(refs, 0, refs.size(), -1);
@@ -149,18 +143,12 @@ std::int32_t TriangleBvh::allocNode() {
     freeNodes_.pop_back();
     nodes_[n] = BvhNode{};
     slabs_[n] = BvhSlab{};
-    size_[n] = 0;
-    edits_[n] = 0;
-    dirty_[n] = 0;
-    touchedStamp_[n] = 0;
+    book_[n] = NodeBook{};
     return n;
   }
   nodes_.emplace_back();
   slabs_.emplace_back();
-  size_.push_back(0);
-  edits_.push_back(0);
-  dirty_.push_back(0);
-  touchedStamp_.push_back(0);
+  book_.emplace_back();
   return static_cast<std::int32_t>(nodes_.size() - 1);
 }
 
@@ -191,7 +179,7 @@ std::int32_t TriangleBvh::makeLeaf(const BuildRef* refs, std::size_t n, std::int
   nd.left = block;
   nd.right = -1;
   nd.count = static_cast<std::int32_t>(n);
-  size_[node] = static_cast<std::int32_t>(n);
+  book_[node].size = static_cast<std::int32_t>(n);
   fitLeafSlab(node);
   return node;
 }
@@ -291,7 +279,82 @@ std::int32_t TriangleBvh::buildRange(std::vector<BuildRef>& refs, std::size_t be
   nd.count = -1;
   nd.lo = lo;
   nd.hi = hi;
-  size_[node] = static_cast<std::int32_t>(n);
+  book_[node].size = static_cast<std::int32_t>(n);
+  fitInternalSlab(node);
+  return node;
+}
+
+namespace {
+// Spreads the low 10 bits of v to every third bit (the usual Morton interleave).
+std::uint32_t spreadBits(std::uint32_t v) {
+  v &= 0x3FFu;
+  v = (v | (v << 16)) & 0x030000FFu;
+  v = (v | (v << 8)) & 0x0300F00Fu;
+  v = (v | (v << 4)) & 0x030C30C3u;
+  v = (v | (v << 2)) & 0x09249249u;
+  return v;
+}
+}  // namespace
+
+// The graft build: triangles sorted along a Morton curve of their centroids (30-bit codes over the
+// centroids' cube) and split where the codes' leading bit changes (a linear BVH). A third of the binned SAH
+// build's time for the few thousand triangles a cut adds (measured: the update adding 3,000 triangles to
+// the 400k scapula, 0.28-0.40 against 0.97-1.09 ms); on a patch of surface the SAH cost it gives up is
+// small (after 1,529 cuts 1.264x a fresh build against 1.26x), and the maintenance pass rebuilds with SAH.
+std::int32_t TriangleBvh::buildMorton(std::vector<BuildRef>& refs, std::int32_t parent) {
+  const std::size_t n = refs.size();
+  Vec3 clo = kEmptyLo, chi = kEmptyHi;
+  for (const BuildRef& r : refs) grow(clo, chi, r.centroid, r.centroid);
+  const Vec3 ext = chi - clo;
+  const double longest = std::max({ext.x, ext.y, ext.z});
+  const double scale = longest > 0 ? 1023.0 / longest : 0.0;
+  std::vector<std::uint32_t> codes(n), order(n), codesTmp(n), orderTmp(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 q = (refs[i].centroid - clo) * scale;
+    codes[i] = (spreadBits(std::uint32_t(q.x)) << 2) | (spreadBits(std::uint32_t(q.y)) << 1) | spreadBits(std::uint32_t(q.z));
+    order[i] = static_cast<std::uint32_t>(i);
+  }
+  // LSD radix sort of the 30-bit codes, 10 bits a pass (a third of std::sort's time at a few thousand).
+  for (int shift = 0; shift < 30; shift += 10) {
+    std::uint32_t start[1025] = {};
+    for (std::size_t i = 0; i < n; ++i) ++start[((codes[i] >> shift) & 0x3FFu) + 1];
+    for (int b = 0; b < 1024; ++b) start[b + 1] += start[b];
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t at = start[(codes[i] >> shift) & 0x3FFu]++;
+      codesTmp[at] = codes[i];
+      orderTmp[at] = order[i];
+    }
+    codes.swap(codesTmp);
+    order.swap(orderTmp);
+  }
+  std::vector<BuildRef> sorted(n);
+  for (std::size_t i = 0; i < n; ++i) sorted[i] = refs[order[i]];
+  return mortonRange(sorted.data(), codes.data(), n, parent);
+}
+
+std::int32_t TriangleBvh::mortonRange(const BuildRef* refs, const std::uint32_t* codes, std::size_t n,
+                                      std::int32_t parent) {
+  if (n <= std::size_t(kBuildLeafSize)) return makeLeaf(refs, n, parent);
+  std::size_t mid = n / 2;  // equal codes: split in the middle
+  const std::uint32_t differ = codes[0] ^ codes[n - 1];
+  if (differ != 0) {
+    // First index whose code has the highest differing bit set (codes are sorted).
+    const std::uint32_t bit = 1u << (31 - __builtin_clz(differ));
+    const std::uint32_t prefix = codes[0] & ~(bit | (bit - 1));
+    mid = std::size_t(std::lower_bound(codes, codes + n, prefix | bit) - codes);
+  }
+  const std::int32_t node = allocNode();
+  nodes_[node].parent = parent;
+  const std::int32_t left = mortonRange(refs, codes, mid, node);
+  const std::int32_t right = mortonRange(refs + mid, codes + mid, n - mid, node);
+  BvhNode& nd = nodes_[node];
+  nd.left = left;
+  nd.right = right;
+  nd.count = -1;
+  nd.lo = nodes_[left].lo;
+  nd.hi = nodes_[left].hi;
+  grow(nd.lo, nd.hi, nodes_[right].lo, nodes_[right].hi);
+  book_[node].size = static_cast<std::int32_t>(n);
   fitInternalSlab(node);
   return node;
 }
@@ -329,8 +392,8 @@ void TriangleBvh::freeSubtree(std::int32_t node, std::vector<std::uint32_t>* slo
 }
 
 void TriangleBvh::markDirty(std::int32_t node) {
-  while (node >= 0 && !dirty_[node]) {
-    dirty_[node] = 1;
+  while (node >= 0 && !book_[node].dirty) {
+    book_[node].dirty = 1;
     node = nodes_[node].parent;
   }
 }
@@ -355,14 +418,14 @@ void TriangleBvh::removeSlot(std::uint32_t slot) {
 // grow by the triangles removed below, empty leaves and nodes are freed (a node left with one child is
 // replaced by it), boxes are refitted. Returns the node now standing in n's place (-1: nothing left).
 std::int32_t TriangleBvh::settle(std::int32_t n, std::int32_t& removedBelow, BvhUpdateStats& stats) {
-  dirty_[n] = 0;
+  book_[n].dirty = 0;
   touch(n);
   ++stats.refitNodes;
   BvhNode& N = nodes_[n];
   if (N.isLeaf()) {
-    removedBelow = size_[n] - N.count;
-    edits_[n] += removedBelow;
-    size_[n] = N.count;
+    removedBelow = book_[n].size - N.count;
+    book_[n].edits += removedBelow;
+    book_[n].size = N.count;
     if (N.count == 0) {
       freeBlocks_.push_back(N.left);
       N.right = -2;
@@ -373,8 +436,8 @@ std::int32_t TriangleBvh::settle(std::int32_t n, std::int32_t& removedBelow, Bvh
     return n;
   }
   std::int32_t rl = 0, rr = 0;
-  const std::int32_t l = dirty_[N.left] ? settle(N.left, rl, stats) : N.left;
-  const std::int32_t r = dirty_[nodes_[n].right] ? settle(nodes_[n].right, rr, stats) : nodes_[n].right;
+  const std::int32_t l = book_[N.left].dirty ? settle(N.left, rl, stats) : N.left;
+  const std::int32_t r = book_[nodes_[n].right].dirty ? settle(nodes_[n].right, rr, stats) : nodes_[n].right;
   removedBelow = rl + rr;
   if (l < 0 || r < 0) {
     nodes_[n].right = -2;
@@ -386,8 +449,8 @@ std::int32_t TriangleBvh::settle(std::int32_t n, std::int32_t& removedBelow, Bvh
   M.right = r;
   nodes_[l].parent = n;
   nodes_[r].parent = n;
-  edits_[n] += removedBelow;
-  size_[n] = size_[l] + size_[r];
+  book_[n].edits += removedBelow;
+  book_[n].size = book_[l].size + book_[r].size;
   M.lo = nodes_[l].lo;
   M.hi = nodes_[l].hi;
   grow(M.lo, M.hi, nodes_[r].lo, nodes_[r].hi);
@@ -399,7 +462,7 @@ std::int32_t TriangleBvh::rebuildSubtree(std::int32_t node, const std::vector<st
   const std::int32_t parent = nodes_[node].parent;
   const bool wasLeft = parent >= 0 && nodes_[parent].left == node;
   std::vector<std::uint32_t> slots;
-  slots.reserve(std::size_t(size_[node]) + extra.size());
+  slots.reserve(std::size_t(book_[node].size) + extra.size());
   freeSubtree(node, &slots);
   slots.insert(slots.end(), extra.begin(), extra.end());
   std::vector<BuildRef> refs(slots.size());
@@ -420,8 +483,8 @@ std::int32_t TriangleBvh::rebuildSubtree(std::int32_t node, const std::vector<st
 }
 
 void TriangleBvh::touch(std::int32_t node) {
-  if (touchedStamp_[node] == epoch_) return;
-  touchedStamp_[node] = epoch_;
+  if (book_[node].touchedStamp == epoch_) return;
+  book_[node].touchedStamp = epoch_;
   touched_.push_back(node);
 }
 
@@ -465,7 +528,7 @@ void TriangleBvh::graft(std::int32_t sub, BvhUpdateStats& stats) {
       return;
     }
   }
-  const std::int32_t k = size_[sub];
+  const std::int32_t k = book_[sub].size;
   const std::int32_t sibling = bestSibling(S.lo, S.hi);
   const std::int32_t grand = nodes_[sibling].parent;
   const std::int32_t p = allocNode();
@@ -477,16 +540,16 @@ void TriangleBvh::graft(std::int32_t sub, BvhUpdateStats& stats) {
   P.lo = nodes_[sibling].lo;
   P.hi = nodes_[sibling].hi;
   grow(P.lo, P.hi, S.lo, S.hi);
-  size_[p] = size_[sibling] + k;
+  book_[p].size = book_[sibling].size + k;
   fitInternalSlab(p);
-  edits_[p] = std::min(size_[sibling], k);  // the part that was not built together
+  book_[p].edits = std::min(book_[sibling].size, k);  // the part that was not built together
   replaceChild(grand, sibling, p);
   nodes_[sibling].parent = p;
   nodes_[sub].parent = p;
   touch(p);
   for (std::int32_t a = grand; a >= 0; a = nodes_[a].parent) {
-    size_[a] += k;
-    edits_[a] += k;
+    book_[a].size += k;
+    book_[a].edits += k;
     touch(a);
   }
   markDirty(p);
@@ -552,8 +615,8 @@ void TriangleBvh::fitInternalSlab(std::int32_t node) {
 }
 
 void TriangleBvh::refit(std::int32_t node, BvhUpdateStats& stats) {
-  if (node < 0 || !dirty_[node]) return;
-  dirty_[node] = 0;
+  if (node < 0 || !book_[node].dirty) return;
+  book_[node].dirty = 0;
   ++stats.refitNodes;
   if (nodes_[node].isLeaf()) {
     recomputeLeafBox(node);
@@ -579,23 +642,23 @@ void TriangleBvh::maintainQuality(std::size_t editSize, BvhUpdateStats& stats) {
                             2.0 * double(triangleCount_) + 1024.0);
   std::vector<std::int32_t> candidates;
   for (std::int32_t i : touched_)
-    if (touchedStamp_[i] == epoch_ && nodes_[i].right != -2 && !nodes_[i].isLeaf() &&
-        edits_[i] > kRebuildFraction * size_[i])
+    if (book_[i].touchedStamp == epoch_ && nodes_[i].right != -2 && !nodes_[i].isLeaf() &&
+        book_[i].edits > kRebuildFraction * book_[i].size)
       candidates.push_back(i);
   std::sort(candidates.begin(), candidates.end(),
-            [this](std::int32_t a, std::int32_t b) { return size_[a] < size_[b]; });
+            [this](std::int32_t a, std::int32_t b) { return book_[a].size < book_[b].size; });
   for (std::int32_t node : candidates) {
-    if (nodes_[node].right == -2 || nodes_[node].isLeaf() || touchedStamp_[node] != epoch_) continue;  // freed
-    if (!(edits_[node] > kRebuildFraction * size_[node])) continue;  // a rebuild below already fixed it
-    if (double(size_[node]) > rebuildCredit_) continue;
-    const std::int32_t e = edits_[node];
+    if (nodes_[node].right == -2 || nodes_[node].isLeaf() || book_[node].touchedStamp != epoch_) continue;  // freed
+    if (!(book_[node].edits > kRebuildFraction * book_[node].size)) continue;  // a rebuild below already fixed it
+    if (double(book_[node].size) > rebuildCredit_) continue;
+    const std::int32_t e = book_[node].edits;
     const std::int32_t parent = nodes_[node].parent;
-    rebuildCredit_ -= size_[node];
-    stats.rebuiltTriangles += std::size_t(size_[node]);
+    rebuildCredit_ -= book_[node].size;
+    stats.rebuiltTriangles += std::size_t(book_[node].size);
     ++stats.rebuiltSubtrees;
     if (parent < 0) stats.fullRebuild = true;
     rebuildSubtree(node, {});
-    for (std::int32_t a = parent; a >= 0; a = nodes_[a].parent) edits_[a] -= e;
+    for (std::int32_t a = parent; a >= 0; a = nodes_[a].parent) book_[a].edits -= e;
   }
 }
 
@@ -641,7 +704,7 @@ BvhUpdateStats TriangleBvh::update(const std::vector<std::uint32_t>& removedSlot
   ++epoch_;
   touched_.clear();
   for (std::uint32_t s : removedSlots) removeSlot(s);
-  if (root_ >= 0 && dirty_[root_]) {
+  if (root_ >= 0 && book_[root_].dirty) {
     std::int32_t removed = 0;
     root_ = settle(root_, removed, stats);
     if (root_ >= 0) nodes_[root_].parent = -1;
@@ -671,7 +734,7 @@ BvhUpdateStats TriangleBvh::update(const std::vector<std::uint32_t>& removedSlot
         refs[i].centroid = (refs[i].lo + refs[i].hi) * 0.5;
         refs[i].slot = addedSlots[i];
       }
-      graft(buildSubtree(refs, 0, refs.size(), -1), stats);
+      graft(buildMorton(refs, -1), stats);
     }
   }
   refit(root_, stats);
@@ -731,10 +794,10 @@ std::string TriangleBvh::validate() const {
     stack.pop_back();
     const BvhNode& n = nodes_[i];
     if (n.right == -2) return "reachable node " + std::to_string(i) + " is freed";
-    if (dirty_[i]) return "node " + std::to_string(i) + " left dirty";
+    if (book_[i].dirty) return "node " + std::to_string(i) + " left dirty";
     if (n.isLeaf()) {
       if (n.count < 1 || n.count > kLeafCapacity) return "leaf " + std::to_string(i) + " has count " + std::to_string(n.count);
-      if (size_[i] != n.count) return "leaf " + std::to_string(i) + " size counter mismatch";
+      if (book_[i].size != n.count) return "leaf " + std::to_string(i) + " size counter mismatch";
       const std::uint32_t* s = leafSlots(n);
       for (int k = 0; k < n.count; ++k) {
         if (s[k] >= leafOf_.size() || leafOf_[s[k]] != i) return "slot " + std::to_string(s[k]) + " not mapped to its leaf";
@@ -758,7 +821,7 @@ std::string TriangleBvh::validate() const {
         if (nodes_[c].parent != i) return "child " + std::to_string(c) + " has a wrong parent";
         if (!encloses(n, nodes_[c].lo, nodes_[c].hi)) return "node " + std::to_string(i) + " does not enclose its child";
       }
-      if (size_[i] != size_[n.left] + size_[n.right]) return "size counter mismatch at " + std::to_string(i);
+      if (book_[i].size != book_[n.left].size + book_[n.right].size) return "size counter mismatch at " + std::to_string(i);
       stack.push_back(n.left);
       stack.push_back(n.right);
     }

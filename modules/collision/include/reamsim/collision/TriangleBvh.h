@@ -132,6 +132,8 @@ class TriangleBvh {
   std::int32_t buildRange(std::vector<BuildRef>& refs, std::size_t begin, std::size_t end, std::int32_t parent,
                           const Vec3& lo, const Vec3& hi, const Vec3& clo, const Vec3& chi);
   std::int32_t makeLeaf(const BuildRef* refs, std::size_t n, std::int32_t parent);
+  std::int32_t buildMorton(std::vector<BuildRef>& refs, std::int32_t parent);
+  std::int32_t mortonRange(const BuildRef* refs, const std::uint32_t* codes, std::size_t n, std::int32_t parent);
   std::int32_t allocNode();
   std::int32_t allocBlock();
   void freeSubtree(std::int32_t node, std::vector<std::uint32_t>* slotsOut);
@@ -151,10 +153,15 @@ class TriangleBvh {
 
   std::vector<BvhNode> nodes_;
   std::vector<BvhSlab> slabs_;         // by node, see BvhSlab
-  std::vector<std::int32_t> size_;     // triangles in each node's subtree
-  std::vector<std::int32_t> edits_;    // inserts + removals below each node since its subtree was built
-  std::vector<std::uint8_t> dirty_;    // box must be refitted
-  std::vector<std::uint32_t> touchedStamp_;  // == epoch_: on a path edited by the current update
+  // Per-node bookkeeping of the local update, in one record so that an update touches one cache line per
+  // node for it (four parallel arrays cost four misses per node on a large tree).
+  struct NodeBook {
+    std::int32_t size = 0;            // triangles in the node's subtree
+    std::int32_t edits = 0;           // inserts + removals below the node since its subtree was built
+    std::uint32_t touchedStamp = 0;   // == epoch_: on a path edited by the current update
+    std::uint8_t dirty = 0;           // box must be refitted
+  };
+  std::vector<NodeBook> book_;
   std::vector<std::int32_t> touched_;
   std::uint32_t epoch_ = 0;
   std::vector<std::uint32_t> blocks_;  // leaf slot blocks, kLeafCapacity each
