@@ -54,6 +54,27 @@ TEST(collisionBenchCli, PrintsOneJsonObjectWithEveryQueryType) {
   EXPECT_TRUE(j["queries"]["min_distance"]["cgal"].is_null());  // AABB_tree has no triangle-triangle distance
   EXPECT_EQ(j["checks"]["ray_first_hit_identical_to_brute_force"], "40/40");
   EXPECT_TRUE(j.contains("targets"));
+  EXPECT_TRUE(j["update_local"].is_null());  // open bone: ReamSim's own engine is not run
+}
+
+// A closed bone (the bundled default, 15k faces): the update is measured after exact CGAL cuts and after
+// ReamSim's own cuts at the glenoid, each sequence on its own collider.
+TEST(collisionBenchCli, ClosedBoneTimesTheUpdateAfterBothEngines) {
+  const CliRun r = run("bench collision --bone default --poses 10 --no-baselines --cut-steps 3 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["bone"]["closed"], true);
+  EXPECT_NE(j["update"]["kind"].get<std::string>().find("exact"), std::string::npos);
+  ASSERT_TRUE(j["update_local"].is_object()) << r.err;
+  EXPECT_NE(j["update_local"]["kind"].get<std::string>().find("local"), std::string::npos);
+  for (const char* k : {"update", "update_local"}) {
+    EXPECT_GT(j[k]["cuts"].get<int>(), 0) << k;
+    EXPECT_GT(j[k]["median_ms"].get<double>(), 0.0) << k;
+    EXPECT_GT(j[k]["median_removed_faces"].get<double>(), 0.0) << k;
+    EXPECT_GT(j[k]["median_added_faces"].get<double>(), 0.0) << k;
+  }
+  EXPECT_EQ(j["update_after_local_cut_ms"], j["update_local"]["median_ms"]);
+  EXPECT_TRUE(j["targets"].contains("update_after_local_cut_le_1ms"));
 }
 
 TEST(collisionBenchCli, BadInputIsAClearError) {
