@@ -120,6 +120,10 @@ class ToiSearch {
             if (promising(t)) push({t, static_cast<std::int32_t>(bs[i]), -1, Item::BoneTriangle});
           }
         } else {
+          // Both children's nodes and slabs are read next, behind bound tests that return early: fetch them
+          // together (on the 400k scapula, no-contact motions ~14% faster, alternating runs).
+          bone_.prefetchNode(B.left, true);
+          bone_.prefetchNode(B.right, true);
           pushBone(B.left);
           pushBone(B.right);
         }
