@@ -122,6 +122,8 @@ class AxialSweep {
       const double sb = (B.hi.x - B.lo.x) + (B.hi.y - B.lo.y) + (B.hi.z - B.lo.z);
       const double sr = (R.hi.x - R.lo.x) + (R.hi.y - R.lo.y) + (R.hi.z - R.lo.z);
       if (R.isLeaf() || (!B.isLeaf() && sb >= sr)) {
+        bone_.prefetchNode(B.left, false);  // both read below, behind an early return: overlap the misses
+        bone_.prefetchNode(B.right, false);
         pushNodes(B.left, r);
         pushNodes(B.right, r);
       } else {
