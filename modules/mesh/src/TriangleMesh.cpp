@@ -1,6 +1,5 @@
 #include "reamsim/mesh/TriangleMesh.h"
 
-#include <cstring>
 #include <limits>
 #include <unordered_map>
 
@@ -35,39 +34,21 @@ double surfaceArea(const TriangleMesh& mesh) {
 namespace {
 // Index of the first vertex at each position (exact equality; -0 and +0 are the same position).
 std::vector<std::uint32_t> firstAtPosition(const TriangleMesh& mesh) {
-  struct Key {
-    double x, y, z;
-    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
-  };
-  struct Hash {
-    std::size_t operator()(const Key& k) const {
-      const auto bits = [](double d) {
-        std::uint64_t u;
-        d += 0.0;  // -0 -> +0
-        std::memcpy(&u, &d, sizeof u);
-        return u;
-      };
-      return std::size_t(bits(k.x) * 0x9E3779B97F4A7C15ull ^ bits(k.y) * 0xC2B2AE3D27D4EB4Full ^
-                         bits(k.z) * 0x165667B19E3779F9ull);
-    }
-  };
-  std::unordered_map<Key, std::uint32_t, Hash> first;
+  std::unordered_map<Vec3, std::uint32_t, Vec3PositionHash> first;
   first.reserve(mesh.vertices.size());
   std::vector<std::uint32_t> out(mesh.vertices.size());
-  for (std::uint32_t i = 0; i < mesh.vertices.size(); ++i) {
-    const Vec3& p = mesh.vertices[i];
-    out[i] = first.emplace(Key{p.x, p.y, p.z}, i).first->second;
-  }
+  for (std::uint32_t i = 0; i < mesh.vertices.size(); ++i) out[i] = first.emplace(mesh.vertices[i], i).first->second;
   return out;
 }
-}  // namespace
-
-std::size_t countCoincidentVertices(const TriangleMesh& mesh) {
-  const std::vector<std::uint32_t> first = firstAtPosition(mesh);
+// Vertices that are not the first at their position.
+std::size_t countNotFirst(const std::vector<std::uint32_t>& first) {
   std::size_t n = 0;
   for (std::uint32_t i = 0; i < first.size(); ++i) n += first[i] != i;
   return n;
 }
+}  // namespace
+
+std::size_t countCoincidentVertices(const TriangleMesh& mesh) { return countNotFirst(firstAtPosition(mesh)); }
 
 TriangleMesh mergeCoincidentVertices(const TriangleMesh& mesh, std::size_t* merged) {
   const std::vector<std::uint32_t> first = firstAtPosition(mesh);
@@ -81,11 +62,7 @@ TriangleMesh mergeCoincidentVertices(const TriangleMesh& mesh, std::size_t* merg
     out.triangles.push_back(u);
   }
   removeUnusedVertices(out);
-  if (merged) {
-    std::size_t n = 0;
-    for (std::uint32_t i = 0; i < first.size(); ++i) n += first[i] != i;
-    *merged = n;
-  }
+  if (merged) *merged = countNotFirst(first);
   return out;
 }
 

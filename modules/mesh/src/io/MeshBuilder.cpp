@@ -1,7 +1,6 @@
 #include "MeshBuilder.h"
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "reamsim/mesh/MeshError.h"
@@ -17,18 +16,6 @@ std::string coordText(double v) {
 }
 
 }  // namespace
-
-std::size_t MeshBuilder::KeyHash::operator()(const Vec3& v) const {
-  std::size_t h = 1469598103934665603ull;
-  for (double d : {v.x, v.y, v.z}) {
-    if (d == 0) d = 0;  // -0 and +0 weld together
-    std::uint64_t bits;
-    std::memcpy(&bits, &d, sizeof bits);
-    h = (h ^ bits) * 1099511628211ull;
-    h ^= h >> 29;
-  }
-  return h;
-}
 
 void MeshBuilder::reserve(std::size_t vertices, std::size_t triangles) {
   mesh_.vertices.reserve(vertices);

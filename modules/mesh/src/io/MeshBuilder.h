@@ -47,14 +47,11 @@ class MeshBuilder {
   void checkFinite(const Vec3& p, long line, const std::string& what) const;
   std::uint32_t weld(const Vec3& p, long line);
 
-  struct KeyHash {
-    std::size_t operator()(const Vec3& v) const;
-  };
   std::string file_;
   int base_;
   TriangleMesh mesh_;
   std::size_t polygonsTriangulated_ = 0;
-  std::unordered_map<Vec3, std::uint32_t, KeyHash> weld_;
+  std::unordered_map<Vec3, std::uint32_t, Vec3PositionHash> weld_;
 };
 
 }  // namespace reamsim::io

@@ -2,6 +2,10 @@
 // Small value type for points and directions. Kept free of Eigen/CGAL so that every module and the
 // GUI can include it cheaply; heavy geometry lives in a few CGAL translation units.
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <initializer_list>
 
 namespace reamsim {
 
@@ -47,5 +51,21 @@ inline double smallestAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::fmin(at(a, b, c), std::fmin(at(b, c, a), at(c, a, b)));
 }
 inline bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Hash of an exact position, consistent with operator== (-0 and +0 hash alike): for maps that weld or
+// count vertices at identical coordinates.
+struct Vec3PositionHash {
+  std::size_t operator()(const Vec3& v) const {
+    std::size_t h = 1469598103934665603ull;
+    for (double d : {v.x, v.y, v.z}) {
+      if (d == 0) d = 0;  // -0 and +0 are the same position
+      std::uint64_t bits;
+      std::memcpy(&bits, &d, sizeof bits);
+      h = (h ^ bits) * 1099511628211ull;
+      h ^= h >> 29;
+    }
+    return h;
+  }
+};
 
 }  // namespace reamsim
