@@ -231,15 +231,20 @@ std::int32_t TriangleBvh::buildRange(std::vector<BuildRef>& refs, std::size_t be
   nodes_[node].parent = parent;
   const std::int32_t left = buildRange(refs, begin, mid, node, llo, lhi, lclo, lchi);
   const std::int32_t right = buildRange(refs, mid, end, node, rlo, rhi, rclo, rchi);
+  setChildren(node, left, right, lo, hi, n);
+  return node;
+}
+
+void TriangleBvh::setChildren(std::int32_t node, std::int32_t left, std::int32_t right, const Vec3& lo, const Vec3& hi,
+                              std::size_t size) {
   BvhNode& nd = nodes_[node];
   nd.left = left;
   nd.right = right;
   nd.count = -1;
   nd.lo = lo;
   nd.hi = hi;
-  book_[node].size = static_cast<std::int32_t>(n);
+  book_[node].size = static_cast<std::int32_t>(size);
   fitInternalSlab(node);
-  return node;
 }
 
 namespace {
@@ -305,15 +310,9 @@ std::int32_t TriangleBvh::mortonRange(const BuildRef* refs, const std::uint32_t*
   nodes_[node].parent = parent;
   const std::int32_t left = mortonRange(refs, codes, mid, node);
   const std::int32_t right = mortonRange(refs + mid, codes + mid, n - mid, node);
-  BvhNode& nd = nodes_[node];
-  nd.left = left;
-  nd.right = right;
-  nd.count = -1;
-  nd.lo = nodes_[left].lo;
-  nd.hi = nodes_[left].hi;
-  grow(nd.lo, nd.hi, nodes_[right].lo, nodes_[right].hi);
-  book_[node].size = static_cast<std::int32_t>(n);
-  fitInternalSlab(node);
+  Vec3 lo = nodes_[left].lo, hi = nodes_[left].hi;
+  grow(lo, hi, nodes_[right].lo, nodes_[right].hi);
+  setChildren(node, left, right, lo, hi, n);
   return node;
 }
 
