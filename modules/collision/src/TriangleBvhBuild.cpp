@@ -28,6 +28,21 @@ void TriangleBvh::paddedBox(const BvhTriangle& t, Vec3& lo, Vec3& hi) {
   hi += Vec3{pad, pad, pad};
 }
 
+TriangleBvh::BuildRef TriangleBvh::refOf(std::uint32_t slot) const {
+  BuildRef r;
+  paddedBox(tris_[slot], r.lo, r.hi);
+  r.centroid = (r.lo + r.hi) * 0.5;
+  r.slot = slot;
+  return r;
+}
+
+std::vector<TriangleBvh::BuildRef> TriangleBvh::refsOf(const std::vector<std::uint32_t>& slots) const {
+  std::vector<BuildRef> refs;
+  refs.reserve(slots.size());
+  for (std::uint32_t s : slots) refs.push_back(refOf(s));
+  return refs;
+}
+
 TriangleBvh TriangleBvh::fromMesh(const TriangleMesh& mesh) {
   std::vector<std::uint32_t> slots(mesh.triangles.size());
   std::vector<BvhTriangle> tris(mesh.triangles.size());
@@ -72,11 +87,7 @@ void TriangleBvh::rebuild() {
   refs.reserve(tris_.size());
   for (std::uint32_t s = 0; s < leafOf_.size(); ++s) {
     if (leafOf_[s] == -1) continue;
-    BuildRef r;
-    paddedBox(tris_[s], r.lo, r.hi);
-    r.centroid = (r.lo + r.hi) * 0.5;
-    r.slot = s;
-    refs.push_back(r);
+    refs.push_back(refOf(s));
   }
   nodes_.clear();
   slabs_.clear();

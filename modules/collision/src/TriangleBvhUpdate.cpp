@@ -119,12 +119,7 @@ std::int32_t TriangleBvh::rebuildSubtree(std::int32_t node, const std::vector<st
   slots.reserve(std::size_t(book_[node].size) + extra.size());
   freeSubtree(node, &slots);
   slots.insert(slots.end(), extra.begin(), extra.end());
-  std::vector<BuildRef> refs(slots.size());
-  for (std::size_t i = 0; i < slots.size(); ++i) {
-    paddedBox(tris_[slots[i]], refs[i].lo, refs[i].hi);
-    refs[i].centroid = (refs[i].lo + refs[i].hi) * 0.5;
-    refs[i].slot = slots[i];
-  }
+  std::vector<BuildRef> refs = refsOf(slots);
   const std::int32_t fresh = buildSubtree(refs, 0, refs.size(), parent);
   if (parent < 0) {
     root_ = fresh;
@@ -323,13 +318,8 @@ BvhUpdateStats TriangleBvh::update(const std::vector<std::uint32_t>& removedSlot
       rebuild();
       stats.fullRebuild = true;
     } else {
-      // One SAH build over the new triangles (they come from one place), then grafted into the tree.
-      std::vector<BuildRef> refs(addedSlots.size());
-      for (std::size_t i = 0; i < addedSlots.size(); ++i) {
-        paddedBox(tris_[addedSlots[i]], refs[i].lo, refs[i].hi);
-        refs[i].centroid = (refs[i].lo + refs[i].hi) * 0.5;
-        refs[i].slot = addedSlots[i];
-      }
+      // One Morton build over the new triangles (they come from one place), then grafted into the tree.
+      std::vector<BuildRef> refs = refsOf(addedSlots);
       graft(buildMorton(refs, -1), stats);
     }
   }

@@ -137,6 +137,8 @@ class TriangleBvh {
   std::int32_t buildSubtree(std::vector<BuildRef>& refs, std::size_t begin, std::size_t end, std::int32_t parent);
   std::int32_t buildRange(std::vector<BuildRef>& refs, std::size_t begin, std::size_t end, std::int32_t parent,
                           const Vec3& lo, const Vec3& hi, const Vec3& clo, const Vec3& chi);
+  BuildRef refOf(std::uint32_t slot) const;  // the triangle's padded box, centroid and slot
+  std::vector<BuildRef> refsOf(const std::vector<std::uint32_t>& slots) const;
   std::int32_t makeLeaf(const BuildRef* refs, std::size_t n, std::int32_t parent);
   // Completes a built internal node: its children, its box, its subtree size and its slab.
   void setChildren(std::int32_t node, std::int32_t left, std::int32_t right, const Vec3& lo, const Vec3& hi,
