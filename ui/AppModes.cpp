@@ -164,7 +164,8 @@ int runLatencyBench(MainWindow& window, const LatencyOptions& o) {
   Pose start{{b.center().x, b.center().y, b.max.z + 30.0}, {0, 0, -1}, 0};
   if (o.inContact) {
     if (o.bone == "default" && session.plan() && !session.plan()->poses().empty()) start = session.plan()->poses().front();
-    const auto approach = advanceToContactMm(session.bone()->current(), *session.reamer()->cuttingVolume(), start, 200);
+    const auto approach = advanceToContactMm(session.bone()->current(), *session.reamer()->cuttingVolume(), start, 200,
+                                             &session.reamer()->spec());
     if (!approach) {
       std::fprintf(stderr, "reamsim --bench-latency: the reamer meets no bone along its axis\n");
       return 1;

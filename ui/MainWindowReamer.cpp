@@ -58,8 +58,9 @@ void MainWindow::reamToDepth(double depthMm) {
   const BoneState bone = session_->bone()->current();
   const std::uint64_t revision = session_->bone()->currentRevision();
   statusBar()->showMessage(tr("Searching the first contact along the reamer axis…"));
-  contactSearch_.setFuture(QtConcurrent::run([bone, volume, start]() -> std::optional<double> {
-    return advanceToContactMm(bone, *volume, start, kContactSearchMm);
+  const ReamerSpec spec = session_->reamer()->spec();
+  contactSearch_.setFuture(QtConcurrent::run([bone, volume, start, spec]() -> std::optional<double> {
+    return advanceToContactMm(bone, *volume, start, kContactSearchMm, &spec);
   }));
   pendingDepth_ = {start, depthMm, revision};
 }

@@ -71,7 +71,7 @@ void ReamSession::rebuildEngine() {
   if (!reamer_->cuttingVolume() || bone_->current().empty()) return;
   std::unique_ptr<ContactBackend> contact = plugins_.collision() ? plugins_.collision()->createContactBackend() : nullptr;
   CutBackendFactory cut = plugins_.csg() && boneCuttable_ ? plugins_.csg()->cutBackendFactory() : CutBackendFactory{};
-  engine_ = std::make_unique<ReamEngine>(reamer_->cuttingVolume(), std::move(contact), std::move(cut));
+  engine_ = std::make_unique<ReamEngine>(reamer_->cuttingVolume(), std::move(contact), std::move(cut), reamer_->spec());
 }
 
 bool ReamSession::canCollide() const { return engine_ && engine_->canCollide(); }

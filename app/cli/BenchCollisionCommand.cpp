@@ -25,6 +25,7 @@
 #include "reamsim/mesh/MeshIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/tools/ReamerFile.h"
+#include "reamsim/tools/ReamerGeometry.h"
 #include "reamsim/tools/ReamerPresets.h"
 
 namespace reamsim::cli {
@@ -137,11 +138,13 @@ struct Reamer {
   ReamerModel model;
 };
 
-Reamer loadReamer(const std::string& arg) {
+// A preset is modelled as the application models a reamer node (its cutting volume and the spec it was
+// built from); `solidOnly` drops the spec, as for a cutting solid read from a file.
+Reamer loadReamer(const std::string& arg, bool solidOnly) {
   if (std::filesystem::is_regular_file(arg))
     return {std::filesystem::path(arg).filename().string(), ReamerModel::fromSolid(loadCuttingSolidFromFile(arg))};
   const ReamerSpec spec = loadPreset(arg, reamerPresetsPath());
-  return {spec.name, ReamerModel::fromSpec(spec)};
+  return {spec.name, ReamerModel::fromCuttingVolume(buildCuttingSolid(spec), solidOnly ? nullptr : &spec)};
 }
 
 struct CutSite {
@@ -263,7 +266,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
   CliArgs a(args,
             {"bone", "reamer", "units", "poses", "seed", "label", "cut-site", "cut", "cut-steps", "thesis-budget-s",
              "cgal-budget-s"},
-            {"json", "no-baselines"});
+            {"json", "no-baselines", "solid-only"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string boneArg = a.required("bone");
   const std::size_t n = static_cast<std::size_t>(a.number("poses", 1000));
@@ -289,7 +292,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
     mesh = std::move(m.mesh);
   }
   if (mesh.triangles.empty()) throw InputError(boneArg, "the mesh has no triangles");
-  const Reamer reamer = loadReamer(a.value("reamer", "glenoid-36-R30"));
+  const Reamer reamer = loadReamer(a.value("reamer", "glenoid-36-R30"), a.has("solid-only"));
   const ReamerModel& rm = reamer.model;
 
   // --- build ---
@@ -530,7 +533,8 @@ int runBenchCollision(const std::vector<std::string>& args) {
                         {"vertices", mesh.vertices.size()}, {"closed", collider.closed()},
                         {"bounds_diagonal_mm", boneBounds.diagonal()}}},
               {"reamer", {{"name", reamer.name}, {"faces", rm.solid().triangles.size()},
-                          {"cutting_face_triangles", rm.faceTriangles().size()}, {"radius_mm", rm.radius()}}},
+                          {"cutting_face_triangles", rm.faceTriangles().size()}, {"radius_mm", rm.radius()},
+                          {"ideal_solid", rm.idealSolid().valid}}},
               {"faces", mesh.triangles.size()},
               {"poses", n},
               {"seed", seed},

@@ -80,6 +80,28 @@ TEST(collisionAlerts, ThesisAlertsFromTheExactQueries) {
   EXPECT_NE(describe(alerts.alerts()[1]).find("contact"), std::string::npos);
 }
 
+// The application hands the collision engine a reamer node's cutting volume and spec: the ideal solid (the
+// fast path's bounds) is used only when the volume is exactly the spec's own mesh.
+TEST(collisionReamerModel, CuttingVolumeUsesItsSpecOnlyWhenItIsTheSpecsMesh) {
+  for (const bool flat : {false, true}) {
+    const ReamerSpec spec = test::smallSpec(flat);
+    const TriangleMesh own = buildCuttingSolid(spec);
+    const ReamerModel model = ReamerModel::fromCuttingVolume(own, &spec);
+    EXPECT_TRUE(model.idealSolid().valid) << flat;
+    EXPECT_EQ(model.faceTriangles(), ReamerModel::fromSpec(spec).faceTriangles()) << flat;
+    EXPECT_FALSE(ReamerModel::fromCuttingVolume(own, nullptr).idealSolid().valid) << flat;
+    TriangleMesh moved = own;
+    moved.vertices[moved.vertices.size() / 2].z += 1e-9;  // no longer inscribed as the spec says
+    EXPECT_FALSE(ReamerModel::fromCuttingVolume(moved, &spec).idealSolid().valid) << flat;
+    ReamerSpec other = spec;
+    other.segments += 4;  // the same shape at another resolution: a different mesh
+    EXPECT_FALSE(ReamerModel::fromCuttingVolume(own, &other).idealSolid().valid) << flat;
+    ReamerSpec fromFile = spec;
+    fromFile.meshFile = "cutter.stl";
+    EXPECT_FALSE(ReamerModel::fromCuttingVolume(own, &fromFile).idealSolid().valid) << flat;
+  }
+}
+
 // The inside test (ideal-solid shortcut, pseudo-normal search in the band) against crossing parity, away
 // from the surface where parity is reliable; for spherical, flat and mesh-file reamers.
 TEST(collisionReamerModel, InsideTestAgreesWithCrossingParity) {

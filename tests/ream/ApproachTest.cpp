@@ -28,6 +28,29 @@ TEST(Approach, DistanceToTheFirstContactAlongTheAxis) {
   EXPECT_NEAR(*advanceToContactMm(block, tool, Pose{{0, 0, start}, axis, 0}, 100), expected, 1e-6);
 }
 
+// With the spec the cutting volume was built from, the search runs on the reamer's ideal solid (the GUI's
+// path): the same distances.
+TEST(Approach, TheSpecsFastPathFindsTheSameContact) {
+  const BoneState block = BoneState::fromMesh(test::blockBelowZ0());
+  ReamerSpec glenoid = test::flatReamer20();
+  glenoid.name = "spherical-36-R30";
+  glenoid.diameterMm = 36;
+  glenoid.sphereRadiusMm = 30;
+  glenoid.rings = 8;
+  for (const ReamerSpec& spec : {test::flatReamer20(), glenoid}) {
+    const TriangleMesh tool = buildCuttingSolid(spec);
+    for (const double z : {0.0, 2.0, 37.25}) {
+      for (const double tilt : {0.0, 0.4}) {
+        const Pose start{{3, -2, z}, normalized(Vec3{std::sin(tilt), 0, -std::cos(tilt)}), 0};
+        const auto general = advanceToContactMm(block, tool, start, 100);
+        const auto fast = advanceToContactMm(block, tool, start, 100, &spec);
+        ASSERT_TRUE(general.has_value() && fast.has_value()) << spec.name << " " << z << " " << tilt;
+        EXPECT_NEAR(*fast, *general, 1e-9) << spec.name << " " << z << " " << tilt;
+      }
+    }
+  }
+}
+
 TEST(Approach, PosesMoveToContactThenFeedInSteps) {
   const Pose start{{0, 0, 10}, {0, 0, -1}, 0};
   const std::vector<Pose> p = reamToDepthPoses(start, 2.0, 1.0, 0.4);

@@ -286,6 +286,15 @@ ReamerModel ReamerModel::fromSolid(TriangleMesh cuttingSolid) {
   return ReamerModel(std::move(cuttingSolid), std::move(face));
 }
 
+ReamerModel ReamerModel::fromCuttingVolume(const TriangleMesh& cuttingSolid, const ReamerSpec* builtFrom) {
+  if (builtFrom && builtFrom->meshFile.empty()) {
+    ReamerModel model = fromSpec(*builtFrom);
+    // The ideal solid's bounds hold for the spec's own mesh only: any other mesh takes the general path.
+    if (model.solid_.vertices == cuttingSolid.vertices && model.solid_.triangles == cuttingSolid.triangles) return model;
+  }
+  return fromSolid(cuttingSolid);
+}
+
 bool ReamerModel::containsLocal(const Vec3& p) const {
   if (ideal_.valid) {
     // Outside the ideal solid: outside the mesh. Deeper inside than the sag: inside the mesh.

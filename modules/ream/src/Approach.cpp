@@ -7,11 +7,11 @@
 
 namespace reamsim {
 std::optional<double> advanceToContactMm(const BoneState& bone, const TriangleMesh& cuttingVolumeLocal,
-                                         const Pose& start, double maxMm) {
+                                         const Pose& start, double maxMm, const ReamerSpec* spec) {
   if (!(maxMm > 0) || !std::isfinite(maxMm)) throw std::invalid_argument("advanceToContactMm: maxMm must be > 0");
   if (bone.empty()) return std::nullopt;
   const BoneCollider collider(bone);
-  const ReamerModel reamer = ReamerModel::fromSolid(cuttingVolumeLocal);
+  const ReamerModel reamer = ReamerModel::fromCuttingVolume(cuttingVolumeLocal, spec);
   const FirstContactResult r =
       collider.firstContact(reamer, toTransform(start), toTransform(advancedAlongAxis(start, maxMm)));
   if (!r.hit) return std::nullopt;

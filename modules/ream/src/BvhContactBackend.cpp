@@ -15,7 +15,7 @@ class BvhContactBackend final : public ContactBackend {
   explicit BvhContactBackend(bool axialDepth) : axialDepth_(axialDepth) {}
 
   ContactResult query(const ContactInput& in) override {
-    syncReamer(in.cuttingVolumeLocal);
+    syncReamer(in.cuttingVolumeLocal, in.reamerSpec);
     syncBone(in.bone, in.revision);
 
     ContactResult r;
@@ -44,9 +44,9 @@ class BvhContactBackend final : public ContactBackend {
   }
 
  private:
-  void syncReamer(const std::shared_ptr<const TriangleMesh>& solid) {
+  void syncReamer(const std::shared_ptr<const TriangleMesh>& solid, const ReamerSpec* spec) {
     if (solid == reamerSource_) return;
-    reamer_ = std::make_unique<ReamerModel>(ReamerModel::fromSolid(*solid));
+    reamer_ = std::make_unique<ReamerModel>(ReamerModel::fromCuttingVolume(*solid, spec));
     reamerSource_ = solid;
   }
 

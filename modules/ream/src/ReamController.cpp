@@ -10,7 +10,7 @@ ReamController::ReamController(Document& document, BoneNode& bone, ReamerNode& r
       reamer_(reamer),
       log_(log),
       alerts_(alerts),
-      engine_(reamer.cuttingVolume(), std::move(contact), std::move(cut)) {
+      engine_(reamer.cuttingVolume(), std::move(contact), std::move(cut), reamer.spec()) {
   engine_.prepare(bone_.current(), bone_.currentRevision());
 }
 

@@ -29,8 +29,11 @@ std::vector<Vec3> forwardFacingVertices(const TriangleMesh& m) {
 }
 
 ReamEngine::ReamEngine(std::shared_ptr<const TriangleMesh> cuttingVolumeLocal, std::unique_ptr<ContactBackend> contact,
-                       CutBackendFactory cut)
-    : cuttingVolume_(std::move(cuttingVolumeLocal)), contact_(std::move(contact)), cutFactory_(std::move(cut)) {
+                       CutBackendFactory cut, std::optional<ReamerSpec> spec)
+    : cuttingVolume_(std::move(cuttingVolumeLocal)),
+      spec_(std::move(spec)),
+      contact_(std::move(contact)),
+      cutFactory_(std::move(cut)) {
   if (!cuttingVolume_) throw std::invalid_argument("the reamer has no cutting volume");
   localFaceVertices_ = forwardFacingVertices(*cuttingVolume_);
   convexSolid_ = isConvexSolid(*cuttingVolume_);
@@ -87,7 +90,8 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   for (const Vec3& p : localFaceVertices_) probes.push_back(toBone.apply(p));
   const Bounds boneBounds = bone.bounds();
   out.contact = contact_->query(
-      {bone, revision, boneMesh_, boneBounds, cuttingVolume_, toBone, tool, probes, normalized(pose.axis), stepMm});
+      {bone, revision, boneMesh_, boneBounds, cuttingVolume_, spec_ ? &*spec_ : nullptr, toBone, tool, probes,
+       normalized(pose.axis), stepMm});
   out.contactChecked = true;
 
   // An exact engine says whether the cutting volume reaches the bone; with the thesis's rays the Boolean runs

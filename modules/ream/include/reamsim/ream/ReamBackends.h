@@ -10,6 +10,7 @@
 #include "reamsim/collision/ContactResult.h"
 #include "reamsim/core/BoneState.h"
 #include "reamsim/core/Pose.h"
+#include "reamsim/core/ReamerSpec.h"
 #include "reamsim/csg/ReferenceSubtractor.h"
 #include "reamsim/mesh/Bounds.h"
 #include "reamsim/mesh/TriangleMesh.h"
@@ -23,6 +24,7 @@ struct ContactInput {
   const TriangleMesh& boneMesh;  // `bone` as a plain mesh
   const Bounds& boneBounds;
   const std::shared_ptr<const TriangleMesh>& cuttingVolumeLocal;  // reamer-local, the same object every call
+  const ReamerSpec* reamerSpec;  // the spec the volume was built from, when known (null: a solid alone)
   const RigidTransform& pose;    // reamer-local -> bone
   const TriangleMesh& tool;      // the cutting volume placed at `pose`
   const std::vector<Vec3>& probes;  // forward-facing cutting-face vertices placed at `pose` (thesis rays)

@@ -31,8 +31,10 @@ struct ReamComputation {
 class ReamEngine {
  public:
   // `contact` may be null (no collision: nothing is cut) and `cut` empty (collision and alerts only).
+  // `spec`: what the cutting volume was built from, when known (a parametric reamer's collision queries
+  // then use its ideal solid; see ReamerModel::fromCuttingVolume).
   ReamEngine(std::shared_ptr<const TriangleMesh> cuttingVolumeLocal, std::unique_ptr<ContactBackend> contact,
-             CutBackendFactory cut);
+             CutBackendFactory cut, std::optional<ReamerSpec> spec = std::nullopt);
   ~ReamEngine();
 
   // Builds the cutting engine for this bone state now (otherwise the first compute does). Throws what
@@ -56,6 +58,7 @@ class ReamEngine {
   void sync(const BoneState& bone, std::uint64_t revision);
 
   std::shared_ptr<const TriangleMesh> cuttingVolume_;
+  std::optional<ReamerSpec> spec_;
   std::vector<Vec3> localFaceVertices_;
   bool convexSolid_ = false;  // swept volumes are hulls: convex cutting solids only
   double axialLength_ = 0;    // extent of the cutting solid along its axis
