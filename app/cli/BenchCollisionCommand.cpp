@@ -175,12 +175,12 @@ json benchUpdates(const TriangleMesh& mesh, BoneState state, BoneCollider& colli
   std::unique_ptr<LocalSubtractor> local;
   std::string kind = "dent (synthetic: touched faces replaced, inside vertices pushed onto the reamer)";
   if (mode == "local") {
-    local = std::make_unique<LocalSubtractor>(mesh);
-    kind = "local (ReamSim's cutting engine with its band clean-up, as the application cuts) + diffSlots";
+    local = std::make_unique<LocalSubtractor>(state);
+    kind = "local (ReamSim's cutting engine with its band clean-up, as the application cuts) + changed slots";
   } else if (mode != "dent") {
     try {
       engine = std::make_unique<ReferenceSubtractor>(mesh);
-      kind = "exact (CGAL corefinement reference) + BoneState::commitByDiff + diffSlots";
+      kind = "exact (CGAL corefinement reference) + BoneState::commitByDiff + changed slots";
     } catch (const std::exception& e) {
       if (mode == "exact") throw;
       std::fprintf(stderr, "note: exact cuts unavailable (%s); using the synthetic dent cut\n", e.what());
@@ -209,7 +209,7 @@ json benchUpdates(const TriangleMesh& mesh, BoneState state, BoneCollider& colli
         next = BoneState::commitByDiff(state, engine->mesh());
       }
       const auto t0 = Clock::now();
-      const SlotChanges changes = diffSlots(collider.bvh(), next);
+      const SlotChanges changes = collider.changesTo(next);
       diffMs.push_back(microsSince(t0) * 1e-3);
       const BvhUpdateStats s = timedUpdate(collider, [&](BoneCollider& c) { return c.update(next, changes.removed, changes.added); });
       updateMs.push_back(s.milliseconds);

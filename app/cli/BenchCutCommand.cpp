@@ -17,12 +17,15 @@
 #include "CliArgs.h"
 #include "Commands.h"
 #include "NodePeers.h"
+#include "reamsim/core/Document.h"
 #include "reamsim/csg/LocalSubtractor.h"
 #include "reamsim/csg/ReferenceSubtractor.h"
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/mesh/MeshIO.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
+#include "reamsim/ream/LocalCutBackend.h"
+#include "reamsim/ream/ReamController.h"
 #include "reamsim/tools/ReamerGeometry.h"
 #include "reamsim/tools/ReamerPresets.h"
 
@@ -259,13 +262,60 @@ nlohmann::json table51(const TriangleMesh& bone, const TriangleMesh& localTool, 
           {"rows", rows}};
 }
 
+// --loop: the same poses through the application's reaming loop (ReamController on a Document, the GUI's
+// engines: the BVH collision without axial depth, the local cut with its clean-up): what a step costs the
+// user, of which the Boolean is one part. Each step moves from the previous pose, as a plan does.
+nlohmann::json appLoop(const TriangleMesh& bone, const ReamerSpec& spec, const TriangleMesh& localTool,
+                       const std::vector<Pose>& poses, bool cleanup) {
+  Document doc;
+  auto& boneNode = doc.create<BoneNode>("Bone", BoneState::fromMesh(bone));
+  auto& reamer = doc.create<ReamerNode>("Reamer", spec);
+  reamer.setCuttingVolume(std::make_shared<const TriangleMesh>(localTool));
+  auto& log = doc.create<LogNode>("Log");
+  auto& alerts = doc.create<AlertNode>("Alerts");
+  const auto t0 = std::chrono::steady_clock::now();
+  ReamController controller(doc, boneNode, reamer, log, &alerts, localCutBackendFactory(cleanup),
+                            makeBvhContactBackend(false));
+  const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::vector<double> step, contact, cut, state, commit;  // of the steps that cut
+  std::size_t failures = 0;
+  for (const Pose& p : poses) {
+    const auto s0 = std::chrono::steady_clock::now();
+    try {
+      const ReamStepOutcome o = controller.moveTo(p);
+      if (!o.cut.changed) continue;
+      step.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - s0).count());
+      contact.push_back(o.times.contact);
+      cut.push_back(o.times.cut);
+      state.push_back(o.times.state);
+      commit.push_back(o.commitMs);
+    } catch (const std::exception&) {
+      ++failures;
+    }
+  }
+  auto stats = [](const std::vector<double>& v) {
+    return nlohmann::json{{"median_ms", percentile(v, 0.5)}, {"p95_ms", percentile(v, 0.95)}, {"p99_ms", percentile(v, 0.99)}};
+  };
+  return {{"what", "steps that cut, through ReamController (collision query + Boolean + next state + document commit)"},
+          {"setup_ms", setupMs},
+          {"cuts", step.size()},
+          {"failures", failures},
+          {"step", stats(step)},
+          {"parts_median_ms", {{"contact", percentile(contact, 0.5)},
+                               {"cut", percentile(cut, 0.5)},
+                               {"state", percentile(state, 0.5)},
+                               {"commit", percentile(commit, 0.5)}}},
+          {"faces_end", boneNode.current().liveTriangleCount()},
+          {"volume_end_mm3", boneNode.current().volume()}};
+}
+
 }  // namespace
 
 int runBenchCut(const std::vector<std::string>& args) {
   CliArgs a(args,
             {"bone", "units", "subdivide", "steps", "depth", "tilt", "reamer", "check-every", "export-sequence",
              "peers-dir", "peers-budget-ms", "path", "cleanup-deviation-mm", "cleanup-min-edge-mm", "cleanup-min-angle-deg"},
-            {"json", "peers", "table-5-1", "no-cleanup", "avoid-defects"});
+            {"json", "peers", "table-5-1", "no-cleanup", "avoid-defects", "loop"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string boneArg = a.value("bone", "default");
   const int steps = int(a.number("steps", 200));
@@ -443,6 +493,11 @@ int runBenchCut(const std::vector<std::string>& args) {
       if (scratch) fs::remove_all(seqDir, ec);
     }
     out["peers"] = peers;
+  }
+  if (a.has("loop")) {
+    out["loop"] = appLoop(bone, spec, localTool, poses, !a.has("no-cleanup"));
+    out["loop"]["volume_end_diff_rel"] =
+        std::abs(out["loop"]["volume_end_mm3"].get<double>() - engine.volumeMm3()) / engine.volumeMm3();
   }
   if (a.has("table-5-1")) out["table_5_1"] = table51(bone, localTool, spot);
 

@@ -152,6 +152,10 @@ TEST(collisionBvhUpdate, ExactCgalCutsFollowedBySyncTo) {
     const SlotChanges changes = diffSlots(collider.bvh(), next);
     EXPECT_FALSE(changes.removed.empty());
     EXPECT_FALSE(changes.added.empty());
+    // What syncTo follows: the slots that differ from the state the tree holds, found by chunk identity.
+    const SlotChanges followed = collider.changesTo(next);
+    EXPECT_EQ(followed.removed, changes.removed);
+    EXPECT_EQ(followed.added, changes.added);
     const BvhUpdateStats s = collider.syncTo(next);
     EXPECT_EQ(s.removed, changes.removed.size());
     EXPECT_EQ(s.added, changes.added.size());

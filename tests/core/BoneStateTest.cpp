@@ -325,3 +325,64 @@ TEST(BoneState, CommitByDiffKeepsCoincidentVerticesDistinct) {
   EXPECT_TRUE(sameSurface(s1.toMesh(), next));
   EXPECT_THROW(BoneState::commitByDiff(s0, TriangleMesh{{}, {{0, 1, 2}}}), std::invalid_argument);
 }
+
+namespace {
+SlotChanges changedSlotBySlot(const BoneState& prev, const BoneState& next) {
+  SlotChanges out;
+  const std::size_t n = std::max(prev.triangleSlotCount(), next.triangleSlotCount());
+  for (std::uint32_t s = 0; s < n; ++s) {
+    const bool wasLive = prev.isTriangleLive(s), isLive = next.isTriangleLive(s);
+    if (wasLive && isLive && prev.triangle(s) == next.triangle(s)) continue;
+    if (wasLive) out.removed.push_back(s);
+    if (isLive) out.added.push_back(s);
+  }
+  return out;
+}
+}  // namespace
+
+// The chunk-skipping diff (what the collider follows cuts with) against a slot-by-slot comparison: states
+// several deltas apart in both directions, a commitByDiff state, and unrelated states.
+TEST(BoneState, ChangedTriangleSlotsMatchASlotBySlotComparison) {
+  std::mt19937 rng(11);
+  const TriangleMesh m = test::grid(40);  // 3,200 triangles: 13 chunks
+  std::vector<BoneState> states{BoneState::fromMesh(m)};
+  for (int step = 0; step < 60; ++step) {
+    const BoneState& s = states.back();
+    std::vector<std::uint32_t> live;
+    s.forEachLiveTriangle([&](std::uint32_t slot, const Triangle&) { live.push_back(slot); });
+    std::shuffle(live.begin(), live.end(), rng);
+    MeshDelta d;
+    // Split a few triangles at their centroid, and re-add one rotated (same face, other slot contents).
+    const std::size_t splits = 1 + rng() % 5;
+    for (std::size_t i = 0; i < splits; ++i) {
+      const Triangle& t = s.triangle(live[i]);
+      d.removedTriangles.push_back(live[i]);
+      d.addedVertices.push_back((s.vertex(t[0]) + s.vertex(t[1]) + s.vertex(t[2])) * (1.0 / 3));
+      const std::uint32_t c = MeshDelta::newVertex(std::uint32_t(d.addedVertices.size() - 1));
+      d.addedTriangles.insert(d.addedTriangles.end(), {{t[0], t[1], c}, {t[1], t[2], c}, {t[2], t[0], c}});
+    }
+    const Triangle& r = s.triangle(live[splits]);
+    d.removedTriangles.push_back(live[splits]);
+    d.addedTriangles.push_back({r[1], r[2], r[0]});
+    states.push_back(s.applyDelta(d));
+  }
+  auto expectSame = [](const BoneState& a, const BoneState& b, const std::string& what) {
+    const SlotChanges fast = BoneState::changedTriangleSlots(a, b), slow = changedSlotBySlot(a, b);
+    EXPECT_EQ(fast.removed, slow.removed) << what;
+    EXPECT_EQ(fast.added, slow.added) << what;
+  };
+  for (std::size_t i = 0; i + 1 < states.size(); ++i) {
+    const std::string at = "state " + std::to_string(i);
+    expectSame(states[i], states[i + 1], at + " -> next");
+    expectSame(states[i + 1], states[i], at + " <- next");
+    if (i + 7 < states.size()) expectSame(states[i], states[i + 7], at + " -> 7 later");
+    EXPECT_TRUE(BoneState::changedTriangleSlots(states[i], states[i]).added.empty());
+  }
+  const SlotChanges step = BoneState::changedTriangleSlots(states[0], states[1]);
+  EXPECT_LE(step.added.size(), 16u);  // a local edit lists only its own slots
+  TriangleMesh moved = states.back().toMesh();
+  moved.triangles.resize(moved.triangles.size() - 50);
+  expectSame(states.back(), BoneState::commitByDiff(states.back(), moved), "commitByDiff");
+  expectSame(states.back(), BoneState::fromMesh(m), "unrelated");
+  expectSame(BoneState::fromMesh(m), BoneState::fromMesh(test::grid(7)), "smaller, unrelated");
+}

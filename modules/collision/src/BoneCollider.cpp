@@ -59,7 +59,7 @@ SlotChanges diffSlots(const TriangleBvh& bvh, const BoneState& next) {
   return out;
 }
 
-BoneCollider::BoneCollider(const BoneState& state) {
+BoneCollider::BoneCollider(const BoneState& state) : followed_(state) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::uint32_t> slots;
   std::vector<BvhTriangle> tris;
@@ -93,7 +93,9 @@ BvhUpdateStats BoneCollider::update(const BoneState& next, const std::vector<std
       throw std::invalid_argument("BoneCollider::update: added slot " + std::to_string(s) + " is not live in the new state");
     tris.push_back(cornersOf(next, s));
   }
-  return bvh_.update(removedSlots, addedSlots, tris);
+  BvhUpdateStats stats = bvh_.update(removedSlots, addedSlots, tris);
+  followed_ = next;
+  return stats;
 }
 
 BvhUpdateStats BoneCollider::applyDelta(const BoneState& next, const MeshDelta& delta, const DeltaPlacement& placement) {
@@ -104,10 +106,14 @@ BvhUpdateStats BoneCollider::applyDelta(const BoneState& next, const MeshDelta& 
 
 BvhUpdateStats BoneCollider::syncTo(const BoneState& next) {
   const auto start = std::chrono::steady_clock::now();
-  const SlotChanges c = diffSlots(bvh_, next);
+  const SlotChanges c = changesTo(next);
   BvhUpdateStats stats = update(next, c.removed, c.added);
   stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return stats;
+}
+
+SlotChanges BoneCollider::changesTo(const BoneState& next) const {
+  return followed_ ? BoneState::changedTriangleSlots(*followed_, next) : diffSlots(bvh_, next);
 }
 
 }  // namespace reamsim

@@ -22,8 +22,32 @@ using detail::SegmentMotion;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Per-thread scratch: reamer node boxes rotated by R0 and reamer triangles rotated by R0, filled on first use.
+// An entry of the best-first search's queue.
+struct ToiItem {
+  enum Kind : std::uint8_t { Nodes, Triangles, BoneOnly, BoneTriangle };
+  double slb;
+  // Nodes: (bone node, reamer node); Triangles: (bone slot, reamer slot); BoneOnly: bone node;
+  // BoneTriangle: bone slot.
+  std::int32_t b, r;
+  Kind kind;
+  bool operator<(const ToiItem& o) const { return slb > o.slb; }  // min-heap
+};
+
+// Per-thread scratch: reamer node boxes rotated by R0 and reamer triangles rotated by R0, filled on first use;
+// and the search's queue, stack and set of queued pairs, kept so that a query allocates nothing.
 struct ToiScratch {
+  std::vector<ToiItem> heap;
+  std::vector<std::int32_t> rstack;
+  // (bone slot, reamer slot) pairs already queued by this search: open addressing, size a power of two,
+  // 0 = empty. The cells in use are listed, so the next search clears those instead of the whole table.
+  std::vector<std::uint64_t> seen;
+  std::vector<std::uint32_t> seenUsed;
+  int seenShift = 64;
+  void clearSeen() {
+    for (std::uint32_t i : seenUsed) seen[i] = 0;
+    seenUsed.clear();
+  }
+
   std::vector<std::uint32_t> nodeStamp, triStamp, planeStamp;
   std::vector<Vec3> a0lo, a0hi, rlo, rhi;
   std::vector<detail::AxisSweep> slab;
@@ -86,6 +110,7 @@ class ToiSearch {
         m_(m), out_(out),
         sc_(tlsScratch) {
     sc_.begin(rtree_.nodes().size(), rtree_.slotCapacity());
+    sc_.clearSeen();
     initHull(reamer);
   }
 
@@ -195,15 +220,7 @@ class ToiSearch {
     return sc_.q[slot];
   }
 
-  struct Item {
-    enum Kind : std::uint8_t { Nodes, Triangles, BoneOnly, BoneTriangle };
-    double slb;
-    // Nodes: (bone node, reamer node); Triangles: (bone slot, reamer slot); BoneOnly: bone node;
-    // BoneTriangle: bone slot.
-    std::int32_t b, r;
-    Kind kind;
-    bool operator<(const Item& o) const { return slb > o.slb; }  // min-heap
-  };
+  using Item = ToiItem;
   bool promising(double t) const { return found_ ? t < best_ : t <= best_; }
   void push(const Item& it) {
     heap_.push_back(it);
@@ -376,25 +393,27 @@ class ToiSearch {
   // segment, so a later window need not queue it again.
   bool firstVisit(std::uint32_t boneSlot, std::uint32_t reamerSlot) {
     const std::uint64_t key = (std::uint64_t(boneSlot) << 32 | reamerSlot) + 1;  // 0 marks an empty cell
-    if (seen_.size() < 2 * seenCount_ + 64) {
-      std::vector<std::uint64_t> old(std::max<std::size_t>(256, seen_.size() * 2), 0);
-      old.swap(seen_);
-      seenCount_ = 0;
-      seenShift_ = 64;
-      for (std::size_t n = seen_.size(); n > 1; n >>= 1) --seenShift_;
-      for (std::uint64_t k : old)
-        if (k) insertSeen(k);
+    std::vector<std::uint64_t>& seen = sc_.seen;
+    if (seen.size() < 2 * sc_.seenUsed.size() + 64) {
+      std::vector<std::uint64_t> old(std::max<std::size_t>(256, seen.size() * 2), 0);
+      old.swap(seen);
+      sc_.seenShift = 64;
+      for (std::size_t n = seen.size(); n > 1; n >>= 1) --sc_.seenShift;
+      std::vector<std::uint32_t> used;
+      used.swap(sc_.seenUsed);
+      for (std::uint32_t i : used) insertSeen(old[i]);
     }
     return insertSeen(key);
   }
   bool insertSeen(std::uint64_t key) {
-    const std::size_t mask = seen_.size() - 1;
+    std::vector<std::uint64_t>& seen = sc_.seen;
+    const std::size_t mask = seen.size() - 1;
     // Fibonacci hashing: the product's top bits mix both slots.
-    for (std::size_t i = std::size_t((key * 0x9E3779B97F4A7C15ull) >> seenShift_);; i = (i + 1) & mask) {
-      if (seen_[i] == key) return false;
-      if (seen_[i] == 0) {
-        seen_[i] = key;
-        ++seenCount_;
+    for (std::size_t i = std::size_t((key * 0x9E3779B97F4A7C15ull) >> sc_.seenShift);; i = (i + 1) & mask) {
+      if (seen[i] == key) return false;
+      if (seen[i] == 0) {
+        seen[i] = key;
+        sc_.seenUsed.push_back(std::uint32_t(i));
         return true;
       }
     }
@@ -478,11 +497,8 @@ class ToiSearch {
   bool hull_ = false;
   detail::BallSweep ball_;
   std::array<detail::AxisSweep, 5> hullSlabs_;
-  std::vector<Item> heap_;
-  std::vector<std::int32_t> rstack_;
-  std::vector<std::uint64_t> seen_;  // open addressing, size a power of two
-  std::size_t seenCount_ = 0;
-  int seenShift_ = 64;
+  std::vector<Item>& heap_ = sc_.heap;
+  std::vector<std::int32_t>& rstack_ = sc_.rstack;
 };
 
 }  // namespace

@@ -149,4 +149,26 @@ BoneState BoneState::commitByDiff(const BoneState& prev, const TriangleMesh& nex
   return prev.applyDelta(delta);
 }
 
+SlotChanges BoneState::changedTriangleSlots(const BoneState& prev, const BoneState& next) {
+  SlotChanges out;
+  const std::size_t slots = std::max(prev.triangles_.size(), next.triangles_.size());
+  for (std::size_t first = 0; first < slots; first += kChunkSize) {
+    const std::size_t c = first / kChunkSize;
+    const bool inBoth = first < prev.triangles_.size() && first < next.triangles_.size();
+    // A shared chunk (same storage) holds the same triangles, unless one state has since grown into it.
+    const std::size_t last = std::min(slots, first + kChunkSize);
+    if (inBoth && prev.triangles_.chunkIdentity(c) == next.triangles_.chunkIdentity(c) &&
+        last <= std::min(prev.triangles_.size(), next.triangles_.size()))
+      continue;
+    for (std::size_t s = first; s < last; ++s) {
+      const auto slot = std::uint32_t(s);
+      const bool wasLive = prev.isTriangleLive(slot), isLive = next.isTriangleLive(slot);
+      if (wasLive && isLive && prev.triangles_[s] == next.triangles_[s]) continue;
+      if (wasLive) out.removed.push_back(slot);
+      if (isLive) out.added.push_back(slot);
+    }
+  }
+  return out;
+}
+
 }  // namespace reamsim

@@ -957,11 +957,14 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   return cut;
 }
 
-LocalSubtractor::LocalSubtractor(const TriangleMesh& bone) : impl_(std::make_unique<Impl>()) {
-  if (bone.triangles.empty()) throw std::invalid_argument("bone mesh is empty");
+LocalSubtractor::LocalSubtractor(const TriangleMesh& bone)
+    : LocalSubtractor(bone.triangles.empty() ? BoneState() : BoneState::fromMesh(bone)) {}
+
+LocalSubtractor::LocalSubtractor(const BoneState& bone) : impl_(std::make_unique<Impl>()) {
+  if (bone.empty()) throw std::invalid_argument("bone mesh is empty");
   const auto start = std::chrono::steady_clock::now();
   Impl& m = *impl_;
-  m.state = BoneState::fromMesh(bone);
+  m.state = bone;
   // Scan in slot order so that flags index slots directly.
   TriangleMesh slots;
   slots.vertices.resize(m.state.vertexSlotCount());

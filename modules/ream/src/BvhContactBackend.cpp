@@ -50,12 +50,13 @@ class BvhContactBackend final : public ContactBackend {
     reamerSource_ = solid;
   }
 
-  // A cut changes a small part of the slots: follow it locally. A different bone (import, undo across many
-  // cuts) changes most of them: build afresh, which is faster then and re-derives whether it is closed.
+  // A cut changes a small part of the slots: follow it locally (the states share their unchanged chunks,
+  // so finding the changed slots costs microseconds). A different bone (import, undo across many cuts)
+  // changes most of them: build afresh, which is faster then and re-derives whether it is closed.
   void syncBone(const BoneState& bone, std::uint64_t revision) {
     if (collider_ && revision == revision_) return;
     if (collider_) {
-      const SlotChanges changes = diffSlots(collider_->bvh(), bone);
+      const SlotChanges changes = collider_->changesTo(bone);
       if (changes.removed.size() + changes.added.size() < bone.liveTriangleCount() / 2) {
         collider_->update(bone, changes.removed, changes.added);
         revision_ = revision;

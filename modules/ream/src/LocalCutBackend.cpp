@@ -7,7 +7,7 @@ namespace {
 
 class LocalCutBackend final : public CutBackend {
  public:
-  LocalCutBackend(const TriangleMesh& bone, bool bandCleanup) : engine_(bone) {
+  LocalCutBackend(const BoneState& bone, bool bandCleanup) : engine_(bone) {
     BandCleanup cleanup = engine_.bandCleanup();
     cleanup.enabled = bandCleanup;
     engine_.setBandCleanup(cleanup);
@@ -24,6 +24,7 @@ class LocalCutBackend final : public CutBackend {
     return r;
   }
   TriangleMesh mesh() const override { return engine_.mesh(); }
+  const BoneState* state() const override { return &engine_.state(); }
   BoneInvariants checkInvariants() const override { return engine_.checkInvariants(); }
 
  private:
@@ -33,7 +34,7 @@ class LocalCutBackend final : public CutBackend {
 }  // namespace
 
 CutBackendFactory localCutBackendFactory(bool bandCleanup) {
-  return [bandCleanup](const TriangleMesh& bone) -> std::unique_ptr<CutBackend> {
+  return [bandCleanup](const BoneState& bone) -> std::unique_ptr<CutBackend> {
     return std::make_unique<LocalCutBackend>(bone, bandCleanup);
   };
 }

@@ -10,8 +10,9 @@ namespace {
 class ThesisContactBackend final : public ContactBackend {
  public:
   ContactResult query(const ContactInput& in) override {
-    return thesisContactQuery(in.boneMesh, in.boneBounds, in.tool, in.probes, in.feedAxis, in.stepMm);
+    return thesisContactQuery(*in.boneMesh, in.boneBounds, in.tool, in.probes, in.feedAxis, in.stepMm);
   }
+  bool needsMesh() const override { return true; }
 };
 
 class ReferenceCutBackend final : public CutBackend {
@@ -30,7 +31,9 @@ class ReferenceCutBackend final : public CutBackend {
 std::unique_ptr<ContactBackend> makeThesisContactBackend() { return std::make_unique<ThesisContactBackend>(); }
 
 CutBackendFactory referenceCutBackendFactory() {
-  return [](const TriangleMesh& bone) -> std::unique_ptr<CutBackend> { return std::make_unique<ReferenceCutBackend>(bone); };
+  return [](const BoneState& bone) -> std::unique_ptr<CutBackend> {
+    return std::make_unique<ReferenceCutBackend>(bone.toMesh());
+  };
 }
 
 }  // namespace reamsim

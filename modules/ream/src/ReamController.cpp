@@ -1,5 +1,7 @@
 #include "reamsim/ream/ReamController.h"
 
+#include <chrono>
+
 namespace reamsim {
 
 ReamController::ReamController(Document& document, BoneNode& bone, ReamerNode& reamer, LogNode& log,
@@ -27,8 +29,11 @@ ReamStepOutcome ReamController::moveTo(const Pose& pose) {
   out.cut = c.cut;
   out.volumeBookkeepingError = c.volumeBookkeepingError;
   out.swept = c.swept;
+  out.times = c.times;
+  const auto commitStart = std::chrono::steady_clock::now();
   out.entry = commitReamStep(document_, bone_, reamer_, log_, alerts_, c, steps_++);
   if (out.entry.boneStateId != 0) engine_.adopt(out.entry.boneStateId);
+  out.commitMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - commitStart).count();
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "reamsim/ream/ReamEngine.h"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -7,6 +8,10 @@
 
 namespace reamsim {
 namespace {
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
 
 TriangleMesh transformed(const TriangleMesh& local, const RigidTransform& t) {
   TriangleMesh out = local;
@@ -48,17 +53,24 @@ void ReamEngine::prepare(const BoneState& bone, std::uint64_t revision) { sync(b
 // The cutter keeps exact coordinates between cuts; when the bone changed underneath (undo, a new import,
 // a dropped computation) it restarts from the given state.
 void ReamEngine::sync(const BoneState& bone, std::uint64_t revision) {
-  if (meshRevision_ != revision || pendingAdopt_) {
-    boneMesh_ = bone.toMesh();
-    meshRevision_ = revision;
-  }
   if (cutFactory_ && (!cutter_ || cutterRevision_ != revision || pendingAdopt_)) {
     cutter_.reset();
     cutterRevision_ = 0;
-    cutter_ = cutFactory_(boneMesh_);
+    cutter_ = cutFactory_(bone);
     cutterRevision_ = revision;
   }
+  if (pendingAdopt_) meshAwaitsAdopt_ = false;  // that computation was dropped: boneMesh_ is not the bone
   pendingAdopt_ = false;
+}
+
+// Only a backend that reads the whole mesh (the thesis's rays) pays for making it, once per revision.
+const TriangleMesh* ReamEngine::meshFor(const BoneState& bone, std::uint64_t revision) {
+  if (!contact_->needsMesh()) return nullptr;
+  if (meshRevision_ != revision) {
+    boneMesh_ = bone.toMesh();
+    meshRevision_ = revision;
+  }
+  return &boneMesh_;
 }
 
 namespace {
@@ -89,10 +101,12 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   probes.reserve(localFaceVertices_.size());
   for (const Vec3& p : localFaceVertices_) probes.push_back(toBone.apply(p));
   const Bounds boneBounds = bone.bounds();
+  const auto contactStart = std::chrono::steady_clock::now();
   out.contact = contact_->query(
-      {bone, revision, boneMesh_, boneBounds, cuttingVolume_, spec_ ? &*spec_ : nullptr, toBone, tool, probes,
+      {bone, revision, meshFor(bone, revision), boneBounds, cuttingVolume_, spec_ ? &*spec_ : nullptr, toBone, tool, probes,
        normalized(pose.axis), stepMm});
   out.contactChecked = true;
+  out.times.contact = msSince(contactStart);
 
   // An exact engine says whether the cutting volume reaches the bone; with the thesis's rays the Boolean runs
   // whenever the boxes overlap, so that bone entering from the side (which the rays cannot see) is still cut.
@@ -109,20 +123,30 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   if (mayCut && cutter_) {
     pendingAdopt_ = true;  // from here the cutter may differ from `revision` (also if subtract throws)
     out.cut = cutter_->subtract(tool);
+    out.times.cut = out.cut.milliseconds;
     if (!out.cut.changed) {
       pendingAdopt_ = false;
       return out;
     }
     out.volumeBookkeepingError = std::abs(out.cut.removedMm3 - (out.cut.volumeBeforeMm3 - out.cut.volumeAfterMm3));
-    boneMesh_ = cutter_->mesh();
-    out.next = BoneState::commitByDiff(bone, boneMesh_);
+    const auto stateStart = std::chrono::steady_clock::now();
+    if (const BoneState* state = cutter_->state()) {
+      out.next = *state;  // derived from `bone` by the cut's delta: O(cut)
+    } else {
+      boneMesh_ = cutter_->mesh();
+      meshRevision_ = 0;
+      meshAwaitsAdopt_ = true;
+      out.next = BoneState::commitByDiff(bone, boneMesh_);
+    }
+    out.times.state = msSince(stateStart);
   }
   return out;
 }
 
 void ReamEngine::adopt(std::uint64_t revision) {
   if (!pendingAdopt_) return;
-  meshRevision_ = revision;
+  if (meshAwaitsAdopt_) meshRevision_ = revision;
+  meshAwaitsAdopt_ = false;
   cutterRevision_ = revision;
   pendingAdopt_ = false;
 }

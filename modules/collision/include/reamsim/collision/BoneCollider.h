@@ -6,8 +6,10 @@
 // Keeping it in sync after a cut (no rebuild):
 //  - engines that produce a MeshDelta: applyDelta(next, delta, placement) — O(delta log n);
 //  - engines that give removed/added slots: update(next, removed, added);
-//  - engines that only give a new state (BoneState::commitByDiff): syncTo(next) — an O(slots) diff against
-//    the triangles the tree holds, then the same local update.
+//  - engines that only give a new state (their own, or BoneState::commitByDiff): syncTo(next) — the slots
+//    that differ from the state the tree last followed (BoneState::changedTriangleSlots: unchanged chunks
+//    are skipped by identity), then the same local update. A collider built from a mesh has no state yet
+//    and diffs against the tree's own triangles, O(slots).
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -24,11 +26,8 @@
 
 namespace reamsim {
 
-struct SlotChanges {
-  std::vector<std::uint32_t> removed;  // slots to drop from the tree
-  std::vector<std::uint32_t> added;    // slots to insert (live in the new state)
-};
-// Slots whose triangle differs between what `bvh` holds and `next` (a slot whose corners changed is both).
+// Slots whose triangle differs between what `bvh` holds and `next` (a slot whose corners changed is both):
+// O(slots), for a tree not built from a BoneState (BoneCollider::changesTo is the fast way).
 SlotChanges diffSlots(const TriangleBvh& bvh, const BoneState& next);
 
 // Every directed edge has exactly one opposite edge (vertex indices): a closed, consistently oriented surface.
@@ -48,6 +47,8 @@ class BoneCollider {
   BvhUpdateStats update(const BoneState& next, const std::vector<std::uint32_t>& removedSlots,
                         const std::vector<std::uint32_t>& addedSlots);
   BvhUpdateStats syncTo(const BoneState& next);
+  // The slots syncTo(next) would remove and insert.
+  SlotChanges changesTo(const BoneState& next) const;
 
   // Query 1.
   OverlapResult overlap(const ReamerModel& reamer, const RigidTransform& pose,
@@ -77,6 +78,7 @@ class BoneCollider {
 
  private:
   TriangleBvh bvh_;
+  std::optional<BoneState> followed_;  // the state the tree holds (shares storage with the document's)
   bool closed_ = false;
   double buildMs_ = 0;
 };

@@ -22,6 +22,12 @@
 
 namespace reamsim {
 
+// Triangle slots that differ between two states (a slot whose triangle changed is in both lists).
+struct SlotChanges {
+  std::vector<std::uint32_t> removed;  // live in the old state, dead or different in the new one
+  std::vector<std::uint32_t> added;    // live in the new state, dead or different in the old one
+};
+
 class BoneState {
  public:
   static constexpr std::uint32_t kBadSlot = std::numeric_limits<std::uint32_t>::max();
@@ -48,6 +54,12 @@ class BoneState {
   // matched triangles keep their slots, so unchanged regions keep sharing storage with prev. The
   // result's toMesh() equals `next` up to element order (coincident vertices stay distinct).
   static BoneState commitByDiff(const BoneState& prev, const TriangleMesh& next);
+  // The triangle slots that changed from `prev` to `next`. States derived from one another (applyDelta,
+  // commitByDiff) share their unchanged chunks, which are skipped by identity: O(slots / kChunkSize +
+  // changed chunks × kChunkSize), microseconds for a cut of a 400k bone. Unrelated states are compared
+  // slot by slot. Sound because vertices never move: a vertex slot takes new coordinates only after it
+  // was freed, when no live triangle uses it, so an unchanged triangle keeps its corners.
+  static SlotChanges changedTriangleSlots(const BoneState& prev, const BoneState& next);
 
   std::size_t liveTriangleCount() const { return liveTriangles_; }
   std::size_t liveVertexCount() const { return liveVertices_; }

@@ -89,6 +89,9 @@ class LocalSubtractor {
   // Any triangle mesh with finite coordinates (open, self-intersecting and non-manifold regions are
   // recorded as defects). Throws std::invalid_argument for an empty mesh or bad indices.
   explicit LocalSubtractor(const TriangleMesh& bone);
+  // The same from a document state, keeping its slots: each cut's state() is then derived from `bone` by
+  // a MeshDelta, so it shares every untouched chunk with it and can be committed as is (no diff).
+  explicit LocalSubtractor(const BoneState& bone);
   ~LocalSubtractor();
   LocalSubtractor(LocalSubtractor&&) noexcept;
   LocalSubtractor& operator=(LocalSubtractor&&) noexcept;
@@ -100,7 +103,7 @@ class LocalSubtractor {
   void setBandCleanup(const BandCleanup& cleanup);
   const BandCleanup& bandCleanup() const;
 
-  const BoneState& state() const;  // rounded coordinates, slot based (cheap to copy)
+  const BoneState& state() const;  // rounded coordinates, slot based (cheap to copy), the input's slots
   TriangleMesh mesh() const;       // rounded to doubles
   double volumeMm3() const;
   std::size_t faceCount() const;

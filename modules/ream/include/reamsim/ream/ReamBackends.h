@@ -21,7 +21,7 @@ namespace reamsim {
 struct ContactInput {
   const BoneState& bone;
   std::uint64_t revision;        // changes whenever `bone` does: engines that keep a structure resync on it
-  const TriangleMesh& boneMesh;  // `bone` as a plain mesh
+  const TriangleMesh* boneMesh;  // `bone` as a plain mesh when the backend needsMesh() (O(bone) to make), else null
   const Bounds& boneBounds;
   const std::shared_ptr<const TriangleMesh>& cuttingVolumeLocal;  // reamer-local, the same object every call
   const ReamerSpec* reamerSpec;  // the spec the volume was built from, when known (null: a solid alone)
@@ -36,6 +36,7 @@ class ContactBackend {
  public:
   virtual ~ContactBackend() = default;
   virtual ContactResult query(const ContactInput& input) = 0;
+  virtual bool needsMesh() const { return false; }  // wants ContactInput::boneMesh (the thesis's rays)
 };
 
 // A cutting engine holding one bone (it may keep its own exact representation between cuts).
@@ -44,10 +45,14 @@ class CutBackend {
   virtual ~CutBackend() = default;
   virtual ReferenceCut subtract(const TriangleMesh& toolInBoneCoords) = 0;
   virtual TriangleMesh mesh() const = 0;
+  // The bone after the last cut as a state derived from the one the engine was built from (its slots kept,
+  // its unchanged chunks shared): committed as is, O(cut). Null for an engine that only has a whole mesh
+  // (the loop then diffs it against the previous state, O(bone)).
+  virtual const BoneState* state() const { return nullptr; }
   virtual BoneInvariants checkInvariants() const = 0;
 };
-// Builds an engine for a bone; throws std::invalid_argument for a bone it cannot cut.
-using CutBackendFactory = std::function<std::unique_ptr<CutBackend>(const TriangleMesh& bone)>;
+// Builds an engine for a bone state; throws std::invalid_argument for a bone it cannot cut.
+using CutBackendFactory = std::function<std::unique_ptr<CutBackend>(const BoneState& bone)>;
 
 std::unique_ptr<ContactBackend> makeThesisContactBackend();
 // Exact queries on a BVH that follows the bone's cuts locally (BoneCollider): overlap with the touched faces,

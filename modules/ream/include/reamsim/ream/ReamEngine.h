@@ -26,6 +26,11 @@ struct ReamComputation {
   bool swept = false;              // the cut subtracted the volume swept from the previous pose
   std::optional<BoneState> next;
   double volumeBookkeepingError = 0;  // |removed − (V_before − V_after)|
+  // Where the step's time went (ms): the collision query (with the collider following the last cut), the
+  // Boolean as the cutting engine reports it, and turning the cut into the next BoneState.
+  struct Times {
+    double contact = 0, cut = 0, state = 0;
+  } times;
 };
 
 class ReamEngine {
@@ -56,6 +61,7 @@ class ReamEngine {
 
  private:
   void sync(const BoneState& bone, std::uint64_t revision);
+  const TriangleMesh* meshFor(const BoneState& bone, std::uint64_t revision);
 
   std::shared_ptr<const TriangleMesh> cuttingVolume_;
   std::optional<ReamerSpec> spec_;
@@ -65,8 +71,9 @@ class ReamEngine {
   std::unique_ptr<ContactBackend> contact_;
   CutBackendFactory cutFactory_;
   std::unique_ptr<CutBackend> cutter_;
-  TriangleMesh boneMesh_;              // the bone as the collision query sees it
+  TriangleMesh boneMesh_;              // the bone as a mesh, for a contact backend that needsMesh()
   std::uint64_t meshRevision_ = 0;     // revision of boneMesh_ (0: none)
+  bool meshAwaitsAdopt_ = false;       // boneMesh_ is the last compute's result, not yet committed
   std::uint64_t cutterRevision_ = 0;   // revision the cutter holds (0: none)
   bool pendingAdopt_ = false;          // the cutter is one cut ahead of any committed revision
 };
