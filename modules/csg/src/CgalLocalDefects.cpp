@@ -1,5 +1,6 @@
 // CGAL translation unit: the local engine's construction-time defect scan. Epick suffices: only
 // predicates are evaluated, and Epick's predicates are exact.
+#include "ExactRationalFastPaths.h"  // before any CGAL kernel: see there
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 

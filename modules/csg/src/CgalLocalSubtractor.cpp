@@ -1,4 +1,5 @@
 // CGAL translation unit: the local exact subtraction (see LocalSubtractor.h for the design).
+#include "ExactRationalFastPaths.h"  // before any CGAL kernel: see there
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
@@ -407,7 +408,7 @@ double LocalSubtractor::Impl::cleanBand(const std::vector<std::uint32_t>& seeds,
   for (std::uint32_t s : seeds)
     if (s != kNone && state.isTriangleLive(s)) live.push_back(s);
   const csg::CleanupPlan plan = csg::planCutBandCleanup(
-      state, grid, live, [&](std::uint32_t v) { return exact.count(v) != 0; },
+      state, grid, live, [&](std::uint32_t v) { return !exact.empty() && exact.count(v) != 0; },
       [&](std::uint32_t s) { return s < defect.size() && defect[s] != 0; }, cleanup);
   cut.cleanupCollapses = plan.collapses;
   cut.cleanupFlips = plan.flips;
@@ -979,7 +980,11 @@ LocalSubtractor::LocalSubtractor(const BoneState& bone) : impl_(std::make_unique
   m.defect = scan.flags;
   m.defects.borderEdges = scan.borderEdges;
   m.defects.selfIntersectingPairs = scan.selfIntersectingPairs;
-  m.grid.init(m.state.bounds(), m.state.liveTriangleCount());
+  double area = 0;
+  m.state.forEachLiveTriangle([&](std::uint32_t, const Triangle& t) {
+    area += 0.5 * norm(cross(m.state.vertex(t[1]) - m.state.vertex(t[0]), m.state.vertex(t[2]) - m.state.vertex(t[0])));
+  });
+  m.grid.init(m.state.bounds(), m.state.liveTriangleCount(), 8.0, area);
   for (std::uint32_t s = 0; s < slots.triangles.size(); ++s) {
     if (!live[s]) {
       m.defect[s] = 0;

@@ -1,4 +1,5 @@
 // CGAL translation unit: whole-mesh exact Boolean difference (the reference path).
+#include "ExactRationalFastPaths.h"  // before any CGAL kernel: see there
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>

@@ -1,5 +1,6 @@
 // Convex hull of two placements of a convex cutting solid (SweptVolume.h). Only predicates are needed, so
 // the inexact-constructions kernel is exact here: the output points are input points.
+#include "ExactRationalFastPaths.h"  // before any CGAL kernel: see there
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>

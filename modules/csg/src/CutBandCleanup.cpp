@@ -1,6 +1,7 @@
 // CGAL translation unit (predicates only): the clean-up of the cut band (see CutBandCleanup.h).
 #include "CutBandCleanup.h"
 
+#include "ExactRationalFastPaths.h"  // before any CGAL kernel: see there
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
@@ -8,7 +9,6 @@
 #include <cmath>
 #include <limits>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "TrianglePair.h"
 
@@ -31,28 +31,37 @@ struct LocalFace {
   bool exactVertex = false;  // has a vertex known exactly (only rounded here): no new face may come near it
 };
 
+// What the clean-up knows about a vertex, gathered the first time it is needed.
+struct VertexStar {
+  std::vector<int> faces;  // local faces about the vertex (dead ones pruned lazily)
+  bool gathered = false;   // the bone's faces about it have been added
+  bool movable = false;    // double coordinates, no defect face about it, all its faces found, not collapsed
+};
+
 class Cleanup {
  public:
   Cleanup(const BoneState& state, TriangleGrid& grid, const std::function<bool(std::uint32_t)>& frozenVertex,
           const std::function<bool(std::uint32_t)>& frozenFace, const BandCleanup& options)
       : state_(state), boneGrid_(grid), frozenVertex_(frozenVertex), frozenFace_(frozenFace), opt_(options),
-        minAngle_(options.minAngleDeg * kPi / 180) {}
+        minAngle_(options.minAngleDeg * kPi / 180), cosMinAngle_(std::cos(minAngle_)) {}
 
   CleanupPlan run(const std::vector<std::uint32_t>& seeds) {
     CleanupPlan plan;
-    // Most cuts leave nothing to clean: decide that before gathering the region.
+    // Most cuts leave nothing to clean: decide that before anything is gathered.
     bool anyBad = false;
     for (std::uint32_t s : seeds) {
       const Triangle& t = state_.triangle(s);
       if ((anyBad = bad({t[0], t[1], t[2]}))) break;
     }
     if (!anyBad) return plan;
-    gather(seeds);
+    // Faces made here are found through a grid of their own, the bone's through the engine's grid; the
+    // bone's faces and vertices are looked at only where an operation is tried.
+    Box3 domain = Box3::empty();
+    for (std::uint32_t s : seeds)
+      for (std::uint32_t v : state_.triangle(s)) domain.add(at(v));
+    made_.init(domain.bounds(), seeds.size(), 2.0);
     std::vector<int> work;
-    for (std::uint32_t s : seeds) {
-      const auto it = localOfSlot_.find(s);
-      if (it != localOfSlot_.end()) work.push_back(it->second);
-    }
+    for (std::uint32_t s : seeds) work.push_back(localFace(s));
     std::size_t ops = 0;
     while (!work.empty() && ops < kMaxOperations) {
       const int f = work.back();
@@ -77,46 +86,43 @@ class Cleanup {
   }
 
  private:
-  // The local region: every bone face whose box meets the seeds' box (grown a little). A face that could
-  // meet a new face lying inside that box is among them.
-  void gather(const std::vector<std::uint32_t>& seeds) {
-    region_ = boneGrid_.box(seeds.front());
-    for (std::uint32_t s : seeds) {
-      const Box3& b = boneGrid_.box(s);
-      for (int i = 0; i < 3; ++i) {
-        region_.lo[i] = std::min(region_.lo[i], b.lo[i]);
-        region_.hi[i] = std::max(region_.hi[i], b.hi[i]);
-      }
-    }
-    const double margin = std::max(1.0, 10 * opt_.minEdgeMm);
-    for (int i = 0; i < 3; ++i) {
-      region_.lo[i] -= margin;
-      region_.hi[i] += margin;
-    }
-    std::vector<std::uint32_t> slots;
-    boneGrid_.query(region_, slots);
-    local_.init(region_.bounds(), slots.size(), 2.0);
-    std::unordered_map<std::uint32_t, std::uint32_t> localUse;
-    localUse.reserve(slots.size());
-    localOfSlot_.reserve(slots.size());
-    star_.reserve(slots.size());
-    for (std::uint32_t s : slots) {
-      const Triangle& t = state_.triangle(s);
-      const int id = static_cast<int>(faces_.size());
-      const bool frozen = frozenFace_(s);
-      faces_.push_back({{t[0], t[1], t[2]}, s, true, frozen,
+  // The local face of a bone slot, made on first use.
+  int localFace(std::uint32_t slot) {
+    const auto [it, added] = localOfSlot_.try_emplace(slot, static_cast<int>(faces_.size()));
+    if (added) {
+      const Triangle& t = state_.triangle(slot);
+      faces_.push_back({{t[0], t[1], t[2]}, slot, true, frozenFace_(slot),
                         frozenVertex_(t[0]) || frozenVertex_(t[1]) || frozenVertex_(t[2])});
-      localOfSlot_[s] = id;
-      local_.insert(static_cast<std::uint32_t>(id), boneGrid_.box(s));
-      for (std::uint32_t v : t) {
-        star_[v].push_back(id);
-        ++localUse[v];
-        if (frozen) frozen_.insert(v);
-      }
     }
-    for (const auto& [v, n] : localUse)
-      if (n == state_.vertexUseCount(v) && !frozenVertex_(v) && !frozen_.count(v)) movable_.insert(v);
+    return it->second;
   }
+
+  // The faces about v: the bone's (each face with v has a grid box holding v's position), gathered on first
+  // use, and those made here. A vertex moves only when all the bone's faces about it were found and none
+  // of them is a defect.
+  VertexStar& star(std::uint32_t v) {
+    VertexStar& st = star_[v];
+    if (st.gathered) return st;
+    st.gathered = true;
+    if (frozenVertex_(v)) return st;  // known exactly: never moved, so its faces are never looked at
+    const Vec3& p = at(v);
+    Box3 q;
+    q.lo = q.hi = {p.x, p.y, p.z};
+    boneGrid_.query(q, hits_);
+    std::uint32_t found = 0;
+    bool frozen = false;
+    for (std::uint32_t s : hits_) {
+      const Triangle& t = state_.triangle(s);
+      if (t[0] != v && t[1] != v && t[2] != v) continue;
+      ++found;
+      const int id = localFace(s);
+      frozen |= faces_[id].frozen;
+      if (faces_[id].alive) st.faces.push_back(id);
+    }
+    st.movable = !frozen && found == state_.vertexUseCount(v);
+    return st;
+  }
+  bool movable(std::uint32_t v) { return star(v).movable; }
 
   const Vec3& at(std::uint32_t v) const { return state_.vertex(v); }
   K::Point_3 kp(std::uint32_t v) const {
@@ -128,23 +134,23 @@ class Cleanup {
     for (std::uint32_t v : t) b.add(at(v));
     return b;
   }
-  bool insideRegion(const Box3& b) const {
-    for (int i = 0; i < 3; ++i)
-      if (b.lo[i] < region_.lo[i] || b.hi[i] > region_.hi[i]) return false;
-    return true;
-  }
   double angleOf(const Tri& t) const { return smallestAngle(at(t[0]), at(t[1]), at(t[2])); }
   Vec3 normalOf(const Tri& t) const { return cross(at(t[1]) - at(t[0]), at(t[2]) - at(t[0])); }
 
   bool bad(int f) const { return bad(faces_[f].v); }
+  // An edge shorter than minEdgeMm or an angle under minAngleDeg (its cosine above the bound's: no atan2).
   bool bad(const Tri& t) const {
+    const Vec3 e[3] = {at(t[1]) - at(t[0]), at(t[2]) - at(t[1]), at(t[0]) - at(t[2])};
+    const double l[3] = {norm(e[0]), norm(e[1]), norm(e[2])};
     for (int i = 0; i < 3; ++i)
-      if (norm(at(t[(i + 1) % 3]) - at(t[i])) < opt_.minEdgeMm) return true;
-    return angleOf(t) < minAngle_;
+      if (l[i] < opt_.minEdgeMm) return true;
+    for (int i = 0; i < 3; ++i)  // the angle at vertex i, between −e[i−1] and e[i]
+      if (-dot(e[(i + 2) % 3], e[i]) > cosMinAngle_ * l[(i + 2) % 3] * l[i]) return true;
+    return false;
   }
 
   const std::vector<int>& aliveStar(std::uint32_t v) {
-    std::vector<int>& s = star_[v];
+    std::vector<int>& s = star(v).faces;
     s.erase(std::remove_if(s.begin(), s.end(), [&](int f) { return !faces_[f].alive; }), s.end());
     return s;
   }
@@ -186,12 +192,11 @@ class Cleanup {
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
   }
-  // A replacement face: not degenerate, turned by less than ~45 degrees from `was`, inside the region.
+  // A replacement face: not degenerate, turned by less than ~45 degrees from `was`.
   bool acceptableFace(const Tri& t, const Vec3& was) const {
     if (CGAL::collinear(kp(t[0]), kp(t[1]), kp(t[2]))) return false;
     const Vec3 n = normalOf(t);
-    if (dot(n, was) <= kNormalAgreement * norm(n) * norm(was)) return false;
-    return insideRegion(boxOf(t));
+    return dot(n, was) > kNormalAgreement * norm(n) * norm(was);
   }
   // Distance of point p from the plane of t.
   double planeDistance(const Vec3& p, const Tri& t) const {
@@ -199,22 +204,29 @@ class Cleanup {
     return std::abs(dot(n, p - at(t[0]))) / norm(n);
   }
 
-  // The new faces meet no face that stays (other than along shared vertices and edges), nor each other.
+  // The new faces meet no face that stays (other than along shared vertices and edges), nor each other:
+  // the bone's faces whose grid boxes meet a new face's box, and the faces made here.
   bool intersectionFree(const std::vector<Tri>& made, const std::vector<int>& dying) {
+    auto meets = [&](const Tri& a, const Tri& b) {
+      return trianglesIntersectBeyondShared<K>(a, b, [&](std::uint32_t v) { return kp(v); });
+    };
+    auto isDying = [&](int f) { return std::find(dying.begin(), dying.end(), f) != dying.end(); };
     for (std::size_t i = 0; i < made.size(); ++i) {
       for (std::size_t j = i + 1; j < made.size(); ++j)
-        if (trianglesIntersectBeyondShared<K>(made[i], made[j], [&](std::uint32_t v) { return kp(v); })) return false;
+        if (meets(made[i], made[j])) return false;
       const Box3 b = boxOf(made[i]);
-      hits_.clear();
-      local_.query(b, hits_);
-      for (std::uint32_t g : hits_) {
-        const LocalFace& lf = faces_[g];
-        if (!lf.alive || std::find(dying.begin(), dying.end(), int(g)) != dying.end()) continue;
+      boneGrid_.query(b, hits_);
+      for (std::uint32_t s : hits_) {
+        const int f = localFace(s);
+        const LocalFace& lf = faces_[f];
+        if (!lf.alive || isDying(f)) continue;
         // A face with an exact (non-double) vertex is only known here rounded, and a defect face may be
         // degenerate (the intersection tests require proper triangles): stay away from both.
-        if (lf.frozen || lf.exactVertex) return false;
-        if (trianglesIntersectBeyondShared<K>(made[i], lf.v, [&](std::uint32_t v) { return kp(v); })) return false;
+        if (lf.frozen || lf.exactVertex || meets(made[i], lf.v)) return false;
       }
+      made_.query(b, hits_);
+      for (std::uint32_t g : hits_)
+        if (faces_[g].alive && !isDying(int(g)) && meets(made[i], faces_[g].v)) return false;
     }
     return true;
   }
@@ -222,13 +234,13 @@ class Cleanup {
   void replace(const std::vector<int>& dying, const std::vector<Tri>& made, std::vector<int>& ids) {
     for (int f : dying) {
       faces_[f].alive = false;
-      local_.remove(static_cast<std::uint32_t>(f));
+      made_.remove(static_cast<std::uint32_t>(f));  // a no-op for the bone's faces
     }
     for (const Tri& t : made) {
       const int id = static_cast<int>(faces_.size());
       faces_.push_back({t, kNone, true});
-      local_.insert(static_cast<std::uint32_t>(id), boxOf(t));
-      for (std::uint32_t v : t) star_[v].push_back(id);
+      made_.insert(static_cast<std::uint32_t>(id), boxOf(t));
+      for (std::uint32_t v : t) star_[v].faces.push_back(id);  // before or after its bone faces are gathered
       ids.push_back(id);
     }
   }
@@ -250,7 +262,7 @@ class Cleanup {
 
   // Half-edge collapse: v moves onto u.
   bool collapse(std::uint32_t v, std::uint32_t u, std::vector<int>& made) {
-    if (!movable_.count(v) || !movable_.count(u) || !closedFan(v) || !closedFan(u)) return false;
+    if (!movable(v) || !movable(u) || !closedFan(v) || !closedFan(u)) return false;
     const std::vector<int> sv = aliveStar(v), su = aliveStar(u);
     if (sv.size() < 3 || su.size() < 3) return false;
     std::vector<std::uint32_t> opposite;
@@ -291,7 +303,7 @@ class Cleanup {
     if (newQuality < std::min(oldQuality, minAngle_)) return false;
     if (!intersectionFree(newFaces, sv)) return false;
     replace(sv, newFaces, made);
-    movable_.erase(v);
+    star_[v].movable = false;  // gone
     return true;
   }
 
@@ -308,7 +320,7 @@ class Cleanup {
       }
     }
     const std::uint32_t a = t[e], b = t[(e + 1) % 3], c = t[(e + 2) % 3];
-    if (!movable_.count(a) || !movable_.count(b) || !movable_.count(c)) return false;
+    if (!movable(a) || !movable(b) || !movable(c)) return false;
     if (!closedFan(a) || !closedFan(b)) return false;
     int g = -1;
     std::uint32_t d = kNone;
@@ -324,7 +336,7 @@ class Cleanup {
     }
     // A neighbour across a-b running the same way would break orientation; such faces are flagged as
     // defects (frozen vertices are not movable), so only the consistent twin b->a is looked for.
-    if (g < 0 || d == c || !movable_.count(d)) return false;
+    if (g < 0 || d == c || !movable(d)) return false;
     const auto nc = neighbours(aliveStar(c), c);
     if (std::binary_search(nc.begin(), nc.end(), d)) return false;  // the edge c-d exists already
     const Tri tf = faces_[f].v, tg = faces_[g].v;
@@ -350,13 +362,12 @@ class Cleanup {
   const BandCleanup opt_;
   const double minAngle_;
 
-  Box3 region_;
-  TriangleGrid local_;  // local face index -> box
-  std::vector<LocalFace> faces_;
+  const double cosMinAngle_;
+
+  std::vector<LocalFace> faces_;  // bone faces looked at (by localFace) and faces made here
   std::unordered_map<std::uint32_t, int> localOfSlot_;
-  std::unordered_map<std::uint32_t, std::vector<int>> star_;  // vertex -> local faces (dead ones pruned lazily)
-  std::unordered_set<std::uint32_t> movable_;  // whole star local, double coordinates, not a defect
-  std::unordered_set<std::uint32_t> frozen_;
+  std::unordered_map<std::uint32_t, VertexStar> star_;
+  TriangleGrid made_;  // the faces made here (local ids), by box
   std::vector<std::uint32_t> hits_;
   std::vector<std::uint32_t> ring_;  // scratch for closedFan
 };

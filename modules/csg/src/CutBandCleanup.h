@@ -7,14 +7,16 @@
 //
 // Every operation is checked before it is taken, with exact predicates on the doubles:
 //   - topology: the link condition and no duplicated face (collapse), the new edge not existing yet
-//     (flip); only vertices whose whole star lies in the local region and closes up (not on an open
-//     border) take part;
+//     (flip); only vertices whose whole star is found (through the engine's grid) and closes up (not on
+//     an open border) take part;
 //   - geometry: the surface moves by at most `BandCleanup::maxDeviationMm` (the removed vertex, or the flipped quad's
 //     far corner, lies that close to the new faces' planes); no new face is degenerate or turns by more
 //     than ~45 degrees from the one it replaces; the smallest angle does not drop below the old one or
 //     the threshold, whichever is lower;
 //   - no self-intersection: every new face is tested against every face of the bone its box could meet
-//     (the region is a grid query around the cut, and new faces must stay inside its box).
+//     (the engine's grid) and every face the clean-up made.
+// The bone's faces and vertices are looked at only where an operation is tried, so the work follows the
+// faces that need it, not the size of the cut.
 // Vertices with exact (non-double) coordinates and faces flagged as defects are never touched, and no new
 // face may come near a face that has either.
 #include <cstdint>

@@ -6,13 +6,20 @@
 
 namespace reamsim::csg {
 
-void TriangleGrid::init(const Bounds& domain, std::size_t faces, double targetPerCell) {
+void TriangleGrid::init(const Bounds& domain, std::size_t faces, double targetPerCell, double surfaceArea) {
   const Vec3 size = !domain.empty() ? domain.max - domain.min : Vec3{1, 1, 1};
   const double ext[3] = {std::max(size.x, 1e-3), std::max(size.y, 1e-3), std::max(size.z, 1e-3)};
-  // A surface fills its box sparsely; sizing cells by the box volume gives roughly the wanted density on
-  // the occupied cells for bone-like shapes, and the cap keeps the table small for thin ones.
-  const double cells = std::max(1.0, double(faces) / targetPerCell);
-  cell_ = std::cbrt(ext[0] * ext[1] * ext[2] / cells);
+  const double volume = ext[0] * ext[1] * ext[2];
+  if (surfaceArea > 0 && faces > 0) {
+    // A cell of side c is crossed by about c² / (area per face) faces.
+    cell_ = std::sqrt(targetPerCell * surfaceArea / double(faces));
+  } else {
+    // Without the area, sizing cells by the box volume gives roughly the wanted density on the occupied
+    // cells for small bone-like shapes.
+    cell_ = std::cbrt(volume / std::max(1.0, double(faces) / targetPerCell));
+  }
+  // At most 256 cells along an axis and kMaxCells in all.
+  cell_ = std::max(cell_, std::cbrt(volume / double(kMaxCells)));
   for (int i = 0; i < 3; ++i) {
     cell_ = std::max(cell_, ext[i] / 256.0);
   }

@@ -41,8 +41,11 @@ struct Box3 {
 
 class TriangleGrid {
  public:
-  // About `targetPerCell` faces per occupied cell for a surface of `faces` faces spanning `domain`.
-  void init(const Bounds& domain, std::size_t faces, double targetPerCell = 8.0);
+  // About `targetPerCell` faces per occupied cell for a surface of `faces` faces spanning `domain`. With the
+  // surface's area the cells follow the faces' size (a surface fills its box sparsely, and a bone's faces
+  // are much smaller than its box divided by their count), within kMaxCells.
+  void init(const Bounds& domain, std::size_t faces, double targetPerCell = 8.0, double surfaceArea = 0);
+  static constexpr std::size_t kMaxCells = std::size_t(1) << 21;
   void insert(std::uint32_t slot, const Box3& box);
   void remove(std::uint32_t slot);  // no-op for a slot that is not in the grid
   const Box3& box(std::uint32_t slot) const { return boxes_[slot]; }

@@ -41,14 +41,16 @@ inline Vec3 normalized(const Vec3& v) {
   const double n = norm(v);
   return n > 0 ? v / n : Vec3{};
 }
-// The smallest interior angle of the triangle abc, in radians (atan2 of |u × w| and u · w: accurate for
-// slivers, where acos of the cosine is not).
+// The smallest interior angle of the triangle abc, in radians: the angle opposite the shortest edge (atan2
+// of |u × w| and u · w: accurate for slivers, where acos of the cosine is not).
 inline double smallestAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
   auto at = [](const Vec3& p, const Vec3& q, const Vec3& r) {
     const Vec3 u = q - p, w = r - p;
     return std::atan2(norm(cross(u, w)), dot(u, w));
   };
-  return std::fmin(at(a, b, c), std::fmin(at(b, c, a), at(c, a, b)));
+  const double bc = dot(c - b, c - b), ca = dot(a - c, a - c), ab = dot(b - a, b - a);
+  if (bc <= ca && bc <= ab) return at(a, b, c);
+  return ca <= ab ? at(b, c, a) : at(c, a, b);
 }
 inline bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
