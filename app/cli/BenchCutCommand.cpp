@@ -365,7 +365,7 @@ int runBenchCut(const std::vector<std::string>& args) {
   std::size_t failures = 0, cuts = 0, checks = 0, exactSI = 0, roundedSI = 0, notClosed = 0;
   std::map<std::string, std::size_t> failureKinds;
   double worstBookkeeping = 0, worstPiece = 0, removedTotal = 0, cleanupVolume = 0;
-  std::size_t collapses = 0, flips = 0;
+  std::size_t collapses = 0, flips = 0, roundingFailures = 0;
   std::vector<double> cleanupTimes;
   std::map<std::string, std::vector<double>> phaseTimes;  // of the steps that cut
   const double volumeStart = engine.volumeMm3();
@@ -394,11 +394,13 @@ int runBenchCut(const std::vector<std::string>& args) {
         cleanupVolume += c.cleanupVolumeMm3;
         collapses += c.cleanupCollapses;
         flips += c.cleanupFlips;
+        roundingFailures += c.roundingFailed ? 1 : 0;
         cleanupTimes.push_back(c.cleanupMilliseconds);
         phaseTimes["setup"].push_back(c.phaseMilliseconds.setup);
         phaseTimes["corefine"].push_back(c.phaseMilliseconds.corefine);
         phaseTimes["classify"].push_back(c.phaseMilliseconds.classify);
         phaseTimes["rounding"].push_back(c.phaseMilliseconds.rounding);
+        phaseTimes["rounding_check_thread"].push_back(c.phaseMilliseconds.roundingCheck);
         phaseTimes["commit"].push_back(c.phaseMilliseconds.commit);
         phaseTimes["cleanup"].push_back(c.cleanupMilliseconds);
       }
@@ -445,6 +447,7 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"removed_mm3", removedTotal},
       {"volume_drop_mm3", volumeStart - engine.volumeMm3()},
       {"exact_vertices_end", engine.exactVertexCount()},
+      {"rounding_failures", roundingFailures},
       {"band_cleanup", {{"enabled", engine.bandCleanup().enabled},
                         {"max_deviation_mm", engine.bandCleanup().maxDeviationMm},
                         {"collapses", collapses},

@@ -12,6 +12,7 @@
 #include "LocalTestMeshes.h"
 #include "reamsim/collision/TriangleGeometry.h"
 #include "reamsim/csg/LocalSubtractor.h"
+#include "reamsim/csg/ReferenceSubtractor.h"
 #include "reamsim/ream/DefaultCase.h"
 
 namespace reamsim {
@@ -109,6 +110,45 @@ TEST(BandCleanup, StaysWithinItsDeviationOfTheExactBoolean) {
   // The clean-up's volume changes over the three cuts: a few deviations times the band's area (~1000 mm²).
   std::printf("volume with / without the clean-up: %.6f / %.6f mm3\n", on.volumeMm3(), off.volumeMm3());
   EXPECT_NEAR(on.volumeMm3(), off.volumeMm3(), 0.1);
+}
+
+// When the rounding check fails, the new vertices keep their exact values, later cuts start from them, and
+// the clean-up (planned beside the check, assuming it passes) is planned again without moving them. Real
+// cuts seldom fail the check, so it is made to fail here.
+TEST(BandCleanup, AFailedRoundingCheckKeepsExactPointsAndThePlanAvoidsThem) {
+  const DefaultBone bone = loadDefaultBone();
+  const std::vector<Pose> path = jitteryPath(bone, 150);
+  LocalSubtractor exactOnly(bone.mesh), cleaned(bone.mesh);
+  exactOnly.setBandCleanup({false});
+  exactOnly.failRoundingChecksForTesting(true);
+  cleaned.failRoundingChecksForTesting(true);
+  ReferenceSubtractor reference(bone.mesh);
+  std::size_t operations = 0;
+  for (int i : {60, 61, 62, 63}) {
+    const TriangleMesh tool = toolAt(capSpec(36, 30), path[i]);
+    const LocalCut a = exactOnly.subtract(tool);
+    const ReferenceCut r = reference.subtract(tool);
+    ASSERT_TRUE(a.changed && a.roundingFailed) << i;
+    EXPECT_NEAR(a.removedMm3, r.removedMm3, 1e-9 * r.removedMm3) << i;
+    const LocalCut c = cleaned.subtract(tool);
+    ASSERT_TRUE(c.changed && c.roundingFailed) << i;
+    EXPECT_NEAR(c.volumeBeforeMm3 - c.volumeAfterMm3, c.removedMm3, 1e-9 * c.removedMm3) << i;
+    EXPECT_NEAR(c.removedMm3 - c.cleanupVolumeMm3, c.removedPieceMm3, 1e-9 * c.removedMm3) << i;
+    operations += c.cleanupCollapses + c.cleanupFlips;
+    // After the first cut both engines hold the same Boolean result; the clean-up removes no vertex known
+    // exactly (a plan made before the check failed would collapse many).
+    if (i == 60) EXPECT_EQ(cleaned.exactVertexCount(), exactOnly.exactVertexCount());
+  }
+  EXPECT_NEAR(exactOnly.volumeMm3(), reference.volumeMm3(), 1e-9 * reference.volumeMm3());
+  EXPECT_GT(exactOnly.exactVertexCount(), 0u);
+  EXPECT_GT(cleaned.exactVertexCount(), 0u);
+  EXPECT_GT(operations, 0u);
+  EXPECT_NEAR(cleaned.volumeMm3(), exactOnly.volumeMm3(), 0.1);
+  for (const LocalSubtractor* e : {&exactOnly, &cleaned}) {
+    const BoneInvariants inv = e->checkInvariants();
+    EXPECT_TRUE(inv.closed && inv.outwardOriented);
+    EXPECT_FALSE(inv.selfIntersectsExact);
+  }
 }
 
 }  // namespace

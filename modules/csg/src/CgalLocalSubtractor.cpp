@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <map>
 #include <optional>
 #include <unordered_map>
@@ -311,6 +312,7 @@ struct LocalSubtractor::Impl {
   LocalDefects defects;
   std::vector<std::uint32_t> candidates;
   BandCleanup cleanup;
+  bool failRoundingChecks = false;  // tests only
   ToolTopology toolTopology;  // of the last tool checked
 
   P point(std::uint32_t v) const {
@@ -338,7 +340,8 @@ struct LocalSubtractor::Impl {
 
   bool touchesTool(std::uint32_t slot, const SM& tool, CGAL::Side_of_triangle_mesh<SM, EK>& side) const;
   Side insideBone(const P& q);
-  double cleanBand(const std::vector<std::uint32_t>& seeds, const Vec3& origin, LocalCut& cut);
+  csg::CleanupPlan planCleanup(const std::vector<std::uint32_t>& seeds);
+  double commitCleanup(const csg::CleanupPlan& plan, const Vec3& origin, LocalCut& cut);
   double removedVolume6(const MeshDelta& delta, const Vec3& origin) const;
   template <class Placed>
   void commit(const MeshDelta& delta, Placed&& placed);
@@ -400,22 +403,24 @@ Side LocalSubtractor::Impl::insideBone(const P& q) {
   return kUndecided;
 }
 
-// The band clean-up around the faces a cut made, committed as its own delta; returns its 6 × volume
-// change (removed − added, same origin as the cut's bookkeeping).
-double LocalSubtractor::Impl::cleanBand(const std::vector<std::uint32_t>& seeds, const Vec3& origin, LocalCut& cut) {
-  const auto start = std::chrono::steady_clock::now();
+// The band clean-up around the faces a cut made (live slots of the current state).
+csg::CleanupPlan LocalSubtractor::Impl::planCleanup(const std::vector<std::uint32_t>& seeds) {
   std::vector<std::uint32_t> live;
   for (std::uint32_t s : seeds)
     if (s != kNone && state.isTriangleLive(s)) live.push_back(s);
-  const csg::CleanupPlan plan = csg::planCutBandCleanup(
+  return csg::planCutBandCleanup(
       state, grid, live, [&](std::uint32_t v) { return !exact.empty() && exact.count(v) != 0; },
       [&](std::uint32_t s) { return s < defect.size() && defect[s] != 0; }, cleanup);
+}
+
+// Commits a clean-up as its own delta; returns its 6 × volume change (removed − added, same origin as the
+// cut's bookkeeping).
+double LocalSubtractor::Impl::commitCleanup(const csg::CleanupPlan& plan, const Vec3& origin, LocalCut& cut) {
   cut.cleanupCollapses = plan.collapses;
   cut.cleanupFlips = plan.flips;
   const double change6 = removedVolume6(plan.delta, origin);
   if (!plan.delta.empty()) commit(plan.delta, [](const DeltaPlacement&) {});
   cut.cleanupVolumeMm3 = change6 / 6.0;
-  cut.cleanupMilliseconds = elapsedMs(start);
   return change6;
 }
 
@@ -920,32 +925,59 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   std::vector<std::array<std::uint32_t, 3>> moved;
   for (const auto& t : added)
     if (moves(t[0]) || moves(t[1]) || moves(t[2])) moved.push_back(t);
-  const bool keepExact = !roundingIsSafe(kept, added, moved, uidCount, [&](std::uint32_t uid) {
-    // Every vertex of `kept` is an old slot or was given a reference with the added faces above.
-    const std::uint32_t r = ref[uid] != kNone ? ref[uid] : slotOfV[VI(uid)];
-    return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : state.vertex(r);
+  // The check runs on a second thread, beside the commit and the clean-up's planning, which assume that
+  // it passes (it nearly always does). If it fails, the exact points are kept after all and the clean-up
+  // is planned again, since vertices known exactly must not move.
+  const BoneState before = state;  // the check reads old vertices while the commit replaces `state`
+  double checkMs = 0;
+  std::future<bool> roundingSafe = std::async(std::launch::async, [&] {
+    const auto checkStart = std::chrono::steady_clock::now();
+    const bool safe = roundingIsSafe(kept, added, moved, uidCount, [&](std::uint32_t uid) {
+      // Every vertex of `kept` is an old slot or was given a reference with the added faces above.
+      const std::uint32_t r = ref[uid] != kNone ? ref[uid] : slotOfV[VI(uid)];
+      return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : before.vertex(r);
+    });
+    checkMs = elapsedMs(checkStart);
+    return safe;
   });
-  cut.phaseMilliseconds.rounding = lap();
 
-  // Side tables: the exact points of new vertices are kept only where rounding is not safe.
-  std::vector<std::uint32_t> newFaceSlots;
+  std::vector<std::uint32_t> newFaceSlots, newVertexSlots;
   commit(delta, [&](const DeltaPlacement& placement) {
-    for (std::size_t i = 0; i < newPoints.size(); ++i) {
-      const std::uint32_t slot = placement.vertexSlots[i];
-      if (slot == kNone) continue;
-      const Vec3& d = delta.addedVertices[i];
-      if (!keepExact || P(d.x, d.y, d.z) == newPoints[i]) {
-        exact.erase(slot);
-      } else {
-        settle(newPoints[i]);  // collapse the lazy history so later cuts do not re-evaluate it
-        exact[slot] = newPoints[i];
-      }
-    }
+    for (std::uint32_t slot : placement.vertexSlots)
+      if (slot != kNone) exact.erase(slot);  // rounded, unless the check fails (below)
     newFaceSlots = placement.triangleSlots;
+    newVertexSlots = placement.vertexSlots;
   });
   cut.phaseMilliseconds.commit = lap();
-
-  if (cleanup.enabled) removed6 += cleanBand(newFaceSlots, o, cut);
+  const auto cleanupStart = std::chrono::steady_clock::now();
+  std::optional<csg::CleanupPlan> plan;
+  if (cleanup.enabled) plan = planCleanup(newFaceSlots);
+  double cleanupMs = elapsedMs(cleanupStart);
+  lap();
+  const bool keepExact = !roundingSafe.get() || failRoundingChecks;
+  cut.phaseMilliseconds.rounding = lap();  // what the cut waited for the check
+  cut.phaseMilliseconds.roundingCheck = checkMs;
+  cut.roundingFailed = keepExact;
+  if (keepExact) {
+    // The side table gets the exact points that rounding would have moved, and the new faces their boxes
+    // from them.
+    for (std::size_t i = 0; i < newPoints.size(); ++i) {
+      const std::uint32_t slot = newVertexSlots[i];
+      const Vec3& d = delta.addedVertices[i];
+      if (slot == kNone || P(d.x, d.y, d.z) == newPoints[i]) continue;
+      settle(newPoints[i]);  // collapse the lazy history so later cuts do not re-evaluate it
+      exact[slot] = newPoints[i];
+    }
+    for (std::uint32_t s : newFaceSlots) grid.insert(s, boxOf(state.triangle(s)));
+    if (plan) plan = planCleanup(newFaceSlots);
+    cut.phaseMilliseconds.rounding += lap();
+  }
+  if (plan) {
+    const auto commitStart = std::chrono::steady_clock::now();
+    removed6 += commitCleanup(*plan, o, cut);
+    cleanupMs += elapsedMs(commitStart);
+  }
+  cut.cleanupMilliseconds = cleanupMs;
 
   cut.changed = true;
   cut.removedMm3 = removed6 / 6.0;
@@ -1005,6 +1037,7 @@ LocalSubtractor& LocalSubtractor::operator=(LocalSubtractor&&) noexcept = defaul
 
 LocalCut LocalSubtractor::subtract(const TriangleMesh& tool) { return impl_->subtract(tool); }
 void LocalSubtractor::setBandCleanup(const BandCleanup& cleanup) { impl_->cleanup = cleanup; }
+void LocalSubtractor::failRoundingChecksForTesting(bool fail) { impl_->failRoundingChecks = fail; }
 const BandCleanup& LocalSubtractor::bandCleanup() const { return impl_->cleanup; }
 const BoneState& LocalSubtractor::state() const { return impl_->state; }
 TriangleMesh LocalSubtractor::mesh() const { return impl_->state.toMesh(); }

@@ -52,15 +52,18 @@ struct LocalCut {
   std::size_t patchFaces = 0;    // bone faces taken into the local Boolean
   std::size_t removedFaces = 0;  // triangle slots removed from the bone
   std::size_t addedFaces = 0;
+  bool roundingFailed = false;  // rounding the new vertices was not safe: their exact values were kept
   // The band clean-up after the cut (see BandCleanup): its volume change is part of removedMm3 (so
   // removedMm3 = V_before − V_after still holds), not of removedPieceMm3.
   double cleanupVolumeMm3 = 0;
   std::size_t cleanupCollapses = 0, cleanupFlips = 0;
   double cleanupMilliseconds = 0;
   // Where the time went (ms), for the benchmark: tool and patch set-up (grid query, defect test, exact
-  // meshes), the corefinement, the classification and seam check, the rounding check, the commit.
+  // meshes), the corefinement, the classification and seam check, the rounding check, the commit. The
+  // rounding check runs on a second thread beside the commit and the clean-up's planning: `rounding` is
+  // what the cut waited for it (with the work after a failed check), `roundingCheck` its own time there.
   struct Phases {
-    double setup = 0, corefine = 0, classify = 0, rounding = 0, commit = 0;
+    double setup = 0, corefine = 0, classify = 0, rounding = 0, roundingCheck = 0, commit = 0;
   } phaseMilliseconds;
   double milliseconds = 0;
 };
@@ -102,6 +105,9 @@ class LocalSubtractor {
   // The clean-up after each cut (on by default). Off, the result is the exact Boolean alone.
   void setBandCleanup(const BandCleanup& cleanup);
   const BandCleanup& bandCleanup() const;
+  // Tests only: treat every rounding check as failed, so that new vertices keep their exact values (the
+  // rare path, which real cuts seldom take).
+  void failRoundingChecksForTesting(bool fail);
 
   const BoneState& state() const;  // rounded coordinates, slot based (cheap to copy), the input's slots
   TriangleMesh mesh() const;       // rounded to doubles
