@@ -523,33 +523,53 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     }
   }
 
-  // Near and far: only bone and tool faces whose boxes meet a box of the other side can cross it; the
-  // Boolean runs on those. A connected group of far faces lies wholly on one side of the other surface
-  // and takes the side of the near faces it borders (or of one point test), so the far faces are
-  // classified without being corefined: typically two thirds of the patch and most of the tool.
+  // Near and far: only bone and tool faces that meet a face of the other side can cross it; the Boolean
+  // runs on those (`nearBone`, `nearTool`). A connected group of far faces lies wholly on one side of the
+  // other surface and takes the side of the near faces it borders (or of one point test), so the far
+  // faces are classified without being corefined: most of the patch and of the tool. Which faces meet is
+  // decided exactly for each pair whose boxes meet (Epick: exact predicates on the doubles); bone faces at
+  // a vertex known exactly are near without a test. Bone faces whose boxes meet a tool face's box (widened
+  // by the margin) but that do not meet it are `closeBone`: the rounding check must see them.
   std::vector<char> nearBone(patchSlots.size(), 0), nearTool(toolMesh.triangles.size(), 0);
+  std::vector<char> closeBone(patchSlots.size(), 0);
   {
+    using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
+    auto ip = [](const Vec3& v) { return IK::Point_3(v.x, v.y, v.z); };
     csg::TriangleGrid toolGrid;
     toolGrid.init(toolBox.bounds(), toolMesh.triangles.size(), 4.0);
+    std::vector<IK::Triangle_3> toolTriangles;
+    toolTriangles.reserve(toolMesh.triangles.size());
     for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i) {
+      const Triangle& t = toolMesh.triangles[i];
       Box3 b = Box3::empty();
-      for (std::uint32_t v : toolMesh.triangles[i]) {
+      for (std::uint32_t v : t) {
         b.add(toolMesh.vertices[v] - margin);
         b.add(toolMesh.vertices[v] + margin);
       }
       toolGrid.insert(i, b);
+      toolTriangles.emplace_back(ip(toolMesh.vertices[t[0]]), ip(toolMesh.vertices[t[1]]), ip(toolMesh.vertices[t[2]]));
     }
     std::vector<std::uint32_t> hits;
     for (std::size_t i = 0; i < patchSlots.size(); ++i) {
       toolGrid.query(grid.box(patchSlots[i]), hits);
-      nearBone[i] = !hits.empty();
-      for (std::uint32_t h : hits) nearTool[h] = 1;
+      if (hits.empty()) continue;
+      const Triangle& t = state.triangle(patchSlots[i]);
+      const IK::Triangle_3 bt(ip(state.vertex(t[0])), ip(state.vertex(t[1])), ip(state.vertex(t[2])));
+      // Faces with a vertex known exactly are only known rounded here; degenerate ones cannot be tested.
+      const bool testable = (exact.empty() || (!exact.count(t[0]) && !exact.count(t[1]) && !exact.count(t[2]))) &&
+                            !bt.is_degenerate();
+      for (std::uint32_t h : hits)
+        if (!testable || toolTriangles[h].is_degenerate() || CGAL::do_intersect(bt, toolTriangles[h]))
+          nearBone[i] = nearTool[h] = 1;
+      closeBone[i] = !nearBone[i];
     }
-    // Faces at vertices known exactly stay near: the rounding check below must see them, since new faces
-    // at such a vertex are tested in its rounded position.
+    // Faces at vertices known exactly are near even when no tool box meets theirs: the rounding check must
+    // see them, since new faces at such a vertex are tested in its rounded position.
     if (!exact.empty())
-      for (std::size_t i = 0; i < patchSlots.size(); ++i)
+      for (std::size_t i = 0; i < patchSlots.size(); ++i) {
         for (std::uint32_t v : state.triangle(patchSlots[i])) nearBone[i] |= exact.count(v) != 0;
+        closeBone[i] &= !nearBone[i];
+      }
   }
 
   // The patch (near bone faces, with the exact coordinates of earlier cuts) and the near tool faces.
@@ -915,8 +935,10 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   // keeps exact coordinates from compounding cut after cut; otherwise it keeps them (and the document's
   // rounded copy may self-intersect there, which checkInvariants reports).
   // Rounding moves the curve points and old vertices known exactly; the tool's own vertices (ids from nP
-  // on, off the curve) and old double vertices stay where they are. Far faces are more than the margin
-  // away from every tool face, so no moved face comes near them.
+  // on, off the curve) and old double vertices stay where they are. Moved faces lie on the tool or on near
+  // bone faces. Bone faces that are not near but stay are checked too when they are within the margin of
+  // a tool face (`closeBone`); the others are more than the margin away from every tool face, so no moved
+  // face comes near them.
   auto moves = [&](std::uint32_t uid) {
     if (uid >= nP) return false;
     const std::uint32_t s = slotOfV[VI(uid)];
@@ -928,11 +950,32 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   // The check runs on a second thread, beside the commit and the clean-up's planning, which assume that
   // it passes (it nearly always does). If it fails, the exact points are kept after all and the clean-up
   // is planned again, since vertices known exactly must not move.
+  std::vector<std::uint32_t> closeStaying;  // patchSlots indices of close bone faces outside the tool
+  for (std::size_t i = 0, j = 0; i < patchSlots.size(); ++i) {
+    if (nearBone[i]) continue;
+    if (boneGroups.side(std::size_t(nPC) + j++) != kInside && closeBone[i]) closeStaying.push_back(std::uint32_t(i));
+  }
   const BoneState before = state;  // the check reads old vertices while the commit replaces `state`
   double checkMs = 0;
   std::future<bool> roundingSafe = std::async(std::launch::async, [&] {
     const auto checkStart = std::chrono::steady_clock::now();
-    const bool safe = roundingIsSafe(kept, added, moved, uidCount, [&](std::uint32_t uid) {
+    // Close faces join `kept` (no longer needed by this thread's caller) with ids from uidCount on, unless
+    // their vertices are patch vertices.
+    std::vector<std::uint32_t> closeSlot;  // bone vertex slot of ids uidCount, uidCount + 1, ...
+    std::unordered_map<std::uint32_t, std::uint32_t> closeId;
+    auto idOf = [&](std::uint32_t slot) {
+      const auto it = patchVertex.find(slot);
+      if (it != patchVertex.end()) return std::uint32_t(it->second.idx());
+      const auto [c, isNew] = closeId.try_emplace(slot, uidCount + std::uint32_t(closeSlot.size()));
+      if (isNew) closeSlot.push_back(slot);
+      return c->second;
+    };
+    for (std::uint32_t i : closeStaying) {
+      const Triangle& t = before.triangle(patchSlots[i]);
+      kept.push_back({idOf(t[0]), idOf(t[1]), idOf(t[2])});
+    }
+    const bool safe = roundingIsSafe(kept, added, moved, uidCount + closeSlot.size(), [&](std::uint32_t uid) {
+      if (uid >= uidCount) return before.vertex(closeSlot[uid - uidCount]);
       // Every vertex of `kept` is an old slot or was given a reference with the added faces above.
       const std::uint32_t r = ref[uid] != kNone ? ref[uid] : slotOfV[VI(uid)];
       return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : before.vertex(r);
