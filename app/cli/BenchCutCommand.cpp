@@ -58,10 +58,11 @@ struct Spot {
   Vec3 inward;  // feed direction
 };
 
-// The default scapula: its glenoid frame. Other bones: the vertex farthest along +Z (the skull's vertex,
-// far from the open border where the scan ends), fed along -Z.
-Spot findSpot(const std::string& bone, const TriangleMesh& mesh) {
-  if (bone == "default") {
+// The glenoid frame of the bundled scapula (for it and for the refinements of it that share its
+// coordinates, scripts/make_scapula_variants.py), or the vertex farthest along +Z (the skull's vertex, far
+// from the open border where the scan ends), fed along -Z.
+Spot findSpot(const std::string& site, const TriangleMesh& mesh) {
+  if (site == "glenoid") {
     const DefaultBone d = loadDefaultBone();
     return {d.glenoid.centre, -d.glenoid.outwardAxis};
   }
@@ -314,7 +315,7 @@ nlohmann::json appLoop(const TriangleMesh& bone, const ReamerSpec& spec, const T
 int runBenchCut(const std::vector<std::string>& args) {
   CliArgs a(args,
             {"bone", "units", "subdivide", "steps", "depth", "tilt", "reamer", "check-every", "export-sequence",
-             "peers-dir", "peers-budget-ms", "path", "cleanup-deviation-mm", "cleanup-min-edge-mm", "cleanup-min-angle-deg"},
+             "peers-dir", "peers-budget-ms", "path", "cut-site", "cleanup-deviation-mm", "cleanup-min-edge-mm", "cleanup-min-angle-deg"},
             {"json", "peers", "table-5-1", "no-cleanup", "avoid-defects", "loop"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string boneArg = a.value("bone", "default");
@@ -341,8 +342,10 @@ int runBenchCut(const std::vector<std::string>& args) {
     return pathKind == "soak" ? soakPath(s, steps, a.number("depth", 1.0))
                               : reamingPath(s, steps, a.number("depth", 3.0), a.number("tilt", 3.0));
   };
+  const std::string site = a.value("cut-site", boneArg == "default" ? "glenoid" : "top");
+  if (site != "glenoid" && site != "top") throw UsageError("--cut-site glenoid|top");
   const Spot spot = a.has("avoid-defects") && boneArg != "default" ? findCleanSpot(bone, localTool, pathAt)
-                                                                    : findSpot(boneArg, bone);
+                                                                    : findSpot(site, bone);
   const std::vector<Pose> poses = pathAt(spot);
 
   const double peersBudgetMs = a.number("peers-budget-ms", 60000);
@@ -423,6 +426,7 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"faces_ratio", double(finalMesh.triangles.size()) / double(bone.triangles.size())},
       {"steps", steps},
       {"path", pathKind},
+      {"cut_site", a.has("avoid-defects") && boneArg != "default" ? "clean spot (--avoid-defects)" : site},
       {"spot", {{"centre", {spot.centre.x, spot.centre.y, spot.centre.z}}, {"inward", {spot.inward.x, spot.inward.y, spot.inward.z}}}},
       {"cuts", cuts},
       {"setup_ms", setupMs},

@@ -30,7 +30,7 @@ const char* kUsageText =
     "      run a reaming plan; prints one row per step and writes DIR/log.csv, DIR/log.json and\n"
     "      the final bone mesh\n"
     "  bench cut [--bone default|MESH] [--subdivide N] [--steps N] [--peers [--peers-dir DIR] [--peers-budget-ms N]]\n"
-    "            [--path jitter|soak] [--depth MM] [--tilt DEG] [--no-cleanup] [--cleanup-deviation-mm MM]\n"
+    "            [--path jitter|soak] [--cut-site glenoid|top] [--depth MM] [--tilt DEG] [--no-cleanup] [--cleanup-deviation-mm MM]\n"
     "            [--check-every N] [--table-5-1] [--export-sequence DIR] [--json]\n"
     "      time the local CSG engine on a reaming path; one JSON object (docs/BENCHMARKS.md)\n"
     "  bench collision --bone MESH|default [--reamer PRESET|MESH [--solid-only]] [--poses N] [--cut-site glenoid|random] [--json]\n"

@@ -974,12 +974,16 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
       const Triangle& t = before.triangle(patchSlots[i]);
       kept.push_back({idOf(t[0]), idOf(t[1]), idOf(t[2])});
     }
-    const bool safe = roundingIsSafe(kept, added, moved, uidCount + closeSlot.size(), [&](std::uint32_t uid) {
-      if (uid >= uidCount) return before.vertex(closeSlot[uid - uidCount]);
-      // Every vertex of `kept` is an old slot or was given a reference with the added faces above.
-      const std::uint32_t r = ref[uid] != kNone ? ref[uid] : slotOfV[VI(uid)];
-      return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : before.vertex(r);
-    });
+    bool safe = false;  // an exception here (out of memory) keeps the exact points: sound, never lost
+    try {
+      safe = roundingIsSafe(kept, added, moved, uidCount + closeSlot.size(), [&](std::uint32_t uid) {
+        if (uid >= uidCount) return before.vertex(closeSlot[uid - uidCount]);
+        // Every vertex of `kept` is an old slot or was given a reference with the added faces above.
+        const std::uint32_t r = ref[uid] != kNone ? ref[uid] : slotOfV[VI(uid)];
+        return MeshDelta::isNewVertex(r) ? delta.addedVertices[MeshDelta::newVertexIndex(r)] : before.vertex(r);
+      });
+    } catch (const std::exception&) {
+    }
     checkMs = elapsedMs(checkStart);
     return safe;
   });
