@@ -260,11 +260,12 @@ class Cleanup {
     return collapse(a, b, made) || collapse(b, a, made);
   }
 
-  // Half-edge collapse: v moves onto u.
+  // Half-edge collapse: v moves onto u. The geometric tests come first: most candidates fail them (at 405k
+  // two in three), and they need only v's faces.
   bool collapse(std::uint32_t v, std::uint32_t u, std::vector<int>& made) {
-    if (!movable(v) || !movable(u) || !closedFan(v) || !closedFan(u)) return false;
-    const std::vector<int> sv = aliveStar(v), su = aliveStar(u);
-    if (sv.size() < 3 || su.size() < 3) return false;
+    if (!movable(v) || !movable(u)) return false;
+    const std::vector<int> sv = aliveStar(v);
+    if (sv.size() < 3) return false;
     std::vector<std::uint32_t> opposite;
     for (int f : sv) {
       const Tri& t = faces_[f].v;
@@ -273,15 +274,6 @@ class Cleanup {
         if (w != u && w != v) opposite.push_back(w);
     }
     if (opposite.size() != 2 || opposite[0] == opposite[1]) return false;
-    // Link condition: u and v share exactly the two neighbours across the edge.
-    const auto nu = neighbours(su, u), nv = neighbours(sv, v);
-    std::size_t common = 0;
-    for (std::size_t i = 0, j = 0; i < nu.size() && j < nv.size();) {
-      if (nu[i] < nv[j]) ++i;
-      else if (nv[j] < nu[i]) ++j;
-      else ++common, ++i, ++j;
-    }
-    if (common != 2) return false;
 
     std::vector<Tri> newFaces;
     double oldQuality = std::numeric_limits<double>::infinity(), newQuality = oldQuality;
@@ -295,12 +287,26 @@ class Cleanup {
         if (frozenVertex_(w)) return false;  // only known rounded here
       }
       if (!acceptableFace(t, was) || planeDistance(at(v), t) > opt_.maxDeviationMm) return false;
-      // A closed piece as small as a tetrahedron would fold onto one of u's faces.
-      if (duplicates(t, u, sv)) return false;
       newQuality = std::min(newQuality, angleOf(t));
       newFaces.push_back(t);
     }
     if (newQuality < std::min(oldQuality, minAngle_)) return false;
+
+    if (!closedFan(v) || !closedFan(u)) return false;
+    const std::vector<int>& su = aliveStar(u);
+    if (su.size() < 3) return false;
+    // Link condition: u and v share exactly the two neighbours across the edge.
+    const auto nu = neighbours(su, u), nv = neighbours(sv, v);
+    std::size_t common = 0;
+    for (std::size_t i = 0, j = 0; i < nu.size() && j < nv.size();) {
+      if (nu[i] < nv[j]) ++i;
+      else if (nv[j] < nu[i]) ++j;
+      else ++common, ++i, ++j;
+    }
+    if (common != 2) return false;
+    // A closed piece as small as a tetrahedron would fold onto one of u's faces.
+    for (const Tri& t : newFaces)
+      if (duplicates(t, u, sv)) return false;
     if (!intersectionFree(newFaces, sv)) return false;
     replace(sv, newFaces, made);
     star_[v].movable = false;  // gone
