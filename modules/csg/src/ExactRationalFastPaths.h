@@ -11,7 +11,8 @@
 // Both are specialisations for mpq_class / Simple_cartesian<mpq_class>: include this header first in every
 // unit of this module that uses a CGAL kernel, so that all of them see the same definitions. The results
 // are the same exact values (tests/csg/ExactRationalFastPathsTest.cpp checks them against CGAL's generic
-// code).
+// code), so a CGAL unit of another module (mesh repair, CT import: Epick only) that instantiates CGAL's own
+// version for its exact fallbacks computes the same thing, whichever definition the linker keeps.
 #include <CGAL/Kernel/function_objects.h>
 #include <algorithm>
 #include <CGAL/Simple_cartesian.h>
