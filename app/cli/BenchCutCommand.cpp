@@ -344,8 +344,8 @@ int runBenchCut(const std::vector<std::string>& args) {
   };
   const std::string site = a.value("cut-site", boneArg == "default" ? "glenoid" : "top");
   if (site != "glenoid" && site != "top") throw UsageError("--cut-site glenoid|top");
-  const Spot spot = a.has("avoid-defects") && boneArg != "default" ? findCleanSpot(bone, localTool, pathAt)
-                                                                    : findSpot(site, bone);
+  const bool cleanSpot = a.has("avoid-defects") && boneArg != "default";
+  const Spot spot = cleanSpot ? findCleanSpot(bone, localTool, pathAt) : findSpot(site, bone);
   const std::vector<Pose> poses = pathAt(spot);
 
   const double peersBudgetMs = a.number("peers-budget-ms", 60000);
@@ -426,7 +426,7 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"faces_ratio", double(finalMesh.triangles.size()) / double(bone.triangles.size())},
       {"steps", steps},
       {"path", pathKind},
-      {"cut_site", a.has("avoid-defects") && boneArg != "default" ? "clean spot (--avoid-defects)" : site},
+      {"cut_site", cleanSpot ? "clean spot (--avoid-defects)" : site},
       {"spot", {{"centre", {spot.centre.x, spot.centre.y, spot.centre.z}}, {"inward", {spot.inward.x, spot.inward.y, spot.inward.z}}}},
       {"cuts", cuts},
       {"setup_ms", setupMs},

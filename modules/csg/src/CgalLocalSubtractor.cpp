@@ -315,6 +315,8 @@ struct LocalSubtractor::Impl {
   bool failRoundingChecks = false;  // tests only
   ToolTopology toolTopology;  // of the last tool checked
 
+  // Whether vertex v's exact coordinates are not its doubles (kept in `exact`).
+  bool knownExactly(std::uint32_t v) const { return !exact.empty() && exact.count(v) != 0; }
   P point(std::uint32_t v) const {
     const auto it = exact.find(v);
     if (it != exact.end()) return it->second;
@@ -409,7 +411,7 @@ csg::CleanupPlan LocalSubtractor::Impl::planCleanup(const std::vector<std::uint3
   for (std::uint32_t s : seeds)
     if (s != kNone && state.isTriangleLive(s)) live.push_back(s);
   return csg::planCutBandCleanup(
-      state, grid, live, [&](std::uint32_t v) { return !exact.empty() && exact.count(v) != 0; },
+      state, grid, live, [&](std::uint32_t v) { return knownExactly(v); },
       [&](std::uint32_t s) { return s < defect.size() && defect[s] != 0; }, cleanup);
 }
 
@@ -538,7 +540,9 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     csg::TriangleGrid toolGrid;
     toolGrid.init(toolBox.bounds(), toolMesh.triangles.size(), 4.0);
     std::vector<IK::Triangle_3> toolTriangles;
+    std::vector<char> toolDegenerate;
     toolTriangles.reserve(toolMesh.triangles.size());
+    toolDegenerate.reserve(toolMesh.triangles.size());
     for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i) {
       const Triangle& t = toolMesh.triangles[i];
       Box3 b = Box3::empty();
@@ -548,6 +552,7 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
       }
       toolGrid.insert(i, b);
       toolTriangles.emplace_back(ip(toolMesh.vertices[t[0]]), ip(toolMesh.vertices[t[1]]), ip(toolMesh.vertices[t[2]]));
+      toolDegenerate.push_back(toolTriangles.back().is_degenerate());
     }
     std::vector<std::uint32_t> hits;
     for (std::size_t i = 0; i < patchSlots.size(); ++i) {
@@ -556,10 +561,10 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
       const Triangle& t = state.triangle(patchSlots[i]);
       const IK::Triangle_3 bt(ip(state.vertex(t[0])), ip(state.vertex(t[1])), ip(state.vertex(t[2])));
       // Faces with a vertex known exactly are only known rounded here; degenerate ones cannot be tested.
-      const bool testable = (exact.empty() || (!exact.count(t[0]) && !exact.count(t[1]) && !exact.count(t[2]))) &&
-                            !bt.is_degenerate();
+      const bool testable =
+          !knownExactly(t[0]) && !knownExactly(t[1]) && !knownExactly(t[2]) && !bt.is_degenerate();
       for (std::uint32_t h : hits)
-        if (!testable || toolTriangles[h].is_degenerate() || CGAL::do_intersect(bt, toolTriangles[h]))
+        if (!testable || toolDegenerate[h] || CGAL::do_intersect(bt, toolTriangles[h]))
           nearBone[i] = nearTool[h] = 1;
       closeBone[i] = !nearBone[i];
     }
@@ -567,7 +572,7 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     // see them, since new faces at such a vertex are tested in its rounded position.
     if (!exact.empty())
       for (std::size_t i = 0; i < patchSlots.size(); ++i) {
-        for (std::uint32_t v : state.triangle(patchSlots[i])) nearBone[i] |= exact.count(v) != 0;
+        for (std::uint32_t v : state.triangle(patchSlots[i])) nearBone[i] |= knownExactly(v);
         closeBone[i] &= !nearBone[i];
       }
   }
@@ -942,7 +947,7 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   auto moves = [&](std::uint32_t uid) {
     if (uid >= nP) return false;
     const std::uint32_t s = slotOfV[VI(uid)];
-    return s == kNone || exact.count(s) != 0;
+    return s == kNone || knownExactly(s);
   };
   std::vector<std::array<std::uint32_t, 3>> moved;
   for (const auto& t : added)
@@ -1059,11 +1064,8 @@ LocalSubtractor::LocalSubtractor(const BoneState& bone) : impl_(std::make_unique
   m.defect = scan.flags;
   m.defects.borderEdges = scan.borderEdges;
   m.defects.selfIntersectingPairs = scan.selfIntersectingPairs;
-  double area = 0;
-  m.state.forEachLiveTriangle([&](std::uint32_t, const Triangle& t) {
-    area += 0.5 * norm(cross(m.state.vertex(t[1]) - m.state.vertex(t[0]), m.state.vertex(t[2]) - m.state.vertex(t[0])));
-  });
-  m.grid.init(m.state.bounds(), m.state.liveTriangleCount(), 8.0, area);
+  // Free slots hold (0, 0, 0): no area.
+  m.grid.init(m.state.bounds(), m.state.liveTriangleCount(), 8.0, surfaceArea(slots));
   for (std::uint32_t s = 0; s < slots.triangles.size(); ++s) {
     if (!live[s]) {
       m.defect[s] = 0;
