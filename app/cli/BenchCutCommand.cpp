@@ -368,9 +368,10 @@ int runBenchCut(const std::vector<std::string>& args) {
   std::size_t failures = 0, cuts = 0, checks = 0, exactSI = 0, roundedSI = 0, notClosed = 0;
   std::map<std::string, std::size_t> failureKinds;
   double worstBookkeeping = 0, worstPiece = 0, removedTotal = 0, cleanupVolume = 0;
-  std::size_t collapses = 0, flips = 0, roundingFailures = 0;
+  std::size_t collapses = 0, flips = 0, roundingFailures = 0, cleanupReplanned = 0;
   std::vector<double> cleanupTimes;
   std::map<std::string, std::vector<double>> phaseTimes;  // of the steps that cut
+  std::map<std::string, std::vector<double>> sizes;       // of the steps that cut: faces handled
   const double volumeStart = engine.volumeMm3();
   const bool closedStart = engine.defects().borderEdges == 0;
   auto check = [&]() {
@@ -397,6 +398,7 @@ int runBenchCut(const std::vector<std::string>& args) {
         cleanupVolume += c.cleanupVolumeMm3;
         collapses += c.cleanupCollapses;
         flips += c.cleanupFlips;
+        cleanupReplanned += c.cleanupReplanned ? 1 : 0;
         roundingFailures += c.roundingFailed ? 1 : 0;
         cleanupTimes.push_back(c.cleanupMilliseconds);
         phaseTimes["setup"].push_back(c.phaseMilliseconds.setup);
@@ -406,6 +408,12 @@ int runBenchCut(const std::vector<std::string>& args) {
         phaseTimes["rounding_check_thread"].push_back(c.phaseMilliseconds.roundingCheck);
         phaseTimes["commit"].push_back(c.phaseMilliseconds.commit);
         phaseTimes["cleanup"].push_back(c.cleanupMilliseconds);
+        sizes["candidate_faces"].push_back(double(c.candidateFaces));
+        sizes["near_bone_faces"].push_back(double(c.patchFaces));
+        sizes["near_tool_faces"].push_back(double(c.nearToolFaces));
+        sizes["removed_faces"].push_back(double(c.removedFaces));
+        sizes["added_faces"].push_back(double(c.addedFaces));
+        sizes["cleanup_collapses"].push_back(double(c.cleanupCollapses));
       }
     } catch (const CutError& e) {
       ++failures;
@@ -439,6 +447,11 @@ int runBenchCut(const std::vector<std::string>& args) {
          for (const auto& [name, t] : phaseTimes) j[name] = percentile(t, 0.5);
          return j;
        }()},
+      {"cut_sizes_median_changed", [&] {
+         nlohmann::json j = nlohmann::json::object();
+         for (const auto& [name, n] : sizes) j[name] = percentile(n, 0.5);
+         return j;
+       }()},
       {"failures", failures},
       {"failure_kinds", failureKinds},
       {"checks", checks},
@@ -456,6 +469,7 @@ int runBenchCut(const std::vector<std::string>& args) {
                         {"max_deviation_mm", engine.bandCleanup().maxDeviationMm},
                         {"collapses", collapses},
                         {"flips", flips},
+                        {"replanned_cuts", cleanupReplanned},
                         {"volume_change_mm3", cleanupVolume},
                         {"median_ms", percentile(cleanupTimes, 0.5)}}},
       {"min_angle_deg", minAngleDeg(finalMesh)},

@@ -151,5 +151,50 @@ TEST(BandCleanup, AFailedRoundingCheckKeepsExactPointsAndThePlanAvoidsThem) {
   }
 }
 
+// The clean-up takes its operations on their local tests and tests the outcome for self-intersections once;
+// testing every operation before taking it must give the very same surface (operations that pass their
+// local tests nearly never fail the intersection test). With exact vertices in the band (a failed rounding
+// check), the outcome meets faces it must keep away from, and the plan is made again operation by operation:
+// again the same surface as the careful plan's.
+TEST(BandCleanup, TestingTheOutcomeOnceGivesTheSameSurfaceAsTestingEachOperation) {
+  const DefaultBone bone = loadDefaultBone();
+  const std::vector<Pose> path = jitteryPath(bone, 150);
+  for (bool failRounding : {false, true}) {
+    LocalSubtractor once(bone.mesh), each(bone.mesh);
+    BandCleanup careful;
+    careful.testEachOperation = true;
+    each.setBandCleanup(careful);
+    once.failRoundingChecksForTesting(failRounding);
+    each.failRoundingChecksForTesting(failRounding);
+    std::size_t operations = 0, replanned = 0;
+    for (int i = 40; i < (failRounding ? 46 : 80); ++i) {
+      const TriangleMesh tool = toolAt(capSpec(36, 30), path[i]);
+      const LocalCut a = once.subtract(tool), b = each.subtract(tool);
+      ASSERT_EQ(a.changed, b.changed) << i;
+      EXPECT_EQ(a.cleanupCollapses, b.cleanupCollapses) << i;
+      EXPECT_EQ(a.cleanupFlips, b.cleanupFlips) << i;
+      EXPECT_FALSE(b.cleanupReplanned) << i;
+      ASSERT_EQ(once.faceCount(), each.faceCount()) << i;
+      ASSERT_EQ(once.volumeMm3(), each.volumeMm3()) << i;
+      operations += a.cleanupCollapses + a.cleanupFlips;
+      replanned += a.cleanupReplanned;
+    }
+    const TriangleMesh ma = once.mesh(), mb = each.mesh();
+    EXPECT_EQ(ma.vertices, mb.vertices);
+    EXPECT_EQ(ma.triangles, mb.triangles);
+    EXPECT_GT(operations, 0u);
+    std::printf("rounding %s: %zu operations, %zu cuts replanned\n", failRounding ? "failed" : "kept", operations,
+                replanned);
+    if (failRounding) {
+      EXPECT_GT(replanned, 0u);  // the path that makes the plan again is taken
+      const BoneInvariants inv = once.checkInvariants();
+      EXPECT_TRUE(inv.closed && inv.outwardOriented);
+      EXPECT_FALSE(inv.selfIntersectsExact);
+    } else {
+      EXPECT_EQ(replanned, 0u);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace reamsim

@@ -19,8 +19,10 @@
 #include "CutBandCleanup.h"
 #include "LocalDefectScan.h"
 #include "TrianglePair.h"
+#include "ToolBound.h"
 #include "TriangleGrid.h"
 #include "reamsim/csg/LocalSubtractor.h"
+
 
 namespace reamsim {
 namespace {
@@ -35,6 +37,9 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 using csg::Box3;
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+// Planes of the tool's bound beyond its box (csg::ToolBound): enough to hug a spherical cap to within a
+// fraction of a millimetre; each costs three dot products per candidate face.
+constexpr std::size_t kToolBoundPlanes = 32;
 
 // Intersection points are built once by the corefinement and shared by both meshes, so their interval
 // approximations are identical: looking them up by those intervals avoids exact evaluation (GMP) for
@@ -184,6 +189,7 @@ struct ToolTopology {
   std::size_t vertexCount = 0;
   std::vector<Triangle> triangles;
   std::vector<std::array<std::uint32_t, 3>> across;
+  std::vector<std::uint32_t> boundFaces;  // faces whose planes bound the placed tool (csg::ToolBound)
 };
 
 const ToolTopology& checkTool(const TriangleMesh& tool, ToolTopology& cache) {
@@ -217,6 +223,7 @@ const ToolTopology& checkTool(const TriangleMesh& tool, ToolTopology& cache) {
   cache.vertexCount = n;
   cache.triangles = tool.triangles;
   cache.across = std::move(across);
+  cache.boundFaces = csg::ToolBound::spreadFaces(tool, kToolBoundPlanes);
   return cache;
 }
 
@@ -420,6 +427,7 @@ csg::CleanupPlan LocalSubtractor::Impl::planCleanup(const std::vector<std::uint3
 double LocalSubtractor::Impl::commitCleanup(const csg::CleanupPlan& plan, const Vec3& origin, LocalCut& cut) {
   cut.cleanupCollapses = plan.collapses;
   cut.cleanupFlips = plan.flips;
+  cut.cleanupReplanned = plan.retested;
   const double change6 = removedVolume6(plan.delta, origin);
   if (!plan.delta.empty()) commit(plan.delta, [](const DeltaPlacement&) {});
   cut.cleanupVolumeMm3 = change6 / 6.0;
@@ -488,7 +496,30 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     toolBox.lo[i] -= margin[i];
     toolBox.hi[i] += margin[i];
   }
-  grid.query(toolBox, candidates);
+  {
+    // Only faces within the tool's bound can touch it (cells wholly beyond it are skipped, then faces).
+    // Faces at a vertex known exactly stay (see `near`).
+    double scale = 1;
+    for (int i = 0; i < 3; ++i) scale = std::max({scale, std::abs(toolBox.lo[i]), std::abs(toolBox.hi[i])});
+    csg::ToolBound bound;
+    bound.fit(toolMesh, topology.boundFaces, 1e-6 + 1e-8 * scale);
+    if (exact.empty())
+      grid.query(toolBox, [&](const Box3& cell) { return bound.mayMeet(cell); }, candidates);
+    else
+      grid.query(toolBox, candidates);
+    std::size_t kept = 0;
+    for (std::uint32_t s : candidates) {
+      const Triangle& t = state.triangle(s);
+      if (bound.mayMeet(state.vertex(t[0]), state.vertex(t[1]), state.vertex(t[2])) || knownExactly(t[0]) ||
+          knownExactly(t[1]) || knownExactly(t[2]))
+        candidates[kept++] = s;
+    }
+    candidates.resize(kept);
+    // In slot order, so that the result does not depend on how the grid found them (the patch's order
+    // decides ties in the corefinement's triangulations).
+    std::sort(candidates.begin(), candidates.end());
+  }
+  cut.candidateFaces = candidates.size();
   // No face near the tool: it misses the bone, unless it is buried inside it (then it leaves a cavity,
   // found by the ray parity below). A tool not within the bone's box cannot be buried.
   const Bounds& bb = state.bounds();
@@ -534,10 +565,10 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   // by the margin) but that do not meet it are `closeBone`: the rounding check must see them.
   std::vector<char> nearBone(patchSlots.size(), 0), nearTool(toolMesh.triangles.size(), 0);
   std::vector<char> closeBone(patchSlots.size(), 0);
+  using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
+  csg::TriangleGrid toolGrid;  // the tool's faces by box (widened by the margin)
   {
-    using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
     auto ip = [](const Vec3& v) { return IK::Point_3(v.x, v.y, v.z); };
-    csg::TriangleGrid toolGrid;
     toolGrid.init(toolBox.bounds(), toolMesh.triangles.size(), 4.0);
     std::vector<IK::Triangle_3> toolTriangles;
     std::vector<char> toolDegenerate;
@@ -618,6 +649,7 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     }
     if (tool.add_face(v[0], v[1], v[2]) == SM::null_face())
       throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
+    ++cut.nearToolFaces;
   }
   cut.phaseMilliseconds.setup = lap();
   auto conP = patch.add_property_map<EI, bool>("e:c", false).first;
@@ -791,6 +823,52 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     const auto s = sideOf()(q);
     return s == CGAL::ON_BOUNDARY ? kUndecided : s == CGAL::ON_BOUNDED_SIDE ? kInside : kOutside;
   };
+  // The same for a point with double coordinates, without an exact tool: parity of the tool faces an
+  // axis-parallel ray crosses, each decided by exact predicates on the doubles (Epick); a ray through an
+  // edge or a vertex of a face (in projection) is dropped and the next axis tried.
+  std::vector<std::uint32_t> rayHits;
+  auto toolSideOfDouble = [&](const Vec3& q) -> Side {
+    for (int axis = 0; axis < 3; ++axis) {
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;  // (u, w, axis) is right-handed
+      auto p2 = [&](const Vec3& v) { return IK::Point_2(v[u], v[w]); };
+      const IK::Point_2 q2 = p2(q);
+      toolGrid.ray({q.x, q.y, q.z}, axis, 1, rayHits);
+      bool clean = true;
+      std::size_t crossings = 0;
+      for (std::uint32_t h : rayHits) {
+        const Triangle& t = toolMesh.triangles[h];
+        const Vec3 &a = toolMesh.vertices[t[0]], &b = toolMesh.vertices[t[1]], &c = toolMesh.vertices[t[2]];
+        const auto o2 = CGAL::orientation(p2(a), p2(b), p2(c));  // the sign of the normal's axis component
+        const auto sab = CGAL::orientation(p2(a), p2(b), q2), sbc = CGAL::orientation(p2(b), p2(c), q2),
+                   sca = CGAL::orientation(p2(c), p2(a), q2);
+        if (o2 == CGAL::COLLINEAR) {
+          // Seen edge-on: the ray can only graze it, which the faces around it decide unless q's line
+          // passes along it.
+          if (sab == CGAL::COLLINEAR || sbc == CGAL::COLLINEAR || sca == CGAL::COLLINEAR) clean = false;
+          if (!clean) break;
+          continue;
+        }
+        if (sab == CGAL::COLLINEAR || sbc == CGAL::COLLINEAR || sca == CGAL::COLLINEAR) {
+          // Through an edge or a vertex in projection: decide with another axis, unless q misses the face.
+          if ((sab == o2 || sab == CGAL::COLLINEAR) && (sbc == o2 || sbc == CGAL::COLLINEAR) &&
+              (sca == o2 || sca == CGAL::COLLINEAR)) {
+            clean = false;
+            break;
+          }
+          continue;
+        }
+        if (sab != o2 || sbc != o2 || sca != o2) continue;  // q's line misses the face
+        const auto o3 = CGAL::orientation(IK::Point_3(a.x, a.y, a.z), IK::Point_3(b.x, b.y, b.z),
+                                          IK::Point_3(c.x, c.y, c.z), IK::Point_3(q.x, q.y, q.z));
+        if (o3 == CGAL::COPLANAR) return kUndecided;  // q lies on the tool's surface
+        // The line meets the face's plane ahead of q (along +axis) when q is below the plane as seen from
+        // +axis: orientation(a, b, c, q) = sign(n · (q − a)) opposite to the sign of n's axis component.
+        if (o3 != o2) ++crossings;
+      }
+      if (clean) return (crossings % 2) ? kInside : kOutside;
+    }
+    return kUndecided;
+  };
   for (FI f : patch.faces()) {
     const int c = pcomp[f.idx()];
     if (pside[c] != kUndecided || pHasCurve[c]) continue;
@@ -801,8 +879,13 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   for (std::size_t j = 0; j < farBone.size(); ++j) {
     const std::size_t e = std::size_t(nPC) + j;
     if (boneGroups.side(e) != kUndecided) continue;
+    // A far face does not meet the tool's surface: all of it lies on the side of any of its points.
     const Triangle& t = state.triangle(patchSlots[farBone[j]]);
-    boneGroups.setSide(e, toolSideOf(CGAL::centroid(point(t[0]), point(t[1]), point(t[2]))));
+    Side side = kUndecided;
+    for (int k = 0; k < 3 && side == kUndecided; ++k)
+      if (!knownExactly(t[k])) side = toolSideOfDouble(state.vertex(t[k]));
+    if (side == kUndecided) side = toolSideOf(CGAL::centroid(point(t[0]), point(t[1]), point(t[2])));
+    boneGroups.setSide(e, side);
   }
   for (FI f : tool.faces()) {
     const int c = tcomp[f.idx()];
@@ -844,6 +927,12 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
                   0.5 * (toolBox.lo[2] + toolBox.hi[2])};
   double piece6 = 0;
   auto pieceTerm = [&](const P& a, const P& b, const P& c) { piece6 += volumeTerm(o, rounded(a), rounded(b), rounded(c)); };
+  // The rounded point of a unified id, without making an exact point for the tool's own vertices.
+  auto uidRounded = [&](std::uint32_t uid) -> Vec3 {
+    if (uid < nP) return rounded(patch.point(VI(uid)));
+    if (uid < nP + nT) return rounded(tool.point(VI(uid - nP)));
+    return toolMesh.vertices[uid - nP - nT];
+  };
   for (FI f : patch.faces()) {
     const auto v = faceVertices(patch, f);
     const std::array<std::uint32_t, 3> ids = {std::uint32_t(v[0].idx()), std::uint32_t(v[1].idx()),
@@ -874,11 +963,14 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     }
     if (boneGroups.side(std::size_t(nPC) + j++) != kInside) continue;
     const Triangle& t = state.triangle(patchSlots[i]);
-    pieceTerm(point(t[0]), point(t[1]), point(t[2]));
+    if (knownExactly(t[0]) || knownExactly(t[1]) || knownExactly(t[2]))
+      pieceTerm(point(t[0]), point(t[1]), point(t[2]));
+    else
+      piece6 += volumeTerm(o, state.vertex(t[0]), state.vertex(t[1]), state.vertex(t[2]));
     removed.push_back(patchSlots[i]);
   }
   auto keepToolFace = [&](const std::array<std::uint32_t, 3>& ids) {
-    pieceTerm(uidPoint(ids[0]), uidPoint(ids[1]), uidPoint(ids[2]));
+    piece6 += volumeTerm(o, uidRounded(ids[0]), uidRounded(ids[1]), uidRounded(ids[2]));
     const std::array<std::uint32_t, 3> reversed = {ids[0], ids[2], ids[1]};
     kept.push_back(reversed);
     added.push_back(reversed);
@@ -921,13 +1013,18 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   MeshDelta delta;
   delta.removedTriangles = removed;
   std::vector<std::uint32_t> ref(uidCount, kNone);
-  std::vector<P> newPoints;
+  std::vector<std::optional<P>> newPoints;  // none for the tool's own vertices (doubles already)
   auto refOf = [&](std::uint32_t uid) {
     if (ref[uid] != kNone) return ref[uid];
     if (uid < nP && slotOfV[VI(uid)] != kNone) return ref[uid] = slotOfV[VI(uid)];
-    const P p = uidPoint(uid);
-    newPoints.push_back(p);  // exact values are only computed if they have to be kept (below)
-    delta.addedVertices.push_back(rounded(p));
+    if (uid >= nP + nT) {
+      newPoints.emplace_back();
+      delta.addedVertices.push_back(toolMesh.vertices[uid - nP - nT]);
+    } else {
+      const P p = uidPoint(uid);
+      newPoints.push_back(p);  // exact values are only computed if they have to be kept (below)
+      delta.addedVertices.push_back(rounded(p));
+    }
     return ref[uid] = MeshDelta::newVertex(std::uint32_t(newPoints.size() - 1));
   };
   for (const auto& t : added) delta.addedTriangles.push_back({refOf(t[0]), refOf(t[1]), refOf(t[2])});
@@ -1016,9 +1113,9 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     for (std::size_t i = 0; i < newPoints.size(); ++i) {
       const std::uint32_t slot = newVertexSlots[i];
       const Vec3& d = delta.addedVertices[i];
-      if (slot == kNone || P(d.x, d.y, d.z) == newPoints[i]) continue;
-      settle(newPoints[i]);  // collapse the lazy history so later cuts do not re-evaluate it
-      exact[slot] = newPoints[i];
+      if (slot == kNone || !newPoints[i] || P(d.x, d.y, d.z) == *newPoints[i]) continue;
+      settle(*newPoints[i]);  // collapse the lazy history so later cuts do not re-evaluate it
+      exact[slot] = *newPoints[i];
     }
     for (std::uint32_t s : newFaceSlots) grid.insert(s, boxOf(state.triangle(s)));
     if (plan) plan = planCleanup(newFaceSlots);

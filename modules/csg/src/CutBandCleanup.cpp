@@ -40,9 +40,11 @@ struct VertexStar {
 
 class Cleanup {
  public:
+  // checkEachOperation: every operation is tested for self-intersections before it is taken; otherwise the
+  // operations are taken on the local tests alone and finalSurfaceIsIntersectionFree() tests the result.
   Cleanup(const BoneState& state, TriangleGrid& grid, const std::function<bool(std::uint32_t)>& frozenVertex,
-          const std::function<bool(std::uint32_t)>& frozenFace, const BandCleanup& options)
-      : state_(state), boneGrid_(grid), frozenVertex_(frozenVertex), frozenFace_(frozenFace), opt_(options),
+          const std::function<bool(std::uint32_t)>& frozenFace, const BandCleanup& options, bool checkEachOperation)
+      : checkEach_(checkEachOperation), state_(state), boneGrid_(grid), frozenVertex_(frozenVertex), frozenFace_(frozenFace), opt_(options),
         minAngle_(options.minAngleDeg * kPi / 180), cosMinAngle_(std::cos(minAngle_)) {}
 
   CleanupPlan run(const std::vector<std::uint32_t>& seeds) {
@@ -82,7 +84,44 @@ class Cleanup {
       if (lf.slot != kNone && !lf.alive) plan.delta.removedTriangles.push_back(lf.slot);
       if (lf.slot == kNone && lf.alive) plan.delta.addedTriangles.push_back({lf.v[0], lf.v[1], lf.v[2]});
     }
+    // In a canonical order, so that the same surface gives the same slots (and volume sums) however the
+    // faces were found.
+    std::sort(plan.delta.removedTriangles.begin(), plan.delta.removedTriangles.end());
+    std::sort(plan.delta.addedTriangles.begin(), plan.delta.addedTriangles.end());
     return plan;
+  }
+
+  // Whether the surface after run() is free of self-intersections and keeps away from frozen faces, as
+  // the per-operation test would have ensured: a pair of faces that the clean-up did not make was a pair
+  // of the surface before it (free of self-intersections), so only the faces made here are tested, against
+  // every face their boxes meet. Slivers nearly never make the tests fail, so testing the outcome once
+  // costs a fraction of testing every operation (which made and then replaced most of these faces).
+  bool finalSurfaceIsIntersectionFree() {
+    auto meets = [&](const Tri& a, const Tri& b) {
+      return trianglesIntersectBeyondShared<K>(a, b, [&](std::uint32_t v) { return kp(v); });
+    };
+    for (std::size_t id = 0; id < faces_.size(); ++id) {
+      const LocalFace& m = faces_[id];
+      if (m.slot != kNone || !m.alive) continue;
+      const Box3 b = boxOf(m.v);
+      boneGrid_.query(b, hits_);
+      for (std::uint32_t s : hits_) {
+        const auto it = localOfSlot_.find(s);
+        if (it != localOfSlot_.end()) {
+          const LocalFace& lf = faces_[it->second];
+          if (!lf.alive) continue;
+          if (lf.frozen || lf.exactVertex || meets(m.v, lf.v)) return false;
+          continue;
+        }
+        const Triangle& t = state_.triangle(s);
+        if (frozenFace_(s) || frozenVertex_(t[0]) || frozenVertex_(t[1]) || frozenVertex_(t[2])) return false;
+        if (meets(m.v, {t[0], t[1], t[2]})) return false;
+      }
+      made_.query(b, hits_);
+      for (std::uint32_t g : hits_)
+        if (g > id && faces_[g].alive && meets(m.v, faces_[g].v)) return false;
+    }
+    return true;
   }
 
  private:
@@ -205,28 +244,48 @@ class Cleanup {
   }
 
   // The new faces meet no face that stays (other than along shared vertices and edges), nor each other:
-  // the bone's faces whose grid boxes meet a new face's box, and the faces made here.
+  // the bone's faces whose grid boxes meet a new face's box, and the faces made here. One grid query for
+  // all the new faces together; each face found is tested against those new faces whose boxes it meets.
   bool intersectionFree(const std::vector<Tri>& made, const std::vector<int>& dying) {
     auto meets = [&](const Tri& a, const Tri& b) {
       return trianglesIntersectBeyondShared<K>(a, b, [&](std::uint32_t v) { return kp(v); });
     };
     auto isDying = [&](int f) { return std::find(dying.begin(), dying.end(), f) != dying.end(); };
+    madeBoxes_.clear();
+    Box3 all = Box3::empty();
     for (std::size_t i = 0; i < made.size(); ++i) {
       for (std::size_t j = i + 1; j < made.size(); ++j)
         if (meets(made[i], made[j])) return false;
-      const Box3 b = boxOf(made[i]);
-      boneGrid_.query(b, hits_);
-      for (std::uint32_t s : hits_) {
-        const int f = localFace(s);
-        const LocalFace& lf = faces_[f];
-        if (!lf.alive || isDying(f)) continue;
-        // A face with an exact (non-double) vertex is only known here rounded, and a defect face may be
-        // degenerate (the intersection tests require proper triangles): stay away from both.
-        if (lf.frozen || lf.exactVertex || meets(made[i], lf.v)) return false;
+      madeBoxes_.push_back(boxOf(made[i]));
+      for (int a = 0; a < 3; ++a) {
+        all.lo[a] = std::min(all.lo[a], madeBoxes_.back().lo[a]);
+        all.hi[a] = std::max(all.hi[a], madeBoxes_.back().hi[a]);
       }
-      made_.query(b, hits_);
-      for (std::uint32_t g : hits_)
-        if (faces_[g].alive && !isDying(int(g)) && meets(made[i], faces_[g].v)) return false;
+    }
+    auto meetsAnyBox = [&](const Box3& b) {
+      for (const Box3& m : madeBoxes_)
+        if (b.overlaps(m)) return true;
+      return false;
+    };
+    boneGrid_.query(all, hits_);
+    for (std::uint32_t s : hits_) {
+      const Box3& b = boneGrid_.box(s);
+      if (!meetsAnyBox(b)) continue;
+      const int f = localFace(s);
+      const LocalFace& lf = faces_[f];
+      if (!lf.alive || isDying(f)) continue;
+      // A face with an exact (non-double) vertex is only known here rounded, and a defect face may be
+      // degenerate (the intersection tests require proper triangles): stay away from both.
+      if (lf.frozen || lf.exactVertex) return false;
+      for (std::size_t i = 0; i < made.size(); ++i)
+        if (b.overlaps(madeBoxes_[i]) && meets(made[i], lf.v)) return false;
+    }
+    made_.query(all, hits_);
+    for (std::uint32_t g : hits_) {
+      if (!faces_[g].alive || isDying(int(g))) continue;
+      const Box3& b = made_.box(g);
+      for (std::size_t i = 0; i < made.size(); ++i)
+        if (b.overlaps(madeBoxes_[i]) && meets(made[i], faces_[g].v)) return false;
     }
     return true;
   }
@@ -307,7 +366,7 @@ class Cleanup {
     // A closed piece as small as a tetrahedron would fold onto one of u's faces.
     for (const Tri& t : newFaces)
       if (duplicates(t, u, sv)) return false;
-    if (!intersectionFree(newFaces, sv)) return false;
+    if (checkEach_ && !intersectionFree(newFaces, sv)) return false;
     replace(sv, newFaces, made);
     star_[v].movable = false;  // gone
     return true;
@@ -356,11 +415,12 @@ class Cleanup {
     const double newQuality = std::min(angleOf(newFaces[0]), angleOf(newFaces[1]));
     if (!(newQuality > oldQuality * (1 + 1e-6))) return false;
     const std::vector<int> dying = {f, g};
-    if (!intersectionFree(newFaces, dying)) return false;
+    if (checkEach_ && !intersectionFree(newFaces, dying)) return false;
     replace(dying, newFaces, made);
     return true;
   }
 
+  const bool checkEach_;
   const BoneState& state_;
   TriangleGrid& boneGrid_;
   const std::function<bool(std::uint32_t)> frozenVertex_;
@@ -375,6 +435,7 @@ class Cleanup {
   std::unordered_map<std::uint32_t, VertexStar> star_;
   TriangleGrid made_;  // the faces made here (local ids), by box
   std::vector<std::uint32_t> hits_;
+  std::vector<Box3> madeBoxes_;      // scratch for intersectionFree
   std::vector<std::uint32_t> ring_;  // scratch for closedFan
 };
 
@@ -383,7 +444,16 @@ class Cleanup {
 CleanupPlan planCutBandCleanup(const BoneState& state, TriangleGrid& grid, const std::vector<std::uint32_t>& seeds,
                                const std::function<bool(std::uint32_t)>& frozenVertex,
                                const std::function<bool(std::uint32_t)>& frozenFace, const BandCleanup& options) {
-  return Cleanup(state, grid, frozenVertex, frozenFace, options).run(seeds);
+  // Optimistic first: operations on their local tests, the outcome tested once. In the rare case that it
+  // fails, the plan is made again with every operation tested before it is taken.
+  if (!options.testEachOperation) {
+    Cleanup optimistic(state, grid, frozenVertex, frozenFace, options, false);
+    CleanupPlan plan = optimistic.run(seeds);
+    if (plan.delta.empty() || optimistic.finalSurfaceIsIntersectionFree()) return plan;
+  }
+  CleanupPlan plan = Cleanup(state, grid, frozenVertex, frozenFace, options, true).run(seeds);
+  plan.retested = !options.testEachOperation;
+  return plan;
 }
 
 }  // namespace reamsim::csg

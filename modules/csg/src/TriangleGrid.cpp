@@ -28,6 +28,8 @@ void TriangleGrid::init(const Bounds& domain, std::size_t faces, double targetPe
     origin_[i] = (!domain.empty() ? domain.min[i] : 0.0);
   }
   cells_.assign(std::size_t(n_[0]) * n_[1] * n_[2], {});
+  for (int i = 0; i < 3; ++i) nb_[i] = (n_[i] + kBlock - 1) / kBlock;
+  blockCount_.assign(std::size_t(nb_[0]) * nb_[1] * nb_[2], 0);
   boxes_.clear();
   present_.clear();
   stamp_.clear();
@@ -43,12 +45,23 @@ std::array<int, 3> TriangleGrid::cellOf(const std::array<double, 3>& p) const {
   return c;
 }
 
-template <class F>
-void TriangleGrid::forCells(const Box3& b, F&& f) const {
+template <class F, class KeepBlock>
+void TriangleGrid::forCells(const Box3& b, F&& f, KeepBlock&& keepBlock) const {
   const auto lo = cellOf(b.lo), hi = cellOf(b.hi);
-  for (int k = lo[2]; k <= hi[2]; ++k)
-    for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int i = lo[0]; i <= hi[0]; ++i) f(index(i, j, k));
+  if (lo == hi) {  // most queries: one cell
+    f(index(lo[0], lo[1], lo[2]));
+    return;
+  }
+  for (int bk = lo[2] / kBlock; bk <= hi[2] / kBlock; ++bk)
+    for (int bj = lo[1] / kBlock; bj <= hi[1] / kBlock; ++bj)
+      for (int bi = lo[0] / kBlock; bi <= hi[0] / kBlock; ++bi) {
+        if (blockCount_[(std::size_t(bk) * nb_[1] + bj) * nb_[0] + bi] == 0 || !keepBlock(bi, bj, bk)) continue;
+        const int k1 = std::min(hi[2], bk * kBlock + kBlock - 1), j1 = std::min(hi[1], bj * kBlock + kBlock - 1),
+                  i1 = std::min(hi[0], bi * kBlock + kBlock - 1);
+        for (int k = std::max(lo[2], bk * kBlock); k <= k1; ++k)
+          for (int j = std::max(lo[1], bj * kBlock); j <= j1; ++j)
+            for (int i = std::max(lo[0], bi * kBlock); i <= i1; ++i) f(index(i, j, k));
+      }
 }
 
 void TriangleGrid::insert(std::uint32_t slot, const Box3& box) {
@@ -60,19 +73,29 @@ void TriangleGrid::insert(std::uint32_t slot, const Box3& box) {
   if (present_[slot]) remove(slot);
   boxes_[slot] = box;
   present_[slot] = 1;
-  forCells(box, [&](std::size_t c) { cells_[c].push_back(slot); });
+  const auto lo = cellOf(box.lo), hi = cellOf(box.hi);  // every cell, empty block or not
+  for (int k = lo[2]; k <= hi[2]; ++k)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        cells_[index(i, j, k)].push_back(slot);
+        ++blockCount_[blockIndex(i, j, k)];
+      }
 }
 
 void TriangleGrid::remove(std::uint32_t slot) {
   if (!contains(slot)) return;
-  forCells(boxes_[slot], [&](std::size_t c) {
-    auto& v = cells_[c];
-    auto it = std::find(v.begin(), v.end(), slot);
-    if (it != v.end()) {
-      *it = v.back();
-      v.pop_back();
-    }
-  });
+  const auto lo = cellOf(boxes_[slot].lo), hi = cellOf(boxes_[slot].hi);
+  for (int k = lo[2]; k <= hi[2]; ++k)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        auto& v = cells_[index(i, j, k)];
+        auto it = std::find(v.begin(), v.end(), slot);
+        if (it != v.end()) {
+          *it = v.back();
+          v.pop_back();
+          --blockCount_[blockIndex(i, j, k)];
+        }
+      }
   present_[slot] = 0;
 }
 
@@ -92,6 +115,34 @@ void TriangleGrid::query(const Box3& q, std::vector<std::uint32_t>& out) {
     for (std::uint32_t s : cells_[c])
       if (mark(s) && boxes_[s].overlaps(q)) out.push_back(s);
   });
+}
+
+void TriangleGrid::query(const Box3& q, const std::function<bool(const Box3&)>& mayHold,
+                         std::vector<std::uint32_t>& out) {
+  out.clear();
+  if (++epoch_ == 0) {
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    epoch_ = 1;
+  }
+  // Block boxes padded by a millionth of a cell: a point on a cell's face may be filed in either cell.
+  const double pad = 1e-6 * cell_, side = kBlock * cell_;
+  auto keepBlock = [&](int bi, int bj, int bk) {
+    const int b[3] = {bi, bj, bk};
+    Box3 box;
+    for (int a = 0; a < 3; ++a) {
+      if (b[a] == 0 || (b[a] + 1) * kBlock >= n_[a]) return true;  // border: holds faces beyond the domain
+      box.lo[a] = origin_[a] + b[a] * side - pad;
+      box.hi[a] = origin_[a] + (b[a] + 1) * side + pad;
+    }
+    return mayHold(box);
+  };
+  forCells(
+      q,
+      [&](std::size_t c) {
+        for (std::uint32_t s : cells_[c])
+          if (mark(s) && boxes_[s].overlaps(q)) out.push_back(s);
+      },
+      keepBlock);
 }
 
 void TriangleGrid::ray(const std::array<double, 3>& origin, int axis, int dir, std::vector<std::uint32_t>& out) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -53,20 +54,37 @@ class TriangleGrid {
 
   // Slots whose boxes overlap `query`, each once, in no particular order.
   void query(const Box3& query, std::vector<std::uint32_t>& out);
+  // The same, skipping the blocks of cells for which `mayHold(blockBox)` is false: a face all of whose
+  // cells are skipped is not reported. Border blocks (which also hold faces beyond the domain) are never
+  // skipped.
+  void query(const Box3& query, const std::function<bool(const Box3&)>& mayHold, std::vector<std::uint32_t>& out);
   // Slots in the cells an axis-parallel ray from `origin` along +axis (dir > 0) or −axis crosses.
   void ray(const std::array<double, 3>& origin, int axis, int dir, std::vector<std::uint32_t>& out);
 
  private:
   std::array<int, 3> cellOf(const std::array<double, 3>& p) const;
   std::size_t index(int i, int j, int k) const { return (std::size_t(k) * n_[1] + j) * n_[0] + i; }
+  // Cells are grouped in blocks of kBlock³ that count the entries of their cells, so that queries skip
+  // empty space a block at a time (a tool's box at 400k faces spans ~10⁵ cells, most of them empty).
+  static constexpr int kBlock = 4;
+  std::size_t blockIndex(int i, int j, int k) const {
+    return (std::size_t(k / kBlock) * nb_[1] + j / kBlock) * nb_[0] + i / kBlock;
+  }
+  // f(cellIndex) for the cells of b's range in non-empty blocks for which keepBlock(bi, bj, bk) holds.
+  template <class F, class KeepBlock>
+  void forCells(const Box3& b, F&& f, KeepBlock&& keepBlock) const;
   template <class F>
-  void forCells(const Box3& b, F&& f) const;
+  void forCells(const Box3& b, F&& f) const {
+    forCells(b, f, [](int, int, int) { return true; });
+  }
   bool mark(std::uint32_t slot);  // true the first time a slot is seen in the current query
 
   std::array<double, 3> origin_{};
   double cell_ = 1;
   std::array<int, 3> n_{1, 1, 1};
+  std::array<int, 3> nb_{1, 1, 1};
   std::vector<std::vector<std::uint32_t>> cells_;
+  std::vector<std::uint32_t> blockCount_;  // entries in the cells of each block
   std::vector<Box3> boxes_;
   std::vector<std::uint8_t> present_;
   std::vector<std::uint32_t> stamp_;

@@ -50,6 +50,9 @@ struct LocalCut {
   double volumeAfterMm3 = 0;
   std::size_t facesAfter = 0;
   std::size_t patchFaces = 0;    // bone faces taken into the local Boolean
+  // How big the cut was (for the benchmark): bone faces whose boxes meet the tool's box, and tool faces
+  // that meet a bone face (corefined with the patch).
+  std::size_t candidateFaces = 0, nearToolFaces = 0;
   std::size_t removedFaces = 0;  // triangle slots removed from the bone
   std::size_t addedFaces = 0;
   bool roundingFailed = false;  // rounding the new vertices was not safe: their exact values were kept
@@ -57,6 +60,7 @@ struct LocalCut {
   // removedMm3 = V_before − V_after still holds), not of removedPieceMm3.
   double cleanupVolumeMm3 = 0;
   std::size_t cleanupCollapses = 0, cleanupFlips = 0;
+  bool cleanupReplanned = false;  // its optimistic plan failed the self-intersection test: planned op by op
   double cleanupMilliseconds = 0;
   // Where the time went (ms), for the benchmark: tool and patch set-up (grid query, defect test, exact
   // meshes), the corefinement, the classification and seam check, the rounding check, the commit. The
@@ -70,12 +74,15 @@ struct LocalCut {
 
 // Clean-up of the cut band after each cut: short edges collapsed and caps flipped around the new faces, so
 // that faces do not accumulate and slivers do not pile up over many cuts. Each operation moves the surface
-// by at most maxDeviationMm and is checked exactly for self-intersections (src/CutBandCleanup.h).
+// by at most maxDeviationMm; the result is checked exactly for self-intersections (src/CutBandCleanup.h).
 struct BandCleanup {
   bool enabled = true;
   double maxDeviationMm = 0.001;
   double minEdgeMm = 0.05;
   double minAngleDeg = 15;
+  // Test every operation for self-intersections before taking it, instead of the plan's outcome once (with
+  // the operation-by-operation plan only when that test fails). Same result, slower; for tests.
+  bool testEachOperation = false;
 };
 
 struct LocalDefects {
