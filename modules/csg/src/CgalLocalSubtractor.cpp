@@ -40,6 +40,8 @@ constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 // Planes of the tool's bound beyond its box (csg::ToolBound): enough to hug a spherical cap to within a
 // fraction of a millimetre; each costs three dot products per candidate face.
 constexpr std::size_t kToolBoundPlanes = 32;
+// Candidate faces per thread from which the near test is split over two threads (a thread costs ~50 µs).
+constexpr std::size_t kParallelNearTestFaces = 400;
 
 // Intersection points are built once by the corefinement and shared by both meshes, so their interval
 // approximations are identical: looking them up by those intervals avoids exact evaluation (GMP) for
@@ -585,19 +587,33 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
       toolTriangles.emplace_back(ip(toolMesh.vertices[t[0]]), ip(toolMesh.vertices[t[1]]), ip(toolMesh.vertices[t[2]]));
       toolDegenerate.push_back(toolTriangles.back().is_degenerate());
     }
-    std::vector<std::uint32_t> hits;
-    for (std::size_t i = 0; i < patchSlots.size(); ++i) {
-      toolGrid.query(grid.box(patchSlots[i]), hits);
-      if (hits.empty()) continue;
-      const Triangle& t = state.triangle(patchSlots[i]);
-      const IK::Triangle_3 bt(ip(state.vertex(t[0])), ip(state.vertex(t[1])), ip(state.vertex(t[2])));
-      // Faces with a vertex known exactly are only known rounded here; degenerate ones cannot be tested.
-      const bool testable =
-          !knownExactly(t[0]) && !knownExactly(t[1]) && !knownExactly(t[2]) && !bt.is_degenerate();
-      for (std::uint32_t h : hits)
-        if (!testable || toolDegenerate[h] || CGAL::do_intersect(bt, toolTriangles[h]))
-          nearBone[i] = nearTool[h] = 1;
-      closeBone[i] = !nearBone[i];
+    // Each bone face against the tool faces whose boxes meet its box; the faces are split between this
+    // thread and a second one (the tests are independent and read-only), each with its own tool flags.
+    auto testRange = [&](std::size_t begin, std::size_t end, std::vector<char>& toolFlags) {
+      std::vector<std::uint32_t> hits;
+      for (std::size_t i = begin; i < end; ++i) {
+        toolGrid.querySorted(grid.box(patchSlots[i]), hits);
+        if (hits.empty()) continue;
+        const Triangle& t = state.triangle(patchSlots[i]);
+        const IK::Triangle_3 bt(ip(state.vertex(t[0])), ip(state.vertex(t[1])), ip(state.vertex(t[2])));
+        // Faces with a vertex known exactly are only known rounded here; degenerate ones cannot be tested.
+        const bool testable =
+            !knownExactly(t[0]) && !knownExactly(t[1]) && !knownExactly(t[2]) && !bt.is_degenerate();
+        for (std::uint32_t h : hits)
+          if (!testable || toolDegenerate[h] || CGAL::do_intersect(bt, toolTriangles[h]))
+            nearBone[i] = toolFlags[h] = 1;
+        closeBone[i] = !nearBone[i];
+      }
+    };
+    const std::size_t half = patchSlots.size() / 2;
+    if (half < kParallelNearTestFaces) {
+      testRange(0, patchSlots.size(), nearTool);
+    } else {
+      std::vector<char> secondNearTool(nearTool.size(), 0);
+      auto second = std::async(std::launch::async, [&] { testRange(half, patchSlots.size(), secondNearTool); });
+      testRange(0, half, nearTool);
+      second.get();
+      for (std::size_t h = 0; h < nearTool.size(); ++h) nearTool[h] |= secondNearTool[h];
     }
     // Faces at vertices known exactly are near even when no tool box meets theirs: the rounding check must
     // see them, since new faces at such a vertex are tested in its rounded position.

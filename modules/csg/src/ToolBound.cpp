@@ -53,6 +53,7 @@ std::vector<std::uint32_t> ToolBound::spreadFaces(const TriangleMesh& tool, std:
 void ToolBound::fit(const TriangleMesh& tool, const std::vector<std::uint32_t>& faces, double slack) {
   normal_.clear();
   support_.clear();
+  last_ = 0;
   for (std::uint32_t f : faces) {
     if (f >= tool.triangles.size()) continue;
     const Vec3 v = faceNormal(tool, f);

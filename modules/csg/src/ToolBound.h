@@ -25,12 +25,19 @@ class ToolBound {
   // the tool's vertices.
   void fit(const TriangleMesh& tool, const std::vector<std::uint32_t>& faces, double slack);
 
-  // False when the triangle lies wholly beyond one plane (it cannot meet the tool).
-  bool mayMeet(const Vec3& a, const Vec3& b, const Vec3& c) const {
-    for (std::size_t k = 0; k < normal_.size(); ++k) {
-      const Vec3& n = normal_[k];
+  // False when the triangle lies wholly beyond one plane (it cannot meet the tool). The plane that rejected
+  // the last face is tried first: neighbouring faces are mostly rejected by the same plane. (Not for
+  // concurrent use.)
+  bool mayMeet(const Vec3& a, const Vec3& b, const Vec3& c) {
+    const std::size_t n = normal_.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t k = i == 0 ? last_ : (i == last_ ? 0 : i);
+      const Vec3& u = normal_[k];
       const double limit = support_[k];
-      if (dot(n, a) > limit && dot(n, b) > limit && dot(n, c) > limit) return false;
+      if (dot(u, a) > limit && dot(u, b) > limit && dot(u, c) > limit) {
+        last_ = k;
+        return false;
+      }
     }
     return true;
   }
@@ -41,6 +48,7 @@ class ToolBound {
  private:
   std::vector<Vec3> normal_;     // unit
   std::vector<double> support_;  // max over the tool's vertices of normal · v, plus the slack
+  std::size_t last_ = 0;         // the plane that rejected the last face
 };
 
 }  // namespace reamsim::csg

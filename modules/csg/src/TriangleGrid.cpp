@@ -145,6 +145,16 @@ void TriangleGrid::query(const Box3& q, const std::function<bool(const Box3&)>& 
       keepBlock);
 }
 
+void TriangleGrid::querySorted(const Box3& q, std::vector<std::uint32_t>& out) const {
+  out.clear();
+  forCells(q, [&](std::size_t c) {
+    for (std::uint32_t s : cells_[c])
+      if (boxes_[s].overlaps(q)) out.push_back(s);
+  });
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
 void TriangleGrid::ray(const std::array<double, 3>& origin, int axis, int dir, std::vector<std::uint32_t>& out) {
   // The ray as a degenerate box reaching to infinity: faces beyond the domain sit in the border cells.
   Box3 q;
