@@ -2,10 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "LocalTestMeshes.h"
 #include "reamsim/csg/LocalSubtractor.h"
 #include "reamsim/csg/ReferenceSubtractor.h"
+#include "reamsim/csg/SweptVolume.h"
 #include "reamsim/mesh/Validation.h"
 #include "reamsim/ream/DefaultCase.h"
 
@@ -166,6 +168,48 @@ TEST(LocalSubtractor, StraightFeedWithCoplanarWallsMatchesTheReference) {
   EXPECT_TRUE(inv.outwardOriented);
   EXPECT_FALSE(inv.selfIntersectsExact);
   if (local.exactVertexCount() == 0) EXPECT_FALSE(inv.selfIntersectsRounded);
+}
+
+// A flat reamer moved sideways at one depth, by placements and by the hulls of translations (the GUI's
+// sideways keys): its face lies on the floor it cut before and its sides on earlier walls. Where rounding
+// the coplanar intersections fails, the cut is made again with the tool moved by a nanometre; exact points
+// no longer pile up (they did: faces 2.5k -> 80k and 34 s a cut after five moves). Each move of a convex
+// prism by d removes |d| x its width across d x the depth (here 0.5 x 20 x 1 mm), to the clean-up's
+// micrometre over the walls. (The CGAL reference, exact all along, slows down the same way on this path.)
+TEST(LocalSubtractor, AFlatReamerMovedSidewaysAtOneDepthKeepsNoExactPoints) {
+  for (bool hulls : {false, true}) {
+    LocalSubtractor local(block());
+    const ReamerSpec spec = flatSpec(20, 64);  // a vertex at ±90°: 20 mm wide across x
+    const TriangleMesh solid = buildCuttingSolid(spec);
+    Pose p{{-10, 0, -1}, kDown, 0};
+    local.subtract(toolAt(spec, p));
+    const double start = local.volumeMm3();
+    std::size_t redone = 0;
+    for (int i = 0; i < 12; ++i) {
+      Pose q = p;
+      q.tip.x += 0.5;
+      const TriangleMesh tool = hulls ? sweptByTranslation(solid, toTransform(p), toTransform(q)) : toolAt(spec, q);
+      const LocalCut c = local.subtract(tool);
+      ASSERT_TRUE(c.changed) << i;
+      // The band clean-up moves the walls it leaves by up to 1 µm (~0.02 mm³ over ~20 mm² of wall), which
+      // the next move's piece makes up for; the nudge's nanometre is far below that.
+      EXPECT_NEAR(c.removedMm3, 0.5 * 20 * 1.0, 0.02) << "move " << i;
+      expectBookkeeping(c);
+      redone += c.redoneWithOffsetMm > 0;
+      if (c.redoneWithOffsetMm > 0) {
+        EXPECT_GE(c.redoneWithOffsetMm, 1e-6);
+        EXPECT_LE(c.redoneWithOffsetMm, 2e-6);
+      }
+      EXPECT_LT(local.faceCount(), 4000u) << "move " << i;
+      p = q;
+    }
+    std::printf("%s: %zu of 12 cuts made again with a moved tool, %zu exact points, %zu faces\n",
+                hulls ? "hulls" : "placements", redone, local.exactVertexCount(), local.faceCount());
+    EXPECT_GT(redone, 0u);  // the coincident case is met
+    EXPECT_EQ(local.exactVertexCount(), 0u);
+    EXPECT_NEAR(start - local.volumeMm3(), 12 * 10.0, 0.2);
+    expectSound(local, hulls ? "hulls" : "placements");
+  }
 }
 
 TEST(LocalSubtractor, ToolBuriedInTheBoneLeavesACavity) {

@@ -67,7 +67,8 @@ TEST(LocalCutCommit, TheThesisRaysSeeTheBoneAsCut) {
   }
   const ReamStepOutcome above = s.controller->moveTo(Pose{{0, 0, 0.5}, {0, 0, -1}, 0});
   ASSERT_TRUE(above.contact.boxesOverlap);
-  EXPECT_NEAR(above.contact.minDistanceMm, 1.5, 1e-9);
+  // The floor 1 mm down, to the band clean-up's deviation (1 µm per operation).
+  EXPECT_NEAR(above.contact.minDistanceMm, 1.5, 1e-3);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <future>
 #include <map>
 #include <optional>
@@ -299,7 +300,19 @@ double elapsedMs(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The k-th offset of a cut made again: 1 to 2 nm, its direction and length from low-discrepancy sequences
+// (golden-ratio and plastic-number steps), so that no two offsets are alike and a moved tool does not lie
+// on a surface an earlier moved tool left.
+Vec3 nudge(std::uint64_t k) {
+  auto frac = [](double x) { return x - std::floor(x); };
+  const double kd = double(k);
+  const double z = 1 - 2 * frac(kd * 0.6180339887498949), phi = 2 * M_PI * frac(kd * 0.7548776662466927);
+  const double r = std::sqrt(std::max(0.0, 1 - z * z));
+  return Vec3{r * std::cos(phi), r * std::sin(phi), z} * (1e-6 * (1 + frac(kd * 0.5698402909980532)));
+}
+
 }  // namespace
+
 
 const char* toString(CutError::Kind kind) {
   switch (kind) {
@@ -356,7 +369,11 @@ struct LocalSubtractor::Impl {
   double removedVolume6(const MeshDelta& delta, const Vec3& origin) const;
   template <class Placed>
   void commit(const MeshDelta& delta, Placed&& placed);
-  LocalCut subtract(const TriangleMesh& toolMesh);
+  // One attempt; a cut whose rounding check fails is rolled back and made again once with the tool moved by
+  // a nanometre-scale offset when `mayRedo` (see subtract below).
+  LocalCut subtractOnce(const TriangleMesh& toolMesh, bool mayRedo);
+  LocalCut subtract(const TriangleMesh& toolMesh) { return subtractOnce(toolMesh, true); }
+  std::uint64_t redoneCuts = 0;  // cuts made again with a moved tool (each gets its own offset)
 };
 
 // Exact: the face meets the closed tool solid (crosses its surface or lies inside it).
@@ -472,7 +489,7 @@ void LocalSubtractor::Impl::commit(const MeshDelta& delta, Placed&& placed) {
   }
 }
 
-LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
+LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool mayRedo) {
   const auto start = std::chrono::steady_clock::now();
   auto lap = [last = start]() mutable {
     const auto now = std::chrono::steady_clock::now();
@@ -1074,6 +1091,7 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
     if (boneGroups.side(std::size_t(nPC) + j++) != kInside && closeBone[i]) closeStaying.push_back(std::uint32_t(i));
   }
   const BoneState before = state;  // the check reads old vertices while the commit replaces `state`
+  const auto exactBefore = exact;   // usually empty; restored if the cut is made again (below)
   double checkMs = 0;
   std::future<bool> roundingSafe = std::async(std::launch::async, [&] {
     const auto checkStart = std::chrono::steady_clock::now();
@@ -1123,6 +1141,25 @@ LocalCut LocalSubtractor::Impl::subtract(const TriangleMesh& toolMesh) {
   cut.phaseMilliseconds.rounding = lap();  // what the cut waited for the check
   cut.phaseMilliseconds.roundingCheck = checkMs;
   cut.roundingFailed = keepExact;
+  if (keepExact && mayRedo && !failRoundingChecks) {
+    // Rounding fails where the tool's surface lies exactly on the bone's (a flat reamer moved sideways at
+    // one depth: its face on the floor it cut before, its sides on earlier walls): coplanar faces split
+    // each other into slivers that rounding would fold. Kept exact, such points make every later cut there
+    // slower (five 0.5 mm moves of a flat reamer went from 0.1 to 34 s a cut). The cut is rolled back and
+    // made again with the tool moved by about a nanometre (nudge, never the same offset twice), which
+    // leaves nothing coincident; only if that fails too are the exact points kept.
+    for (std::uint32_t s : newFaceSlots) grid.remove(s);
+    state = before;
+    exact = exactBefore;
+    for (std::uint32_t s : delta.removedTriangles) grid.insert(s, boxOf(state.triangle(s)));
+    const Vec3 offset = nudge(++redoneCuts);
+    TriangleMesh moved = toolMesh;
+    for (Vec3& p : moved.vertices) p += offset;
+    LocalCut again = subtractOnce(moved, false);
+    again.redoneWithOffsetMm = norm(offset);
+    again.milliseconds += elapsedMs(start);  // this attempt's time too
+    return again;
+  }
   if (keepExact) {
     // The side table gets the exact points that rounding would have moved, and the new faces their boxes
     // from them.
