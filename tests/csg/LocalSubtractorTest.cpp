@@ -167,7 +167,9 @@ TEST(LocalSubtractor, StraightFeedWithCoplanarWallsMatchesTheReference) {
   EXPECT_TRUE(inv.closed);
   EXPECT_TRUE(inv.outwardOriented);
   EXPECT_FALSE(inv.selfIntersectsExact);
-  if (local.exactVertexCount() == 0) EXPECT_FALSE(inv.selfIntersectsRounded);
+  if (local.exactVertexCount() == 0) {
+    EXPECT_FALSE(inv.selfIntersectsRounded);
+  }
 }
 
 // A flat reamer moved sideways at one depth, by placements and by the hulls of translations (the GUI's
