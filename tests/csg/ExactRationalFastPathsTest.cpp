@@ -1,7 +1,9 @@
 // The integer fast paths of the engine's exact arithmetic (src/ExactRationalFastPaths.h) against CGAL's own
 // computations over mpq_class: the sign of a 3×3 determinant (random entries with random denominators,
 // singular matrices: a row a rational combination of the others, as for the collinear points of the
-// corefinement's face triangulation; exact orientation tests on constructed Epeck points), and the
+// corefinement's face triangulation; exact orientation tests on constructed Epeck points), the projected
+// orientation of that triangulation (against the determinant expanded over canonical rationals), the
+// interval kept beside an exact value (against MPFR's), and the
 // intersection of a plane and a line (doubles of any magnitude, coplanar and axis-aligned inputs, rational
 // inputs that take CGAL's own way, and Epeck's lazy construction).
 #include "ExactRationalFastPaths.h"
@@ -64,6 +66,69 @@ TEST(ExactRationalFastPaths, ExactOrientationOfConstructedPoints) {
     EXPECT_EQ(CGAL::orientation(p, q, r, inPlane + n), CGAL::orientation(p, q, r, p + n));
     EXPECT_EQ(CGAL::orientation(q - p, onPq - p, n), CGAL::ZERO);
   }
+}
+
+// The face triangulation's projected orientation (unreduced differences) against the determinant expanded
+// over canonical rationals: random rational points, points of one dyadic scale (equal denominators), and
+// collinear triples (a point on the segment of the other two, exactly).
+TEST(ExactRationalFastPaths, ProjectedOrientationAgreesWithTheRationalDeterminant) {
+  using SK3 = CGAL::Simple_cartesian<mpq_class>;
+  using Traits = CGAL::Projection_traits_base_3<SK3>;
+  std::mt19937_64 rng(9);
+  int zeros = 0;
+  for (int i = 0; i < 20000; ++i) {
+    SK3::Point_3 pt[3];
+    for (SK3::Point_3& q : pt) {
+      if (i % 3 == 0) {  // one dyadic scale: doubles
+        std::uniform_real_distribution<double> u(-50, 50);
+        q = SK3::Point_3(mpq_class(u(rng)), mpq_class(u(rng)), mpq_class(u(rng)));
+      } else {
+        q = SK3::Point_3(randomRational(rng), randomRational(rng), randomRational(rng));
+      }
+    }
+    if (i % 4 == 1) {  // r on the segment pq
+      const mpq_class t = randomRational(rng) / mpq_class(2000000000);
+      pt[2] = pt[0] + (pt[1] - pt[0]) * t;
+    }
+    const SK3::Vector_3 n(randomRational(rng), randomRational(rng), randomRational(rng));
+    const SK3::Vector_3 u = pt[1] - pt[0], v = pt[2] - pt[0];
+    const mpq_class det = u.x() * (v.y() * n.z() - v.z() * n.y()) - u.y() * (v.x() * n.z() - v.z() * n.x()) +
+                          u.z() * (v.x() * n.y() - v.y() * n.x());
+    const CGAL::Sign expected = CGAL::sign(det);
+    zeros += expected == CGAL::ZERO;
+    const CGAL::TriangulationProjectionTraitsCartesianFunctors::Projected_orientation_with_normal_3<Traits> orient(n);
+    ASSERT_EQ(orient(pt[0], pt[1], pt[2]), expected) << "case " << i;
+  }
+  EXPECT_GE(zeros, 5000);  // every collinear triple
+}
+
+// The interval kept beside an exact value holds it, is at most one ulp wide, and is the value itself when
+// the value is a double (the interval CGAL's MPFR conversion gives then).
+TEST(ExactRationalFastPaths, IntervalOfAnExactValueHoldsItWithinAnUlp) {
+  std::mt19937_64 rng(10);
+  std::uniform_real_distribution<double> u(-50, 50);
+  const CGAL::NT_converter<mpq_class, CGAL::Interval_nt<false>> toInterval;
+  int points = 0;
+  for (int i = 0; i < 20000; ++i) {
+    mpq_class a;
+    switch (i % 4) {
+      case 0: a = randomRational(rng); break;
+      case 1: a = mpq_class(u(rng)); break;                             // a double
+      case 2: a = mpq_class(u(rng)) / mpq_class(3 + long(rng() % 97)); break;  // near a double, not one
+      default: a = mpq_class(std::ldexp(u(rng), int(rng() % 600) - 300)) + mpq_class(1, 1L << 62); break;
+    }
+    const CGAL::Interval_nt<false> got = toInterval(a);
+    ASSERT_LE(mpq_class(got.inf()), a) << a;
+    ASSERT_GE(mpq_class(got.sup()), a) << a;
+    ASSERT_LE(got.sup(), std::nextafter(got.inf(), std::numeric_limits<double>::infinity())) << a;
+    const CGAL::Interval_nt<false> cgal = CGAL::to_interval(a);
+    if (cgal.is_point()) {
+      ASSERT_TRUE(got.is_point()) << a;
+      ASSERT_EQ(got.inf(), cgal.inf());
+      ++points;
+    }
+  }
+  EXPECT_GE(points, 5000);  // the doubles
 }
 
 // CGAL's own plane–line intersection, not through the specialised functor.
