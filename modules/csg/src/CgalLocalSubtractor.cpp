@@ -51,9 +51,12 @@ struct ApproxKey {
   std::array<double, 6> v;
   bool operator==(const ApproxKey& o) const { return v == o.v; }
 };
+// The point's own interval approximation: p.x() would allocate a lazy number for every coordinate read.
+const CGAL::Interval_nt<false>& approxCoordinate(const P& p, int i) { return CGAL::approx(p).cartesian(i); }
+
 ApproxKey approxKey(const P& p) {
-  const auto x = CGAL::to_interval(p.x()), y = CGAL::to_interval(p.y()), z = CGAL::to_interval(p.z());
-  return {{x.first, x.second, y.first, y.second, z.first, z.second}};
+  const auto &x = approxCoordinate(p, 0), &y = approxCoordinate(p, 1), &z = approxCoordinate(p, 2);
+  return {{x.inf(), x.sup(), y.inf(), y.sup(), z.inf(), z.sup()}};
 }
 struct ApproxHash {
   std::size_t operator()(const ApproxKey& k) const {
@@ -69,18 +72,24 @@ std::uint64_t pairKey(std::uint32_t a, std::uint32_t b) {
 }
 std::uint64_t directedKey(std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; }
 
-Vec3 rounded(const P& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}; }
-
-void settle(const P& p) {
-  CGAL::exact(p.x());
-  CGAL::exact(p.y());
-  CGAL::exact(p.z());
+// What CGAL::to_double(p.x()) gives (the interval's midpoint when it is narrow enough, else the exact
+// value's), read from the point's approximation.
+double roundedCoordinate(const P& p, int i) {
+  double r;
+  const CGAL::Interval_nt<false>& a = approxCoordinate(p, i);
+  if (CGAL::fit_in_double(a, r)) return r;
+  if (CGAL::has_smaller_relative_precision(a, EK::FT::get_relative_precision_of_to_double())) return CGAL::to_double(a);
+  CGAL::exact(p);  // refines the approximation
+  return CGAL::to_double(approxCoordinate(p, i));
 }
+Vec3 rounded(const P& p) { return {roundedCoordinate(p, 0), roundedCoordinate(p, 1), roundedCoordinate(p, 2)}; }
+
+void settle(const P& p) { CGAL::exact(p); }
 
 void grow(Box3& b, const P& p) {
-  const auto ix = CGAL::to_interval(p.x()), iy = CGAL::to_interval(p.y()), iz = CGAL::to_interval(p.z());
-  b.lo = {std::min(b.lo[0], ix.first), std::min(b.lo[1], iy.first), std::min(b.lo[2], iz.first)};
-  b.hi = {std::max(b.hi[0], ix.second), std::max(b.hi[1], iy.second), std::max(b.hi[2], iz.second)};
+  const auto &ix = approxCoordinate(p, 0), &iy = approxCoordinate(p, 1), &iz = approxCoordinate(p, 2);
+  b.lo = {std::min(b.lo[0], ix.inf()), std::min(b.lo[1], iy.inf()), std::min(b.lo[2], iz.inf())};
+  b.hi = {std::max(b.hi[0], ix.sup()), std::max(b.hi[1], iy.sup()), std::max(b.hi[2], iz.sup())};
 }
 
 // 6 × signed tetra volume of (o, a, b, c): the divergence-theorem term of one face.
