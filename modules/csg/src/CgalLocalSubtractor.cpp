@@ -597,6 +597,14 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   csg::TriangleGrid toolGrid;  // the tool's faces by box (widened by the margin)
   {
     auto ip = [](const Vec3& v) { return IK::Point_3(v.x, v.y, v.z); };
+    // Collinear corners, decided by the three projected orientations (statically filtered: CGAL's
+    // Collinear_3 evaluates in interval arithmetic with a rounding-mode switch on every call).
+    auto degenerate = [](const IK::Triangle_3& t) {
+      const IK::Point_3 &a = t[0], &b = t[1], &c = t[2];
+      return CGAL::orientation(IK::Point_2(a.x(), a.y()), IK::Point_2(b.x(), b.y()), IK::Point_2(c.x(), c.y())) == CGAL::COLLINEAR &&
+             CGAL::orientation(IK::Point_2(a.y(), a.z()), IK::Point_2(b.y(), b.z()), IK::Point_2(c.y(), c.z())) == CGAL::COLLINEAR &&
+             CGAL::orientation(IK::Point_2(a.z(), a.x()), IK::Point_2(b.z(), b.x()), IK::Point_2(c.z(), c.x())) == CGAL::COLLINEAR;
+    };
     toolGrid.init(toolBox.bounds(), toolMesh.triangles.size(), 4.0);
     std::vector<IK::Triangle_3> toolTriangles;
     std::vector<char> toolDegenerate;
@@ -611,7 +619,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
       }
       toolGrid.insert(i, b);
       toolTriangles.emplace_back(ip(toolMesh.vertices[t[0]]), ip(toolMesh.vertices[t[1]]), ip(toolMesh.vertices[t[2]]));
-      toolDegenerate.push_back(toolTriangles.back().is_degenerate());
+      toolDegenerate.push_back(degenerate(toolTriangles.back()));
     }
     // Each bone face against the tool faces whose boxes meet its box; the faces are split between this
     // thread and a second one (the tests are independent and read-only), each with its own tool flags.
@@ -624,7 +632,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
         const IK::Triangle_3 bt(ip(state.vertex(t[0])), ip(state.vertex(t[1])), ip(state.vertex(t[2])));
         // Faces with a vertex known exactly are only known rounded here; degenerate ones cannot be tested.
         const bool testable =
-            !knownExactly(t[0]) && !knownExactly(t[1]) && !knownExactly(t[2]) && !bt.is_degenerate();
+            !knownExactly(t[0]) && !knownExactly(t[1]) && !knownExactly(t[2]) && !degenerate(bt);
         for (std::uint32_t h : hits)
           if (!testable || toolDegenerate[h] || CGAL::do_intersect(bt, toolTriangles[h]))
             nearBone[i] = toolFlags[h] = 1;
