@@ -87,7 +87,9 @@ TEST(ToolBound, NeverDropsAFaceThatMeetsTheTool) {
         // The box test agrees: a triangle's own box is kept whenever the triangle is.
         Box3 tb = Box3::empty();
         for (const Vec3& p : {a, b, d}) tb.add(p);
-        if (kept) EXPECT_TRUE(bound.mayMeet(tb));
+        if (kept) {
+          EXPECT_TRUE(bound.mayMeet(tb));
+        }
       }
     }
   }

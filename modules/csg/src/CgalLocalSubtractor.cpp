@@ -24,7 +24,6 @@
 #include "TriangleGrid.h"
 #include "reamsim/csg/LocalSubtractor.h"
 
-
 namespace reamsim {
 namespace {
 using EK = CGAL::Exact_predicates_exact_constructions_kernel;
@@ -321,7 +320,6 @@ Vec3 nudge(std::uint64_t k) {
 }
 
 }  // namespace
-
 
 const char* toString(CutError::Kind kind) {
   switch (kind) {

@@ -97,9 +97,6 @@ class Cleanup {
   // every face their boxes meet. Slivers nearly never make the tests fail, so testing the outcome once
   // costs a fraction of testing every operation (which made and then replaced most of these faces).
   bool finalSurfaceIsIntersectionFree() {
-    auto meets = [&](const Tri& a, const Tri& b) {
-      return trianglesIntersectBeyondShared<K>(a, b, [&](std::uint32_t v) { return kp(v); });
-    };
     for (std::size_t id = 0; id < faces_.size(); ++id) {
       const LocalFace& m = faces_[id];
       if (m.slot != kNone || !m.alive) continue;
@@ -176,6 +173,11 @@ class Cleanup {
   double angleOf(const Tri& t) const { return smallestAngle(at(t[0]), at(t[1]), at(t[2])); }
   Vec3 normalOf(const Tri& t) const { return cross(at(t[1]) - at(t[0]), at(t[2]) - at(t[0])); }
 
+  // The two faces meet other than along the vertices and edges they share (exact predicates).
+  bool meets(const Tri& a, const Tri& b) const {
+    return trianglesIntersectBeyondShared<K>(a, b, [&](std::uint32_t v) { return kp(v); });
+  }
+
   bool bad(int f) const { return bad(faces_[f].v); }
   // An edge shorter than minEdgeMm or an angle under minAngleDeg (its cosine above the bound's: no atan2).
   bool bad(const Tri& t) const {
@@ -247,9 +249,6 @@ class Cleanup {
   // the bone's faces whose grid boxes meet a new face's box, and the faces made here. One grid query for
   // all the new faces together; each face found is tested against those new faces whose boxes it meets.
   bool intersectionFree(const std::vector<Tri>& made, const std::vector<int>& dying) {
-    auto meets = [&](const Tri& a, const Tri& b) {
-      return trianglesIntersectBeyondShared<K>(a, b, [&](std::uint32_t v) { return kp(v); });
-    };
     auto isDying = [&](int f) { return std::find(dying.begin(), dying.end(), f) != dying.end(); };
     madeBoxes_.clear();
     Box3 all = Box3::empty();

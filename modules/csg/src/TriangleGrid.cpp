@@ -55,13 +55,21 @@ void TriangleGrid::forCells(const Box3& b, F&& f, KeepBlock&& keepBlock) const {
   for (int bk = lo[2] / kBlock; bk <= hi[2] / kBlock; ++bk)
     for (int bj = lo[1] / kBlock; bj <= hi[1] / kBlock; ++bj)
       for (int bi = lo[0] / kBlock; bi <= hi[0] / kBlock; ++bi) {
-        if (blockCount_[(std::size_t(bk) * nb_[1] + bj) * nb_[0] + bi] == 0 || !keepBlock(bi, bj, bk)) continue;
+        if (blockCount_[blockAt(bi, bj, bk)] == 0 || !keepBlock(bi, bj, bk)) continue;
         const int k1 = std::min(hi[2], bk * kBlock + kBlock - 1), j1 = std::min(hi[1], bj * kBlock + kBlock - 1),
                   i1 = std::min(hi[0], bi * kBlock + kBlock - 1);
         for (int k = std::max(lo[2], bk * kBlock); k <= k1; ++k)
           for (int j = std::max(lo[1], bj * kBlock); j <= j1; ++j)
             for (int i = std::max(lo[0], bi * kBlock); i <= i1; ++i) f(index(i, j, k));
       }
+}
+
+template <class F>
+void TriangleGrid::forEveryCell(const Box3& b, F&& f) const {
+  const auto lo = cellOf(b.lo), hi = cellOf(b.hi);
+  for (int k = lo[2]; k <= hi[2]; ++k)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) f(index(i, j, k), blockAt(i / kBlock, j / kBlock, k / kBlock));
 }
 
 void TriangleGrid::insert(std::uint32_t slot, const Box3& box) {
@@ -73,30 +81,32 @@ void TriangleGrid::insert(std::uint32_t slot, const Box3& box) {
   if (present_[slot]) remove(slot);
   boxes_[slot] = box;
   present_[slot] = 1;
-  const auto lo = cellOf(box.lo), hi = cellOf(box.hi);  // every cell, empty block or not
-  for (int k = lo[2]; k <= hi[2]; ++k)
-    for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int i = lo[0]; i <= hi[0]; ++i) {
-        cells_[index(i, j, k)].push_back(slot);
-        ++blockCount_[blockIndex(i, j, k)];
-      }
+  forEveryCell(box, [&](std::size_t c, std::size_t block) {
+    cells_[c].push_back(slot);
+    ++blockCount_[block];
+  });
 }
 
 void TriangleGrid::remove(std::uint32_t slot) {
   if (!contains(slot)) return;
-  const auto lo = cellOf(boxes_[slot].lo), hi = cellOf(boxes_[slot].hi);
-  for (int k = lo[2]; k <= hi[2]; ++k)
-    for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int i = lo[0]; i <= hi[0]; ++i) {
-        auto& v = cells_[index(i, j, k)];
-        auto it = std::find(v.begin(), v.end(), slot);
-        if (it != v.end()) {
-          *it = v.back();
-          v.pop_back();
-          --blockCount_[blockIndex(i, j, k)];
-        }
-      }
+  forEveryCell(boxes_[slot], [&](std::size_t c, std::size_t block) {
+    auto& v = cells_[c];
+    auto it = std::find(v.begin(), v.end(), slot);
+    if (it != v.end()) {
+      *it = v.back();
+      v.pop_back();
+      --blockCount_[block];
+    }
+  });
   present_[slot] = 0;
+}
+
+void TriangleGrid::beginQuery(std::vector<std::uint32_t>& out) {
+  out.clear();
+  if (++epoch_ == 0) {  // wrapped: forget old stamps
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    epoch_ = 1;
+  }
 }
 
 bool TriangleGrid::mark(std::uint32_t slot) {
@@ -106,11 +116,7 @@ bool TriangleGrid::mark(std::uint32_t slot) {
 }
 
 void TriangleGrid::query(const Box3& q, std::vector<std::uint32_t>& out) {
-  out.clear();
-  if (++epoch_ == 0) {  // wrapped: forget old stamps
-    std::fill(stamp_.begin(), stamp_.end(), 0);
-    epoch_ = 1;
-  }
+  beginQuery(out);
   forCells(q, [&](std::size_t c) {
     for (std::uint32_t s : cells_[c])
       if (mark(s) && boxes_[s].overlaps(q)) out.push_back(s);
@@ -119,11 +125,7 @@ void TriangleGrid::query(const Box3& q, std::vector<std::uint32_t>& out) {
 
 void TriangleGrid::query(const Box3& q, const std::function<bool(const Box3&)>& mayHold,
                          std::vector<std::uint32_t>& out) {
-  out.clear();
-  if (++epoch_ == 0) {
-    std::fill(stamp_.begin(), stamp_.end(), 0);
-    epoch_ = 1;
-  }
+  beginQuery(out);
   // Block boxes padded by a millionth of a cell: a point on a cell's face may be filed in either cell.
   const double pad = 1e-6 * cell_, side = kBlock * cell_;
   auto keepBlock = [&](int bi, int bj, int bk) {

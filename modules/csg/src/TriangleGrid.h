@@ -70,9 +70,10 @@ class TriangleGrid {
   // Cells are grouped in blocks of kBlock³ that count the entries of their cells, so that queries skip
   // empty space a block at a time (a tool's box at 400k faces spans ~10⁵ cells, most of them empty).
   static constexpr int kBlock = 4;
-  std::size_t blockIndex(int i, int j, int k) const {
-    return (std::size_t(k / kBlock) * nb_[1] + j / kBlock) * nb_[0] + i / kBlock;
-  }
+  std::size_t blockAt(int bi, int bj, int bk) const { return (std::size_t(bk) * nb_[1] + bj) * nb_[0] + bi; }
+  // f(cellIndex, blockIndex) for every cell of b's range (insert and remove: empty blocks too).
+  template <class F>
+  void forEveryCell(const Box3& b, F&& f) const;
   // f(cellIndex) for the cells of b's range in non-empty blocks for which keepBlock(bi, bj, bk) holds.
   template <class F, class KeepBlock>
   void forCells(const Box3& b, F&& f, KeepBlock&& keepBlock) const;
@@ -80,6 +81,7 @@ class TriangleGrid {
   void forCells(const Box3& b, F&& f) const {
     forCells(b, f, [](int, int, int) { return true; });
   }
+  void beginQuery(std::vector<std::uint32_t>& out);  // clears out; a new stamp for mark()
   bool mark(std::uint32_t slot);  // true the first time a slot is seen in the current query
 
   std::array<double, 3> origin_{};
