@@ -113,6 +113,34 @@ TEST(LocalSubtractor, MatchesTheReferenceFeedingIntoTheScapula) {
   expectSound(local, "scapula after 6 cuts");
 }
 
+// The corefinement evaluates its intersection points on two threads (csg_detail::ExactAheadVisitor), and
+// an exact evaluation tightens the interval the rounded coordinates are read from; every point is evaluated
+// whichever thread gets there first, so the same cuts give the same surface, bit for bit, every time.
+TEST(LocalSubtractor, TheSameCutsGiveTheSameSurfaceEveryTime) {
+  const DefaultBone bone = loadDefaultBone();
+  const Vec3 in = -bone.glenoid.outwardAxis;
+  auto reamed = [&] {
+    LocalSubtractor local(bone.mesh);
+    for (int i = 0; i < 8; ++i) {
+      const Vec3 axis = normalized(in + Vec3{0.02 * std::cos(i), 0.02 * std::sin(i), 0});
+      const Pose pose{bone.glenoid.centre - in * 1.0 + in * (0.4 * i), axis, 0};
+      const LocalCut c = local.subtract(toolAt(capSpec(36, 30), pose));
+      EXPECT_FALSE(c.roundingFailed) << "step " << i;
+    }
+    return local.mesh();
+  };
+  const TriangleMesh first = reamed();
+  for (int run = 0; run < 3; ++run) {
+    const TriangleMesh again = reamed();
+    ASSERT_EQ(again.vertices.size(), first.vertices.size()) << "run " << run;
+    ASSERT_EQ(again.triangles, first.triangles) << "run " << run;
+    for (std::size_t v = 0; v < first.vertices.size(); ++v)
+      ASSERT_TRUE(again.vertices[v].x == first.vertices[v].x && again.vertices[v].y == first.vertices[v].y &&
+                  again.vertices[v].z == first.vertices[v].z)
+          << "run " << run << ", vertex " << v;
+  }
+}
+
 TEST(LocalSubtractor, SphericalReamerIntoABlockMatchesTheClosedForm) {
   LocalSubtractor e(block());
   const ReamerSpec spec = capSpec(36, 30, 128, 36);  // faceting under 0.1 % within the cap

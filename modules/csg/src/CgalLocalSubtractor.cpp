@@ -18,6 +18,7 @@
 #include <unordered_map>
 
 #include "CutBandCleanup.h"
+#include "ExactAheadVisitor.h"
 #include "LocalDefectScan.h"
 #include "TrianglePair.h"
 #include "ToolBound.h"
@@ -624,7 +625,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
     auto testRange = [&](std::size_t begin, std::size_t end, std::vector<char>& toolFlags) {
       std::vector<std::uint32_t> hits;
       for (std::size_t i = begin; i < end; ++i) {
-        toolGrid.querySorted(grid.box(patchSlots[i]), hits);
+        toolGrid.queryShared(grid.box(patchSlots[i]), hits);
         if (hits.empty()) continue;
         const Triangle& t = state.triangle(patchSlots[i]);
         const IK::Triangle_3 bt(ip(state.vertex(t[0])), ip(state.vertex(t[1])), ip(state.vertex(t[2])));
@@ -704,7 +705,8 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   auto conT = tool.add_property_map<EI, bool>("e:c", false).first;
   if (!patch.is_empty()) {
     try {
-      PMP::corefine(patch, tool, CGAL::parameters::edge_is_constrained_map(conP),
+      csg_detail::ExactAheadVisitor<SM> exactAhead;
+      PMP::corefine(patch, tool, CGAL::parameters::edge_is_constrained_map(conP).visitor(exactAhead),
                     CGAL::parameters::edge_is_constrained_map(conT));
     } catch (const std::exception& e) {
       throw CutError(CutError::Kind::Inconsistent, std::string("corefinement failed: ") + e.what());

@@ -147,14 +147,22 @@ void TriangleGrid::query(const Box3& q, const std::function<bool(const Box3&)>& 
       keepBlock);
 }
 
-void TriangleGrid::querySorted(const Box3& q, std::vector<std::uint32_t>& out) const {
+void TriangleGrid::queryShared(const Box3& q, std::vector<std::uint32_t>& out) const {
   out.clear();
-  forCells(q, [&](std::size_t c) {
-    for (std::uint32_t s : cells_[c])
+  const auto qlo = cellOf(q.lo), qhi = cellOf(q.hi);
+  if (qlo == qhi) {  // one cell: nothing to deduplicate
+    for (std::uint32_t s : cells_[index(qlo[0], qlo[1], qlo[2])])
       if (boxes_[s].overlaps(q)) out.push_back(s);
+    return;
+  }
+  forCells(q, [&](std::size_t c) {
+    for (std::uint32_t s : cells_[c]) {
+      if (!boxes_[s].overlaps(q)) continue;
+      // cellOf is monotone, so the first cell both ranges share is the larger of their first cells.
+      const auto slo = cellOf(boxes_[s].lo);
+      if (index(std::max(slo[0], qlo[0]), std::max(slo[1], qlo[1]), std::max(slo[2], qlo[2])) == c) out.push_back(s);
+    }
   });
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 void TriangleGrid::ray(const std::array<double, 3>& origin, int axis, int dir, std::vector<std::uint32_t>& out) {

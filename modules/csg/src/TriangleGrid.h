@@ -58,9 +58,9 @@ class TriangleGrid {
   // cells are skipped is not reported. Border blocks (which also hold faces beyond the domain) are never
   // skipped.
   void query(const Box3& query, const std::function<bool(const Box3&)>& mayHold, std::vector<std::uint32_t>& out);
-  // Slots whose boxes overlap `query`, each once, sorted; const, so threads may share the grid (no stamps:
-  // for small queries, which meet few cells).
-  void querySorted(const Box3& query, std::vector<std::uint32_t>& out) const;
+  // Slots whose boxes overlap `query`, each once, in no particular order; const, so threads may share the
+  // grid: a slot is reported only from the first cell of its box's range within the query's (no stamps).
+  void queryShared(const Box3& query, std::vector<std::uint32_t>& out) const;
   // Slots in the cells an axis-parallel ray from `origin` along +axis (dir > 0) or −axis crosses.
   void ray(const std::array<double, 3>& origin, int axis, int dir, std::vector<std::uint32_t>& out);
 
