@@ -20,6 +20,7 @@
 #include "CutBandCleanup.h"
 #include "ExactAheadVisitor.h"
 #include "LocalDefectScan.h"
+#include "SplitOverTwoThreads.h"
 #include "TrianglePair.h"
 #include "ToolBound.h"
 #include "TriangleGrid.h"
@@ -41,7 +42,7 @@ constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 // Planes of the tool's bound beyond its box (csg::ToolBound): enough to hug a spherical cap to within a
 // fraction of a millimetre; each costs three dot products per candidate face.
 constexpr std::size_t kToolBoundPlanes = 32;
-// Candidate faces per thread from which the near test is split over two threads (a thread costs ~50 µs).
+// Candidate faces per thread from which the near test is split over two threads.
 constexpr std::size_t kParallelNearTestFaces = 400;
 
 // Intersection points are built once by the corefinement and shared by both meshes, so their interval
@@ -638,16 +639,12 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
         closeBone[i] = !nearBone[i];
       }
     };
-    const std::size_t half = patchSlots.size() / 2;
-    if (half < kParallelNearTestFaces) {
-      testRange(0, patchSlots.size(), nearTool);
-    } else {
-      std::vector<char> secondNearTool(nearTool.size(), 0);
-      auto second = std::async(std::launch::async, [&] { testRange(half, patchSlots.size(), secondNearTool); });
-      testRange(0, half, nearTool);
-      second.get();
-      for (std::size_t h = 0; h < nearTool.size(); ++h) nearTool[h] |= secondNearTool[h];
-    }
+    std::vector<char> secondNearTool;
+    csg::splitOverTwoThreads(patchSlots.size(), kParallelNearTestFaces, [&](std::size_t b, std::size_t e, int part) {
+      if (part == 1) secondNearTool.assign(nearTool.size(), 0);
+      testRange(b, e, part == 0 ? nearTool : secondNearTool);
+    });
+    for (std::size_t h = 0; h < secondNearTool.size(); ++h) nearTool[h] |= secondNearTool[h];
     // Faces at vertices known exactly are near even when no tool box meets theirs: the rounding check must
     // see them, since new faces at such a vertex are tested in its rounded position.
     if (!exact.empty())

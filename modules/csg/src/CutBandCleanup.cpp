@@ -8,10 +8,10 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <future>
 #include <limits>
 #include <unordered_map>
 
+#include "SplitOverTwoThreads.h"
 #include "TrianglePair.h"
 
 namespace reamsim::csg {
@@ -105,24 +105,16 @@ class Cleanup {
     // Read-only work over the faces made, so it is split over two threads: at the glenoid of the 405k
     // scapula 1.7 ms, run when the rounding check (the cut's other thread) has usually finished.
     std::atomic<bool> failed{false};
-    auto testRange = [&](std::size_t begin, std::size_t end) {
+    splitOverTwoThreads(made.size(), kParallelOutcomeFaces, [&](std::size_t begin, std::size_t end, int) {
       std::vector<std::uint32_t> hits;
       for (std::size_t i = begin; i < end && !failed.load(std::memory_order_relaxed); ++i)
         if (!madeFaceIsClear(made[i], hits)) failed.store(true, std::memory_order_relaxed);
-    };
-    const std::size_t half = made.size() / 2;
-    if (half < kParallelOutcomeFaces) {
-      testRange(0, made.size());
-    } else {
-      auto second = std::async(std::launch::async, testRange, half, made.size());
-      testRange(0, half);
-      second.get();
-    }
+    });
     return !failed.load();
   }
 
  private:
-  // Faces made per thread from which the outcome test is split over two threads (a thread costs ~50 µs).
+  // Faces made per thread from which the outcome test is split over two threads.
   static constexpr std::size_t kParallelOutcomeFaces = 300;
 
   // Whether made face `id` meets no face it must not: an alive bone face or made face (one with a larger

@@ -149,15 +149,15 @@ void TriangleGrid::query(const Box3& q, const std::function<bool(const Box3&)>& 
 
 void TriangleGrid::queryShared(const Box3& q, std::vector<std::uint32_t>& out) const {
   out.clear();
-  const auto qlo = cellOf(q.lo), qhi = cellOf(q.hi);
-  if (qlo == qhi) {  // one cell: nothing to deduplicate
-    for (std::uint32_t s : cells_[index(qlo[0], qlo[1], qlo[2])])
-      if (boxes_[s].overlaps(q)) out.push_back(s);
-    return;
-  }
+  const auto qlo = cellOf(q.lo);
+  const bool oneCell = qlo == cellOf(q.hi);  // most queries: nothing to deduplicate
   forCells(q, [&](std::size_t c) {
     for (std::uint32_t s : cells_[c]) {
       if (!boxes_[s].overlaps(q)) continue;
+      if (oneCell) {
+        out.push_back(s);
+        continue;
+      }
       // cellOf is monotone, so the first cell both ranges share is the larger of their first cells.
       const auto slo = cellOf(boxes_[s].lo);
       if (index(std::max(slo[0], qlo[0]), std::max(slo[1], qlo[1]), std::max(slo[2], qlo[2])) == c) out.push_back(s);
