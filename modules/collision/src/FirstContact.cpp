@@ -27,7 +27,7 @@ struct ToiItem {
   enum Kind : std::uint8_t { Nodes, Triangles, BoneOnly, BoneTriangle };
   double slb;
   // Nodes: (bone node, reamer node); Triangles: (bone slot, reamer slot); BoneOnly: bone node;
-  // BoneTriangle: bone slot.
+  // BoneTriangle: (bone slot, -1 for its first window, else its bitset of offered reamer slots).
   std::int32_t b, r;
   Kind kind;
   bool operator<(const ToiItem& o) const { return slb > o.slb; }  // min-heap
@@ -38,15 +38,12 @@ struct ToiItem {
 struct ToiScratch {
   std::vector<ToiItem> heap;
   std::vector<std::int32_t> rstack;
-  // (bone slot, reamer slot) pairs already queued by this search: open addressing, size a power of two,
-  // 0 = empty. The cells in use are listed, so the next search clears those instead of the whole table.
-  std::vector<std::uint64_t> seen;
-  std::vector<std::uint32_t> seenUsed;
-  int seenShift = 64;
-  void clearSeen() {
-    for (std::uint32_t i : seenUsed) seen[i] = 0;
-    seenUsed.clear();
-  }
+  // The reamer slots already offered to a bone triangle whose window was cut short (pairWithinWindow): one
+  // bitset of `offeredWords` words per such triangle, appended as needed and dropped by the next search.
+  // Only those triangles need one (a triangle's first window is the first time it meets the reamer), so
+  // the common case touches no shared table at all.
+  std::vector<std::uint64_t> offered;
+  std::size_t offeredWords = 0;
 
   std::vector<std::uint32_t> nodeStamp, triStamp, planeStamp;
   std::vector<Vec3> a0lo, a0hi, rlo, rhi;
@@ -110,7 +107,8 @@ class ToiSearch {
         m_(m), out_(out),
         sc_(tlsScratch) {
     sc_.begin(rtree_.nodes().size(), rtree_.slotCapacity());
-    sc_.clearSeen();
+    sc_.offered.clear();
+    sc_.offeredWords = (rtree_.slotCapacity() + 63) / 64;
     initHull(reamer);
   }
 
@@ -133,7 +131,7 @@ class ToiSearch {
         continue;
       }
       if (it.kind == Item::BoneTriangle) {
-        pairWithinWindow(static_cast<std::uint32_t>(it.b), it.slb);
+        pairWithinWindow(static_cast<std::uint32_t>(it.b), it.slb, it.r);
         continue;
       }
       if (it.kind == Item::BoneOnly) {
@@ -347,8 +345,10 @@ class ToiSearch {
 
   // A long window would gather much of the reamer: the window is cut to what moves the triangle by about
   // kWindowReachMm, and the rest of it is queued again (as the same bone triangle from s1 on), so it is
-  // only looked at if no contact is found first.
-  void pairWithinWindow(std::uint32_t boneSlot, double s0) {
+  // only looked at if no contact is found first. A reamer triangle offered once is not offered again: its
+  // pair's bounds and exact events cover the rest of the segment. `offered` is the triangle's bitset of
+  // reamer slots offered so far, -1 in its first window (nothing offered yet).
+  void pairWithinWindow(std::uint32_t boneSlot, double s0, std::int32_t offered) {
     constexpr double kWindowReachMm = 0.5;
     const BvhTriangle& bt = bone_.triangle(boneSlot);
     const Mat3 R = m_.rotationAt(s0), Rt = R.transposed();
@@ -360,8 +360,13 @@ class ToiSearch {
     double s1 = best_;
     if (speed * (best_ - s0) > kWindowReachMm) {
       s1 = s0 + kWindowReachMm / speed;
-      push({s1, static_cast<std::int32_t>(boneSlot), -1, Item::BoneTriangle});
+      if (offered < 0) {
+        offered = static_cast<std::int32_t>(sc_.offered.size() / sc_.offeredWords);
+        sc_.offered.resize(sc_.offered.size() + sc_.offeredWords, 0);
+      }
+      push({s1, static_cast<std::int32_t>(boneSlot), offered, Item::BoneTriangle});
     }
+    std::uint64_t* bits = offered < 0 ? nullptr : sc_.offered.data() + std::size_t(offered) * sc_.offeredWords;
     const double ds = s1 - s0;
     const double turn = m_.tau == 0 ? 0.0 : m_.phi(s1) - m_.phi(s0);
     const double travel = norm(m_.delta) * ds;
@@ -380,41 +385,18 @@ class ToiSearch {
       if (!boxesOverlap(N.lo, N.hi, lo, hi)) continue;
       if (N.isLeaf()) {
         const std::uint32_t* rs = rtree_.leafSlots(N);
-        for (int j = 0; j < N.count; ++j)
-          if (firstVisit(boneSlot, rs[j])) pushTrianglePair(boneSlot, boneLo, boneHi, rs[j], s0);
+        for (int j = 0; j < N.count; ++j) {
+          if (bits) {
+            std::uint64_t& word = bits[rs[j] >> 6];
+            const std::uint64_t bit = std::uint64_t(1) << (rs[j] & 63);
+            if (word & bit) continue;
+            word |= bit;
+          }
+          pushTrianglePair(boneSlot, boneLo, boneHi, rs[j], s0);
+        }
       } else {
         rstack_.push_back(N.left);
         rstack_.push_back(N.right);
-      }
-    }
-  }
-
-  // True the first time a (bone slot, reamer slot) pair is offered: its exact events cover the whole
-  // segment, so a later window need not queue it again.
-  bool firstVisit(std::uint32_t boneSlot, std::uint32_t reamerSlot) {
-    const std::uint64_t key = (std::uint64_t(boneSlot) << 32 | reamerSlot) + 1;  // 0 marks an empty cell
-    std::vector<std::uint64_t>& seen = sc_.seen;
-    if (seen.size() < 2 * sc_.seenUsed.size() + 64) {
-      std::vector<std::uint64_t> old(std::max<std::size_t>(256, seen.size() * 2), 0);
-      old.swap(seen);
-      sc_.seenShift = 64;
-      for (std::size_t n = seen.size(); n > 1; n >>= 1) --sc_.seenShift;
-      std::vector<std::uint32_t> used;
-      used.swap(sc_.seenUsed);
-      for (std::uint32_t i : used) insertSeen(old[i]);
-    }
-    return insertSeen(key);
-  }
-  bool insertSeen(std::uint64_t key) {
-    std::vector<std::uint64_t>& seen = sc_.seen;
-    const std::size_t mask = seen.size() - 1;
-    // Fibonacci hashing: the product's top bits mix both slots.
-    for (std::size_t i = std::size_t((key * 0x9E3779B97F4A7C15ull) >> sc_.seenShift);; i = (i + 1) & mask) {
-      if (seen[i] == key) return false;
-      if (seen[i] == 0) {
-        seen[i] = key;
-        sc_.seenUsed.push_back(std::uint32_t(i));
-        return true;
       }
     }
   }

@@ -20,6 +20,7 @@
 #include "CutBandCleanup.h"
 #include "ExactAheadVisitor.h"
 #include "LocalDefectScan.h"
+#include "SideGroups.h"
 #include "SplitOverTwoThreads.h"
 #include "TrianglePair.h"
 #include "ToolBound.h"
@@ -37,6 +38,10 @@ using HI = SM::Halfedge_index;
 using EI = SM::Edge_index;
 namespace PMP = CGAL::Polygon_mesh_processing;
 using csg::Box3;
+using csg::kInside;
+using csg::kOutside;
+using csg::kUndecided;
+using csg::Side;
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 // Planes of the tool's bound beyond its box (csg::ToolBound): enough to hug a spherical cap to within a
@@ -97,8 +102,6 @@ void grow(Box3& b, const P& p) {
 double volumeTerm(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
   return dot(a - o, cross(b - o, c - o));
 }
-
-enum Side : signed char { kUndecided = -1, kOutside = 0, kInside = 1 };
 
 // Side of the face (a, b, q) near edge ab relative to a closed, outward-oriented solid whose two faces at
 // that edge are (a, b, c1) and (b, a, c2). Exact. A face lying on one of the solid's faces near the edge
@@ -251,59 +254,6 @@ const SM& exactTool(const TriangleMesh& toolMesh, std::optional<SM>& whole) {
     if (whole->add_face(v[t[0]], v[t[1]], v[t[2]]) == SM::null_face())
       throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
   return *whole;
-}
-
-// Union-find over the near components [0, nearCount) and the far faces after them; each group has one
-// side. Far faces join the faces across their edges, far or near (see joinFarFaces).
-class SideGroups {
- public:
-  SideGroups(std::size_t nearCount, std::size_t farCount)
-      : nearCount_(nearCount), parent_(nearCount + farCount), side_(nearCount + farCount, kUndecided) {
-    for (std::size_t i = 0; i < parent_.size(); ++i) parent_[i] = i;
-  }
-  std::size_t nearCount() const { return nearCount_; }
-  void join(std::size_t a, std::size_t b) {
-    a = root(a);
-    b = root(b);
-    if (a != b) parent_[a] = b;
-  }
-  // False when the group has the other side already; kUndecided changes nothing.
-  bool setSide(std::size_t e, Side s) {
-    if (s == kUndecided) return true;
-    Side& g = side_[root(e)];
-    if (g != kUndecided && g != s) return false;
-    g = s;
-    return true;
-  }
-  Side side(std::size_t e) { return side_[root(e)]; }
-  bool anyUndecided() {
-    for (std::size_t e = nearCount_; e < parent_.size(); ++e)
-      if (side(e) == kUndecided) return true;
-    return false;
-  }
-
- private:
-  std::size_t root(std::size_t e) {
-    while (parent_[e] != e) e = parent_[e] = parent_[parent_[e]];
-    return e;
-  }
-  std::size_t nearCount_;
-  std::vector<std::size_t> parent_;
-  std::vector<Side> side_;
-};
-
-// Joins each far face j to the faces across its edges i: far ones (`farAcross(j, i)`, their far index or
-// kNone) and near ones (`nearAcross(j, i)`, their component or −1).
-template <class FarAcross, class NearAcross>
-void joinFarFaces(SideGroups& groups, std::size_t farCount, FarAcross&& farAcross, NearAcross&& nearAcross) {
-  const std::size_t base = groups.nearCount();
-  for (std::size_t j = 0; j < farCount; ++j)
-    for (int i = 0; i < 3; ++i) {
-      if (const std::uint32_t f = farAcross(j, i); f != kNone)
-        groups.join(base + j, base + f);
-      else if (const int c = nearAcross(j, i); c >= 0)
-        groups.join(base + j, std::size_t(c));
-    }
 }
 
 double elapsedMs(std::chrono::steady_clock::time_point start) {
@@ -524,6 +474,37 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
     toolBox.lo[i] -= margin[i];
     toolBox.hi[i] += margin[i];
   }
+  // The tool's faces by box (widened by the margin), as Epick triangles with their degeneracy, for the near
+  // test below: built on a second thread while this one gathers the bone faces near the tool.
+  using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
+  auto ip = [](const Vec3& v) { return IK::Point_3(v.x, v.y, v.z); };
+  // Collinear corners, decided by the three projected orientations (statically filtered: CGAL's
+  // Collinear_3 evaluates in interval arithmetic with a rounding-mode switch on every call).
+  auto degenerate = [](const IK::Triangle_3& t) {
+    const IK::Point_3 &a = t[0], &b = t[1], &c = t[2];
+    return CGAL::orientation(IK::Point_2(a.x(), a.y()), IK::Point_2(b.x(), b.y()), IK::Point_2(c.x(), c.y())) == CGAL::COLLINEAR &&
+           CGAL::orientation(IK::Point_2(a.y(), a.z()), IK::Point_2(b.y(), b.z()), IK::Point_2(c.y(), c.z())) == CGAL::COLLINEAR &&
+           CGAL::orientation(IK::Point_2(a.z(), a.x()), IK::Point_2(b.z(), b.x()), IK::Point_2(c.z(), c.x())) == CGAL::COLLINEAR;
+  };
+  csg::TriangleGrid toolGrid;
+  std::vector<IK::Triangle_3> toolTriangles;
+  std::vector<char> toolDegenerate;
+  auto toolFaces = std::async(std::launch::async, [&] {
+    toolGrid.init(toolBox.bounds(), toolMesh.triangles.size(), 4.0);
+    toolTriangles.reserve(toolMesh.triangles.size());
+    toolDegenerate.reserve(toolMesh.triangles.size());
+    for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i) {
+      const Triangle& t = toolMesh.triangles[i];
+      Box3 b = Box3::empty();
+      for (std::uint32_t v : t) {
+        b.add(toolMesh.vertices[v] - margin);
+        b.add(toolMesh.vertices[v] + margin);
+      }
+      toolGrid.insert(i, b);
+      toolTriangles.emplace_back(ip(toolMesh.vertices[t[0]]), ip(toolMesh.vertices[t[1]]), ip(toolMesh.vertices[t[2]]));
+      toolDegenerate.push_back(degenerate(toolTriangles.back()));
+    }
+  });
   {
     // Only faces within the tool's bound can touch it (cells wholly beyond it are skipped, then faces).
     // Faces at a vertex known exactly stay (see `near`).
@@ -593,34 +574,8 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   // by the margin) but that do not meet it are `closeBone`: the rounding check must see them.
   std::vector<char> nearBone(patchSlots.size(), 0), nearTool(toolMesh.triangles.size(), 0);
   std::vector<char> closeBone(patchSlots.size(), 0);
-  using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
-  csg::TriangleGrid toolGrid;  // the tool's faces by box (widened by the margin)
+  toolFaces.get();
   {
-    auto ip = [](const Vec3& v) { return IK::Point_3(v.x, v.y, v.z); };
-    // Collinear corners, decided by the three projected orientations (statically filtered: CGAL's
-    // Collinear_3 evaluates in interval arithmetic with a rounding-mode switch on every call).
-    auto degenerate = [](const IK::Triangle_3& t) {
-      const IK::Point_3 &a = t[0], &b = t[1], &c = t[2];
-      return CGAL::orientation(IK::Point_2(a.x(), a.y()), IK::Point_2(b.x(), b.y()), IK::Point_2(c.x(), c.y())) == CGAL::COLLINEAR &&
-             CGAL::orientation(IK::Point_2(a.y(), a.z()), IK::Point_2(b.y(), b.z()), IK::Point_2(c.y(), c.z())) == CGAL::COLLINEAR &&
-             CGAL::orientation(IK::Point_2(a.z(), a.x()), IK::Point_2(b.z(), b.x()), IK::Point_2(c.z(), c.x())) == CGAL::COLLINEAR;
-    };
-    toolGrid.init(toolBox.bounds(), toolMesh.triangles.size(), 4.0);
-    std::vector<IK::Triangle_3> toolTriangles;
-    std::vector<char> toolDegenerate;
-    toolTriangles.reserve(toolMesh.triangles.size());
-    toolDegenerate.reserve(toolMesh.triangles.size());
-    for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i) {
-      const Triangle& t = toolMesh.triangles[i];
-      Box3 b = Box3::empty();
-      for (std::uint32_t v : t) {
-        b.add(toolMesh.vertices[v] - margin);
-        b.add(toolMesh.vertices[v] + margin);
-      }
-      toolGrid.insert(i, b);
-      toolTriangles.emplace_back(ip(toolMesh.vertices[t[0]]), ip(toolMesh.vertices[t[1]]), ip(toolMesh.vertices[t[2]]));
-      toolDegenerate.push_back(degenerate(toolTriangles.back()));
-    }
     // Each bone face against the tool faces whose boxes meet its box; the faces are split between this
     // thread and a second one (the tests are independent and read-only), each with its own tool flags.
     auto testRange = [&](std::size_t begin, std::size_t end, std::vector<char>& toolFlags) {
@@ -697,6 +652,47 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
       throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
     ++cut.nearToolFaces;
   }
+  // Far faces grouped on a second thread while the corefinement runs: it reads the bone, the tool mesh,
+  // the near flags and the vertex maps, none of which the corefinement touches (it edits only the two SMs).
+  csg::FarFaceGroups<VI> farBoneGroups, farToolGroups;
+  auto farGrouping = std::async(std::launch::async, [&] {
+    // Far bone faces: through a map of their directed edges.
+    for (std::uint32_t i = 0; i < patchSlots.size(); ++i)
+      if (!nearBone[i]) farBoneGroups.faces.push_back(i);
+    auto boneTriangle = [&](std::size_t j) -> const Triangle& { return state.triangle(patchSlots[farBoneGroups.faces[j]]); };
+    std::unordered_map<std::uint64_t, std::uint32_t> farEdge;
+    farEdge.reserve(3 * farBoneGroups.faces.size());
+    for (std::uint32_t j = 0; j < farBoneGroups.faces.size(); ++j)
+      for (int i = 0; i < 3; ++i) farEdge.emplace(directedKey(boneTriangle(j)[i], boneTriangle(j)[(i + 1) % 3]), j);
+    auto patchVertexOf = [&](std::uint32_t slot) {
+      const auto it = patchVertex.find(slot);
+      return it == patchVertex.end() ? SM::null_vertex() : it->second;
+    };
+    farBoneGroups.group(
+        [&](std::size_t j, int i) {
+          const auto it = farEdge.find(directedKey(boneTriangle(j)[(i + 1) % 3], boneTriangle(j)[i]));
+          return it == farEdge.end() ? kNone : it->second;
+        },
+        [&](std::size_t j, int i, VI& b, VI& a) {
+          b = patchVertexOf(boneTriangle(j)[(i + 1) % 3]);
+          a = patchVertexOf(boneTriangle(j)[i]);
+          return b != SM::null_vertex() && a != SM::null_vertex();
+        });
+    // Far tool faces: through the tool's face adjacency.
+    std::vector<std::uint32_t> farIndex(toolMesh.triangles.size(), kNone);
+    for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i)
+      if (!nearTool[i]) {
+        farIndex[i] = std::uint32_t(farToolGroups.faces.size());
+        farToolGroups.faces.push_back(i);
+      }
+    farToolGroups.group([&](std::size_t j, int i) { return farIndex[topology.across[farToolGroups.faces[j]][i]]; },
+                  [&](std::size_t j, int i, VI& b, VI& a) {
+                    const Triangle& t = toolMesh.triangles[farToolGroups.faces[j]];
+                    b = toolVertex[t[(i + 1) % 3]];
+                    a = toolVertex[t[i]];
+                    return b != SM::null_vertex() && a != SM::null_vertex();
+                  });
+  });
   cut.phaseMilliseconds.setup = lap();
   auto conP = patch.add_property_map<EI, bool>("e:c", false).first;
   auto conT = tool.add_property_map<EI, bool>("e:c", false).first;
@@ -817,54 +813,22 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   }
 
   // Far faces join the components they border; groups left without a side get one point test.
-  std::vector<std::uint32_t> farBone, farTool;  // patchSlots indices / tool triangle indices
-  for (std::uint32_t i = 0; i < patchSlots.size(); ++i)
-    if (!nearBone[i]) farBone.push_back(i);
-  for (std::uint32_t i = 0; i < toolMesh.triangles.size(); ++i)
-    if (!nearTool[i]) farTool.push_back(i);
-  SideGroups boneGroups(std::size_t(nPC), farBone.size()), toolGroups(std::size_t(nTC), farTool.size());
-  // The component of the near face with the directed edge b → a in `mesh`, or −1.
   auto nearComponent = [](const SM& mesh, const std::vector<int>& comp, VI b, VI a) {
-    if (b == SM::null_vertex() || a == SM::null_vertex()) return -1;
     const auto h = CGAL::halfedge(b, a, mesh);
     return h.second && !mesh.is_border(h.first) ? comp[mesh.face(h.first).idx()] : -1;
   };
-  {  // far bone faces: through a map of their directed edges
-    auto boneTriangle = [&](std::size_t j) -> const Triangle& { return state.triangle(patchSlots[farBone[j]]); };
-    std::unordered_map<std::uint64_t, std::uint32_t> farEdge;
-    farEdge.reserve(3 * farBone.size());
-    for (std::uint32_t j = 0; j < farBone.size(); ++j)
-      for (int i = 0; i < 3; ++i) farEdge.emplace(directedKey(boneTriangle(j)[i], boneTriangle(j)[(i + 1) % 3]), j);
-    auto patchVertexOf = [&](std::uint32_t slot) {
-      const auto it = patchVertex.find(slot);
-      return it == patchVertex.end() ? SM::null_vertex() : it->second;
-    };
-    joinFarFaces(
-        boneGroups, farBone.size(),
-        [&](std::size_t j, int i) {
-          const auto it = farEdge.find(directedKey(boneTriangle(j)[(i + 1) % 3], boneTriangle(j)[i]));
-          return it == farEdge.end() ? kNone : it->second;
-        },
-        [&](std::size_t j, int i) {
-          return nearComponent(patch, pcomp, patchVertexOf(boneTriangle(j)[(i + 1) % 3]),
-                               patchVertexOf(boneTriangle(j)[i]));
-        });
-  }
-  {  // far tool faces: through the tool's face adjacency
-    std::vector<std::uint32_t> farIndex(toolMesh.triangles.size(), kNone);
-    for (std::uint32_t j = 0; j < farTool.size(); ++j) farIndex[farTool[j]] = j;
-    joinFarFaces(
-        toolGroups, farTool.size(), [&](std::size_t j, int i) { return farIndex[topology.across[farTool[j]][i]]; },
-        [&](std::size_t j, int i) {
-          const Triangle& t = toolMesh.triangles[farTool[j]];
-          return nearComponent(tool, tcomp, toolVertex[t[(i + 1) % 3]], toolVertex[t[i]]);
-        });
-  }
+  farGrouping.get();
+  farBoneGroups.joinNear(std::size_t(nPC), [&](VI b, VI a) { return nearComponent(patch, pcomp, b, a); });
+  farToolGroups.joinNear(std::size_t(nTC), [&](VI b, VI a) { return nearComponent(tool, tcomp, b, a); });
+  csg::SideGroups& boneGroups = farBoneGroups.groups;
+  csg::SideGroups& toolGroups = farToolGroups.groups;
+  const std::vector<std::uint32_t>& farBone = farBoneGroups.faces;  // patchSlots indices
+  const std::vector<std::uint32_t>& farTool = farToolGroups.faces;  // tool triangle indices
   for (int c = 0; c < nPC; ++c)
-    if (!boneGroups.setSide(std::size_t(c), pside[c]))
+    if (!boneGroups.setSide(boneGroups.near(std::size_t(c)), pside[c]))
       throw CutError(CutError::Kind::Inconsistent, "bone faces on one side of the tool were classified apart");
   for (int c = 0; c < nTC; ++c)
-    if (!toolGroups.setSide(std::size_t(c), tside[c]))
+    if (!toolGroups.setSide(toolGroups.near(std::size_t(c)), tside[c]))
       throw CutError(CutError::Kind::Inconsistent, "tool faces on one side of the bone were classified apart");
   auto toolSideOf = [&](const P& q) {
     const auto s = sideOf()(q);
@@ -919,12 +883,12 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   for (FI f : patch.faces()) {
     const int c = pcomp[f.idx()];
     if (pside[c] != kUndecided || pHasCurve[c]) continue;
-    if ((pside[c] = boneGroups.side(std::size_t(c))) != kUndecided) continue;
+    if ((pside[c] = boneGroups.side(boneGroups.near(std::size_t(c)))) != kUndecided) continue;
     const auto v = faceVertices(patch, f);
-    boneGroups.setSide(std::size_t(c), pside[c] = toolSideOf(CGAL::centroid(patch.point(v[0]), patch.point(v[1]), patch.point(v[2]))));
+    boneGroups.setSide(boneGroups.near(std::size_t(c)), pside[c] = toolSideOf(CGAL::centroid(patch.point(v[0]), patch.point(v[1]), patch.point(v[2]))));
   }
   for (std::size_t j = 0; j < farBone.size(); ++j) {
-    const std::size_t e = std::size_t(nPC) + j;
+    const std::size_t e = boneGroups.far(j);
     if (boneGroups.side(e) != kUndecided) continue;
     // A far face does not meet the tool's surface: all of it lies on the side of any of its points.
     const Triangle& t = state.triangle(patchSlots[farBone[j]]);
@@ -937,12 +901,12 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   for (FI f : tool.faces()) {
     const int c = tcomp[f.idx()];
     if (tside[c] != kUndecided || tHasCurve[c]) continue;
-    if ((tside[c] = toolGroups.side(std::size_t(c))) != kUndecided) continue;
+    if ((tside[c] = toolGroups.side(toolGroups.near(std::size_t(c)))) != kUndecided) continue;
     const auto v = faceVertices(tool, f);
-    toolGroups.setSide(std::size_t(c), tside[c] = insideBone(CGAL::centroid(tool.point(v[0]), tool.point(v[1]), tool.point(v[2]))));
+    toolGroups.setSide(toolGroups.near(std::size_t(c)), tside[c] = insideBone(CGAL::centroid(tool.point(v[0]), tool.point(v[1]), tool.point(v[2]))));
   }
   for (std::size_t j = 0; j < farTool.size(); ++j) {
-    const std::size_t e = std::size_t(nTC) + j;
+    const std::size_t e = toolGroups.far(j);
     if (toolGroups.side(e) != kUndecided) continue;
     const Triangle& t = toolMesh.triangles[farTool[j]];
     toolGroups.setSide(e, insideBone(CGAL::centroid(uidPoint(nP + nT + t[0]), uidPoint(nP + nT + t[1]),
@@ -951,15 +915,15 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   auto undecided = [](const std::vector<Side>& sides) {
     return std::find(sides.begin(), sides.end(), kUndecided) != sides.end();
   };
-  if (undecided(pside) || undecided(tside) || boneGroups.anyUndecided() || toolGroups.anyUndecided())
+  if (undecided(pside) || undecided(tside) || boneGroups.anyFarUndecided() || toolGroups.anyFarUndecided())
     throw CutError(CutError::Kind::Degenerate,
                    "coplanar or tangential contact between tool and bone; the bone is unchanged");
 
   bool anyInside = false;
   for (Side s : pside) anyInside |= s == kInside;
   for (Side s : tside) anyInside |= s == kInside;
-  for (std::size_t j = 0; j < farBone.size(); ++j) anyInside |= boneGroups.side(std::size_t(nPC) + j) == kInside;
-  for (std::size_t j = 0; j < farTool.size(); ++j) anyInside |= toolGroups.side(std::size_t(nTC) + j) == kInside;
+  for (std::size_t j = 0; j < farBone.size(); ++j) anyInside |= boneGroups.side(boneGroups.far(j)) == kInside;
+  for (std::size_t j = 0; j < farTool.size(); ++j) anyInside |= toolGroups.side(toolGroups.far(j)) == kInside;
   if (!anyInside) {
     cut.milliseconds = elapsedMs(start);
     return cut;
@@ -1008,7 +972,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
       if (!origSeenUnchanged[i]) removed.push_back(patchSlots[i]);
       continue;
     }
-    if (boneGroups.side(std::size_t(nPC) + j++) != kInside) continue;
+    if (boneGroups.side(boneGroups.far(j++)) != kInside) continue;
     const Triangle& t = state.triangle(patchSlots[i]);
     if (knownExactly(t[0]) || knownExactly(t[1]) || knownExactly(t[2]))
       pieceTerm(point(t[0]), point(t[1]), point(t[2]));
@@ -1028,7 +992,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
     keepToolFace({toolUid[v[0].idx()], toolUid[v[1].idx()], toolUid[v[2].idx()]});
   }
   for (std::size_t j = 0; j < farTool.size(); ++j) {
-    if (toolGroups.side(std::size_t(nTC) + j) != kInside) continue;
+    if (toolGroups.side(toolGroups.far(j)) != kInside) continue;
     const Triangle& t = toolMesh.triangles[farTool[j]];
     keepToolFace({toolVertexUid(t[0]), toolVertexUid(t[1]), toolVertexUid(t[2])});
   }
@@ -1102,7 +1066,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   std::vector<std::uint32_t> closeStaying;  // patchSlots indices of close bone faces outside the tool
   for (std::size_t i = 0, j = 0; i < patchSlots.size(); ++i) {
     if (nearBone[i]) continue;
-    if (boneGroups.side(std::size_t(nPC) + j++) != kInside && closeBone[i]) closeStaying.push_back(std::uint32_t(i));
+    if (boneGroups.side(boneGroups.far(j++)) != kInside && closeBone[i]) closeStaying.push_back(std::uint32_t(i));
   }
   const BoneState before = state;  // the check reads old vertices while the commit replaces `state`
   const auto exactBefore = exact;   // usually empty; restored if the cut is made again (below)
