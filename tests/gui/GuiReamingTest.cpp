@@ -138,7 +138,11 @@ TEST(GuiReaming, KeyMovesSweepPlacementsDoNot) {
   QTest::keyClick(w.windowHandle(), Qt::Key_Up);  // 3 mm sideways, in the bone: the sweep is cut
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_TRUE(s.lastStepSwept());
-  QTest::keyClick(w.windowHandle(), Qt::Key_A);  // a turn: not swept
+  QTest::keyClick(w.windowHandle(), Qt::Key_A);  // a 2 degree turn: cut in sub-steps along it
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_TRUE(s.lastStepSwept());
+  w.setSteps(3.0, 0.5, 0.2);
+  QTest::keyClick(w.windowHandle(), Qt::Key_A);  // 0.5 degrees: the end pose covers it (ridges under 1 µm)
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_FALSE(s.lastStepSwept());
 }

@@ -29,6 +29,7 @@ ReamStepOutcome ReamController::moveTo(const Pose& pose) {
   out.cut = c.cut;
   out.volumeBookkeepingError = c.volumeBookkeepingError;
   out.swept = c.swept;
+  out.sweepCuts = c.sweepCuts;
   out.times = c.times;
   const auto commitStart = std::chrono::steady_clock::now();
   out.entry = commitReamStep(document_, bone_, reamer_, log_, alerts_, c, steps_++);

@@ -1,5 +1,6 @@
 #include "reamsim/ream/ReamEngine.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -44,6 +45,7 @@ ReamEngine::ReamEngine(std::shared_ptr<const TriangleMesh> cuttingVolumeLocal, s
   convexSolid_ = isConvexSolid(*cuttingVolume_);
   const Bounds local = computeBounds(*cuttingVolume_);
   axialLength_ = local.max.z - local.min.z;  // reamer-local: the feed axis is +z
+  for (const Vec3& p : cuttingVolume_->vertices) solidRadius_ = std::max(solidRadius_, norm(p));
 }
 
 ReamEngine::~ReamEngine() = default;
@@ -75,17 +77,72 @@ const TriangleMesh* ReamEngine::meshFor(const BoneState& bone, std::uint64_t rev
 
 namespace {
 
-// A sweep is cut for a pure translation that moves sideways, or along the axis further than the solid is
-// long (a shorter axial feed is covered by the end pose's solid: sweeping it would change nothing).
-bool needsSweep(const RigidTransform& from, const RigidTransform& to, const Vec3& axis, double axialLength) {
+bool sameRotation(const RigidTransform& a, const RigidTransform& b) {
   for (int i = 0; i < 9; ++i)
-    if (from.rotation[i] != to.rotation[i]) return false;
+    if (a.rotation[i] != b.rotation[i]) return false;
+  return true;
+}
+
+// A translation is swept when it moves sideways, or along the axis further than the solid is long (a
+// shorter axial feed is covered by the end pose's solid: sweeping it would change nothing).
+bool translationNeedsSweep(const RigidTransform& from, const RigidTransform& to, double axialLength) {
+  const Vec3 axis = to.applyToDirection({0, 0, 1});
   const Vec3 d = to.translation - from.translation;
   const Vec3 sideways = d - axis * dot(d, axis);
   return norm(sideways) > 1e-9 || std::abs(dot(d, axis)) >= axialLength;
 }
 
+bool boxesMeet(const Bounds& a, const Bounds& b) {
+  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
+         a.min.z <= b.max.z && b.min.z <= a.max.z;
+}
+
+// One cut's figures added to the step's: volumes before the first change and after the last.
+void accumulate(ReferenceCut& total, const ReferenceCut& c) {
+  total.milliseconds += c.milliseconds;
+  if (!c.changed) return;
+  if (!total.changed) total.volumeBeforeMm3 = c.volumeBeforeMm3;
+  total.changed = true;
+  total.removedMm3 += c.removedMm3;
+  total.volumeAfterMm3 = c.volumeAfterMm3;
+  total.facesAfter = c.facesAfter;
+}
+
 }  // namespace
+
+std::vector<TriangleMesh> ReamEngine::sweepTools(const RigidTransform& from, const RigidTransform& to) const {
+  std::vector<TriangleMesh> tools;
+  if (sameRotation(from, to)) {
+    if (convexSolid_ && translationNeedsSweep(from, to, axialLength_))
+      tools.push_back(sweptByTranslation(*cuttingVolume_, from, to));
+    return tools;
+  }
+  // A turn, in sub-steps along it (SweptVolume.h). A short one is covered by the end pose's solid up to
+  // ridges of second order. Where the tip travels across the axis, each sub-step is the hull of that travel
+  // at the sub-step's first orientation (so every pose sampled along the path is cut as it is) and the end
+  // pose's solid closes the chain; a turn in place (or with a short axial feed) is a chain of placements.
+  const TurnPath path(from, to);
+  if (!path.isTurn()) return tools;
+  const int placements = turnSubSteps(path, solidRadius_, turnTravel_.placementMm, true);
+  if (placements <= 1) return tools;
+  RigidTransform acrossTravel = to;
+  acrossTravel.translation = from.translation;
+  const bool hulls = convexSolid_ && translationNeedsSweep(acrossTravel, to, axialLength_);
+  const int n = hulls ? turnSubSteps(path, solidRadius_, turnTravel_.hullMm, false) : placements;
+  for (int i = 1; i <= n; ++i) {
+    if (hulls) {
+      const RigidTransform start = path.at(double(i - 1) / n);
+      RigidTransform end = start;
+      end.translation = path.at(double(i) / n).translation;
+      if (translationNeedsSweep(start, end, axialLength_)) {
+        tools.push_back(sweptByTranslation(*cuttingVolume_, start, end));
+        if (i < n) continue;
+      }
+    }
+    tools.push_back(transformed(*cuttingVolume_, path.at(double(i) / n)));
+  }
+  return tools;
+}
 
 ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm,
                                     const Pose* sweptFrom) {
@@ -111,18 +168,21 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   // An exact engine says whether the cutting volume reaches the bone; with the thesis's rays the Boolean runs
   // whenever the boxes overlap, so that bone entering from the side (which the rays cannot see) is still cut.
   bool mayCut = out.contact.solidOverlapsBone ? *out.contact.solidOverlapsBone : out.contact.boxesOverlap;
-  if (sweptFrom && convexSolid_) {
-    const RigidTransform from = toTransform(*sweptFrom);
-    if (needsSweep(from, toBone, normalized(pose.axis), axialLength_)) {
-      tool = sweptByTranslation(*cuttingVolume_, from, toBone);
-      out.swept = true;
-      // The query saw the end pose only; the sweep lies within its box grown by the travel.
-      mayCut = out.contact.boxesOverlap;
-    }
+  std::vector<TriangleMesh> tools;
+  if (sweptFrom) tools = sweepTools(toTransform(*sweptFrom), toBone);
+  if (!tools.empty()) {
+    out.swept = true;
+    out.sweepCuts = static_cast<int>(tools.size());
+    // The query saw the end pose only; each swept tool is tested against the bone's box instead.
+    mayCut = false;
+    for (const TriangleMesh& t : tools) mayCut = mayCut || boxesMeet(computeBounds(t), boneBounds);
+  } else {
+    tools.push_back(std::move(tool));
   }
   if (mayCut && cutter_) {
     pendingAdopt_ = true;  // from here the cutter may differ from `revision` (also if subtract throws)
-    out.cut = cutter_->subtract(tool);
+    for (const TriangleMesh& t : tools)
+      if (tools.size() == 1 || boxesMeet(computeBounds(t), boneBounds)) accumulate(out.cut, cutter_->subtract(t));
     out.times.cut = out.cut.milliseconds;
     if (!out.cut.changed) {
       pendingAdopt_ = false;

@@ -3,8 +3,12 @@
 // reamer moves further than its own size between two computed steps (a fast hand move, a coarse plan).
 //
 // For a translation (same orientation at both poses) the volume a convex solid sweeps is exactly the convex
-// hull of its two placements; every hull vertex is a placed vertex, so nothing is approximated. Rotations
-// are not swept here (their swept volume is not a hull): callers cut the end pose's solid then.
+// hull of its two placements; every hull vertex is a placed vertex, so nothing is approximated. A move that
+// turns the reamer sweeps no hull (and the hull of its two placements reaches bone no placement between
+// them reaches, first order in the angle: the wedge under a flat reamer's tilting face): it is cut as a
+// chain of placements along the move (`turnPlacements`), which leaves ridges of second order only.
+#include <vector>
+
 #include "reamsim/core/Pose.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
@@ -17,5 +21,31 @@ bool isConvexSolid(const TriangleMesh& closedMesh, double relativeTolerance = 1e
 // triangulated and outward. Throws std::invalid_argument when the two rotations differ.
 TriangleMesh sweptByTranslation(const TriangleMesh& convexSolidLocal, const RigidTransform& from,
                                 const RigidTransform& to);
+
+// A move from `from` to `to` whose axes (local +Z) differ, as the turn the cuts follow: the tip moves
+// linearly and the axis swings on the great circle between the two, the solid keeping its roll relative to
+// the swing (a reamer spins, so the roll changes only its facets). `at(s)` is the pose at s in [0, 1]
+// (`at(1)` is `to` itself, roll included); `rotationAt(s)` its rotation, for a sub-step's hull.
+class TurnPath {
+ public:
+  // Empty (no turn) when the axes are the same (a translation: `sweptByTranslation`), opposite (no unique
+  // turn) or not finite.
+  TurnPath(const RigidTransform& from, const RigidTransform& to);
+  bool isTurn() const { return angle_ > 0; }
+  double angle() const { return angle_; }  // radians
+  double sidewaysTravelMm() const;  // the tip's travel across the end pose's axis
+  RigidTransform at(double s) const;
+
+ private:
+  RigidTransform from_, to_;
+  Vec3 k_;
+  double angle_ = 0;
+};
+
+// Sub-steps that keep every point within `radiusMm` of the tip from moving more than `maxTravelMm` in one,
+// counting the turn and, with `countSidewaysTravel`, the tip's travel across the end pose's axis (travel
+// along it is a feed, which the solid's own length covers); at least 1, at most `maxSteps`.
+int turnSubSteps(const TurnPath& path, double radiusMm, double maxTravelMm, bool countSidewaysTravel,
+                 int maxSteps = 96);
 
 }  // namespace reamsim

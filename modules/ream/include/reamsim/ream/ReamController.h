@@ -19,6 +19,7 @@ struct ReamStepOutcome {
   ReferenceCut cut;
   double volumeBookkeepingError = 0;  // |removed − (V_before − V_after)|
   bool swept = false;                 // the step cut the volume swept from the previous pose
+  int sweepCuts = 0;                  // swept: Booleans it took (ReamComputation::sweepCuts)
   ReamComputation::Times times;       // the engine's half (ReamEngine::compute)
   double commitMs = 0;                // the document's half (commitReamStep)
 };
