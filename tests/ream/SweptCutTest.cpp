@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "ReamFixture.h"
 #include "reamsim/ream/LocalCutBackend.h"
@@ -146,10 +145,12 @@ TEST(SweptCut, TurnPathFollowsTheGreatCircleAndEndsAtThePose) {
     EXPECT_NEAR(dot(axis, k), 0.0, 1e-12);                                   // on the great circle
     EXPECT_NEAR(std::acos(std::min(1.0, dot(axis, a0))), s * angle, 1e-9);  // evenly along it
     // Every point within the radius moves at most `travel` besides the feed (the last sub-step adds the roll).
-    if (i < n)
+    if (i < n) {
       for (const Vec3& q : {Vec3{radius, 0, 0}, Vec3{0, radius, 0}, Vec3{0, 0, radius}, Vec3{0, 0, -radius},
-                            normalized(Vec3{1, 1, 1}) * radius})
+                            normalized(Vec3{1, 1, 1}) * radius}) {
         EXPECT_LE(norm(t.apply(q) - previous.apply(q) - a1 * (dot(move, a1) / n)), travel * (1 + 1e-9));
+      }
+    }
     previous = t;
   }
   EXPECT_EQ(path.at(1).rotation, to.rotation);

@@ -92,11 +92,6 @@ bool translationNeedsSweep(const RigidTransform& from, const RigidTransform& to,
   return norm(sideways) > 1e-9 || std::abs(dot(d, axis)) >= axialLength;
 }
 
-bool boxesMeet(const Bounds& a, const Bounds& b) {
-  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
-         a.min.z <= b.max.z && b.min.z <= a.max.z;
-}
-
 // One cut's figures added to the step's: volumes before the first change and after the last.
 void accumulate(ReferenceCut& total, const ReferenceCut& c) {
   total.milliseconds += c.milliseconds;
@@ -173,16 +168,18 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   if (!tools.empty()) {
     out.swept = true;
     out.sweepCuts = static_cast<int>(tools.size());
-    // The query saw the end pose only; each swept tool is tested against the bone's box instead.
-    mayCut = false;
-    for (const TriangleMesh& t : tools) mayCut = mayCut || boxesMeet(computeBounds(t), boneBounds);
+    // The query saw the end pose only; each swept tool is tested against the bone's box instead, and
+    // those that miss it are not cut.
+    tools.erase(std::remove_if(tools.begin(), tools.end(),
+                               [&](const TriangleMesh& t) { return !computeBounds(t).overlaps(boneBounds); }),
+                tools.end());
+    mayCut = !tools.empty();
   } else {
     tools.push_back(std::move(tool));
   }
   if (mayCut && cutter_) {
     pendingAdopt_ = true;  // from here the cutter may differ from `revision` (also if subtract throws)
-    for (const TriangleMesh& t : tools)
-      if (tools.size() == 1 || boxesMeet(computeBounds(t), boneBounds)) accumulate(out.cut, cutter_->subtract(t));
+    for (const TriangleMesh& t : tools) accumulate(out.cut, cutter_->subtract(t));
     out.times.cut = out.cut.milliseconds;
     if (!out.cut.changed) {
       pendingAdopt_ = false;

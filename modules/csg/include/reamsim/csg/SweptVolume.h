@@ -5,8 +5,8 @@
 // For a translation (same orientation at both poses) the volume a convex solid sweeps is exactly the convex
 // hull of its two placements; every hull vertex is a placed vertex, so nothing is approximated. A move that
 // turns the reamer sweeps no hull (and the hull of its two placements reaches bone no placement between
-// them reaches, first order in the angle: the wedge under a flat reamer's tilting face): it is cut as a
-// chain of placements along the move (`turnPlacements`), which leaves ridges of second order only.
+// them reaches, first order in the angle: the wedge under a flat reamer's tilting face): it is cut in
+// sub-steps along `TurnPath` (placements, or translation hulls where the tip travels sideways; ReamEngine).
 #include <vector>
 
 #include "reamsim/core/Pose.h"
@@ -25,7 +25,7 @@ TriangleMesh sweptByTranslation(const TriangleMesh& convexSolidLocal, const Rigi
 // A move from `from` to `to` whose axes (local +Z) differ, as the turn the cuts follow: the tip moves
 // linearly and the axis swings on the great circle between the two, the solid keeping its roll relative to
 // the swing (a reamer spins, so the roll changes only its facets). `at(s)` is the pose at s in [0, 1]
-// (`at(1)` is `to` itself, roll included); `rotationAt(s)` its rotation, for a sub-step's hull.
+// (`at(1)` is `to` itself, roll included).
 class TurnPath {
  public:
   // Empty (no turn) when the axes are the same (a translation: `sweptByTranslation`), opposite (no unique

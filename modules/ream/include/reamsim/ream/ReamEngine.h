@@ -49,7 +49,7 @@ class ReamEngine {
   // One step at `pose`; stepMm is the tip travel since the previous step (grows the broad phase).
   // `sweptFrom`: where the reamer was before this step, when it got here by moving (not placed there): a
   // translation with a sideways part cuts the whole volume swept between the two poses (SweptVolume.h), so
-  // a long move leaves no ridge; a turn is cut as placements along it (turnPlacements), one Boolean each,
+  // a long move leaves no ridge; a turn is cut in sub-steps along it (TurnPath), one Boolean each,
   // reported as one step. Throws std::runtime_error when a Boolean fails; the engine then resyncs (the
   // document never sees a partly cut turn).
   ReamComputation compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm,
