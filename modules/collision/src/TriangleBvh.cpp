@@ -41,6 +41,12 @@ Bounds TriangleBvh::bounds() const {
   return b;
 }
 
+std::size_t TriangleBvh::hugePageBytes() const {
+  return hugePageBytesIn({{nodes_.data(), nodes_.size() * sizeof(BvhNode)},
+                          {slabs_.data(), slabs_.size() * sizeof(BvhSlab)},
+                          {tris_.data(), tris_.size() * sizeof(BvhTriangle)}});
+}
+
 BvhQuality TriangleBvh::quality() const {
   BvhQuality q;
   q.triangles = triangleCount_;

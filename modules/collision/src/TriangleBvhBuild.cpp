@@ -65,11 +65,13 @@ TriangleBvh TriangleBvh::fromTriangles(const std::vector<std::uint32_t>& slots,
   TriangleBvh bvh;
   std::uint32_t maxSlot = 0;
   for (std::uint32_t s : slots) maxSlot = std::max(maxSlot, s);
-  bvh.tris_.resize(slots.empty() ? 0 : std::size_t(maxSlot) + 1);
-  bvh.leafOf_.assign(bvh.tris_.size(), -1);
-  // Cuts add slots past the end: room for a quarter more, so the first cuts do not copy the whole array.
-  bvh.tris_.reserve(bvh.tris_.size() + bvh.tris_.size() / 4 + 64);
+  const std::size_t count = slots.empty() ? 0 : std::size_t(maxSlot) + 1;
+  // Cuts add slots past the end: room for a quarter more, so the first cuts do not copy the whole array
+  // (reserved before the first write: the arrays are mapped and faulted once).
+  bvh.tris_.reserve(count + count / 4 + 64);
   bvh.leafOf_.reserve(bvh.tris_.capacity());
+  bvh.tris_.resize(count);
+  bvh.leafOf_.assign(count, -1);
   for (std::size_t i = 0; i < slots.size(); ++i) {
     const BvhTriangle& t = triangles[i];
     if (!isFinite(t.a) || !isFinite(t.b) || !isFinite(t.c))

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "reamsim/core/HugePageAllocator.h"
 #include "reamsim/mesh/Bounds.h"
 #include "reamsim/mesh/TriangleMesh.h"
 #include "reamsim/mesh/Vec3.h"
@@ -106,7 +107,7 @@ class TriangleBvh {
   // --- read access for the queries ---
   bool empty() const { return root_ < 0; }
   std::int32_t root() const { return root_; }
-  const std::vector<BvhNode>& nodes() const { return nodes_; }
+  const HugePageVector<BvhNode>& nodes() const { return nodes_; }
   const BvhSlab& slab(std::int32_t node) const { return slabs_[std::size_t(node)]; }
   // A cache hint for a search about to read a node (and its slab): on a large tree these reads miss the
   // cache, and issuing both children's at once lets the misses overlap. No effect on results.
@@ -125,6 +126,9 @@ class TriangleBvh {
   void forEachSlot(std::int32_t node, F&& f) const;
 
   BvhQuality quality() const;  // O(nodes)
+  // Bytes of the node, slab and triangle arrays the system backs with huge pages (a report: 0 where it has
+  // none to give; reads /proc/self/smaps).
+  std::size_t hugePageBytes() const;
   // Structural self-check for tests: parent links, boxes enclose children and padded triangles, counts,
   // slot -> leaf map. Returns an empty string when consistent, else the first problem found.
   std::string validate() const;
@@ -162,8 +166,9 @@ class TriangleBvh {
   void fitInternalSlab(std::int32_t node);
   void maintainQuality(std::size_t editSize, BvhUpdateStats& stats);
 
-  std::vector<BvhNode> nodes_;
-  std::vector<BvhSlab> slabs_;         // by node, see BvhSlab
+  // The arrays that grow with the bone are on huge pages (HugePageAllocator): queries read them scattered.
+  HugePageVector<BvhNode> nodes_;
+  HugePageVector<BvhSlab> slabs_;  // by node, see BvhSlab
   // Per-node bookkeeping of the local update, in one record so that an update touches one cache line per
   // node for it (four parallel arrays cost four misses per node on a large tree).
   struct NodeBook {
@@ -172,14 +177,14 @@ class TriangleBvh {
     std::uint32_t touchedStamp = 0;   // == epoch_: on a path edited by the current update
     std::uint8_t dirty = 0;           // box must be refitted
   };
-  std::vector<NodeBook> book_;
+  HugePageVector<NodeBook> book_;
   std::vector<std::int32_t> touched_;
   std::uint32_t epoch_ = 0;
-  std::vector<std::uint32_t> blocks_;  // leaf slot blocks, kLeafCapacity each
+  HugePageVector<std::uint32_t> blocks_;  // leaf slot blocks, kLeafCapacity each
   std::vector<std::int32_t> freeNodes_, freeBlocks_;
-  std::vector<BvhTriangle> tris_;      // by slot
-  std::vector<std::int32_t> leafOf_;   // by slot; -1 when the slot is not in the tree
-  std::vector<std::uint32_t> slotMark_;  // by slot: update()'s duplicate checks (stamped, never cleared)
+  HugePageVector<BvhTriangle> tris_;     // by slot
+  HugePageVector<std::int32_t> leafOf_;  // by slot; -1 when the slot is not in the tree
+  HugePageVector<std::uint32_t> slotMark_;  // by slot: update()'s duplicate checks (stamped, never cleared)
   std::uint32_t markStamp_ = 0;
   std::int32_t root_ = -1;
   std::size_t triangleCount_ = 0;
