@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <new>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -70,4 +71,11 @@ TEST(HugePageAllocator, SmallArraysComeFromTheHeap) {
   HugePageVector<int> v(100, 7);
   EXPECT_EQ(v[99], 7);
   EXPECT_EQ(hugePageBytesIn({{v.data(), 0}}), 0u);
+}
+
+TEST(HugePageAllocator, AnImpossibleSizeThrowsBadAlloc) {
+  HugePageAllocator<char> a;
+  EXPECT_THROW((void)a.allocate(std::size_t(-1) - 1000), std::bad_alloc);
+  HugePageAllocator<double> d;
+  EXPECT_THROW((void)d.allocate(std::size_t(-1) / 4), std::bad_array_new_length);
 }

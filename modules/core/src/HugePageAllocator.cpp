@@ -20,6 +20,7 @@ std::size_t roundUp(std::size_t bytes, std::size_t to) { return (bytes + to - 1)
 // Mapped with one huge page of slack and trimmed to a 2 MiB boundary: a huge page needs an aligned range.
 // The hint is given before the first touch, so the pages are huge from their first fault.
 void* allocateHugePageBlock(std::size_t bytes) {
+  if (bytes > std::size_t(-1) / 2) throw std::bad_alloc();  // the rounding and the slack must not wrap
   const std::size_t size = roundUp(bytes, kHugePage);
   void* raw = mmap(nullptr, size + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (raw == MAP_FAILED) throw std::bad_alloc();
