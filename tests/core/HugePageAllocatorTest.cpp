@@ -5,35 +5,11 @@
 #include <fstream>
 #include <new>
 #include <numeric>
-#include <sstream>
 #include <string>
 
 #include "reamsim/core/HugePageAllocator.h"
 
 using namespace reamsim;
-
-namespace {
-
-// The VmFlags line of the mapping that holds p ("" when none is found or off Linux).
-std::string vmFlagsOf(const void* p) {
-  std::ifstream smaps("/proc/self/smaps");
-  const auto at = reinterpret_cast<std::uintptr_t>(p);
-  std::string line;
-  bool inside = false;
-  while (std::getline(smaps, line)) {
-    std::uintptr_t a = 0, b = 0;
-    char dash = 0;
-    std::istringstream header(line);
-    if (header >> std::hex >> a >> dash >> b && dash == '-') {
-      inside = a <= at && at < b;
-      continue;
-    }
-    if (inside && line.rfind("VmFlags:", 0) == 0) return line;
-  }
-  return "";
-}
-
-}  // namespace
 
 TEST(HugePageAllocator, LargeArraysAreHugePageAlignedAndMarked) {
   HugePageVector<double> v(3 << 20);  // 24 MiB
@@ -44,7 +20,7 @@ TEST(HugePageAllocator, LargeArraysAreHugePageAlignedAndMarked) {
 #if defined(__linux__)
   if (!std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled")) GTEST_SKIP() << "kernel without transparent huge pages";
   // MADV_HUGEPAGE shows as "hg" in the mapping's flags, whether or not the kernel has pages to give.
-  const std::string flags = vmFlagsOf(v.data());
+  const std::string flags = mappingFlags(v.data());
   ASSERT_FALSE(flags.empty()) << "no mapping found for the array";
   EXPECT_NE(flags.find(" hg"), std::string::npos) << flags;
   // How much is actually huge depends on the system: reported, not asserted.

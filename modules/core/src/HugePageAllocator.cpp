@@ -49,39 +49,66 @@ void freeHugePageBlock(void* p, std::size_t) noexcept { ::operator delete(p, std
 
 namespace reamsim {
 
-std::size_t hugePageBytesIn(const std::vector<MemoryRange>& ranges) {
-#if defined(__linux__)
-  auto overlaps = [&](std::uintptr_t a, std::uintptr_t b) {
-    for (const MemoryRange& r : ranges) {
-      const auto lo = reinterpret_cast<std::uintptr_t>(r.data);
-      if (r.bytes > 0 && a < lo + r.bytes && lo < b) return true;
-    }
-    return false;
-  };
+namespace {
+
+// Walks /proc/self/smaps: `enter(lo, hi)` at each mapping's header line ("start-end perms offset dev inode
+// [path]", addresses in hex) says whether the mapping's detail lines go to `line`.
+template <class Enter, class Line>
+void walkSmaps(Enter&& enter, Line&& line) {
   std::ifstream smaps("/proc/self/smaps");
-  std::string line;
+  std::string text;
   bool inside = false;
-  std::size_t total = 0;
-  while (std::getline(smaps, line)) {
+  while (std::getline(smaps, text)) {
     std::uintptr_t a = 0, b = 0;
     char dash = 0;
-    std::istringstream header(line);
-    // A mapping's header line: "start-end perms offset dev inode [path]", addresses in hex.
+    std::istringstream header(text);
     if (header >> std::hex >> a >> dash >> b && dash == '-') {
-      inside = overlaps(a, b);
+      inside = enter(a, b);
       continue;
     }
-    if (inside && line.rfind("AnonHugePages:", 0) == 0) {
-      std::istringstream value(line.substr(14));
-      std::size_t kb = 0;
-      value >> kb;
-      total += kb * 1024;
-    }
+    if (inside) line(text);
   }
+}
+
+}  // namespace
+
+std::size_t hugePageBytesIn(const std::vector<MemoryRange>& ranges) {
+#if defined(__linux__)
+  std::size_t total = 0;
+  walkSmaps(
+      [&](std::uintptr_t a, std::uintptr_t b) {
+        for (const MemoryRange& r : ranges) {
+          const auto lo = reinterpret_cast<std::uintptr_t>(r.data);
+          if (r.bytes > 0 && a < lo + r.bytes && lo < b) return true;
+        }
+        return false;
+      },
+      [&](const std::string& text) {
+        if (text.rfind("AnonHugePages:", 0) != 0) return;
+        std::istringstream value(text.substr(14));
+        std::size_t kb = 0;
+        value >> kb;
+        total += kb * 1024;
+      });
   return total;
 #else
   (void)ranges;
   return 0;
+#endif
+}
+
+std::string mappingFlags(const void* p) {
+#if defined(__linux__)
+  const auto at = reinterpret_cast<std::uintptr_t>(p);
+  std::string flags;
+  walkSmaps([&](std::uintptr_t a, std::uintptr_t b) { return a <= at && at < b; },
+            [&](const std::string& text) {
+              if (text.rfind("VmFlags:", 0) == 0) flags = text;
+            });
+  return flags;
+#else
+  (void)p;
+  return "";
 #endif
 }
 
