@@ -151,14 +151,14 @@ std::array<VI, 3> faceVertices(const SM& m, FI f) {
 }
 
 // True when the faces `added` (a subset of the surface `kept`), with coordinates from `at`, are not
-// degenerate and the faces `moved` (those of `added` with a vertex that rounding moves) do not intersect
-// any face of `kept` other than along shared edges and vertices: a pair in which no vertex moved is a pair
-// of the exact result, which is free of intersections. Epick: predicates only, exact on the given doubles.
-// Vertex ids run below `ids`.
+// degenerate and the faces `moved` (indices into `kept` of those of `added` with a vertex that rounding
+// moves) do not intersect any face of `kept` other than along shared edges and vertices: a pair in which
+// no vertex moved is a pair of the exact result, which is free of intersections. Epick: predicates only,
+// exact on the given doubles. Vertex ids run below `ids`.
 template <class At>
 bool roundingIsSafe(const std::vector<std::array<std::uint32_t, 3>>& kept,
-                    const std::vector<std::array<std::uint32_t, 3>>& added,
-                    const std::vector<std::array<std::uint32_t, 3>>& moved, std::size_t ids, At&& at) {
+                    const std::vector<std::array<std::uint32_t, 3>>& added, const std::vector<std::uint32_t>& moved,
+                    std::size_t ids, At&& at) {
   using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
   std::vector<IK::Point_3> points(ids);
   std::vector<char> known(ids, 0);
@@ -189,11 +189,15 @@ bool roundingIsSafe(const std::vector<std::array<std::uint32_t, 3>>& kept,
   csg::TriangleGrid grid;
   grid.init(domain, kept.size(), 4.0);
   for (std::size_t i = 0; i < kept.size(); ++i) grid.insert(std::uint32_t(i), keptBoxes[i]);
+  // Moved faces lie side by side along the intersection curve: a pair of two moved faces is tested once,
+  // from the later one (a third fewer tests at the glenoid).
+  std::vector<char> isMoved(kept.size(), 0);
+  for (std::uint32_t m : moved) isMoved[m] = 1;
   std::vector<std::uint32_t> near;
-  for (const auto& m : moved) {
-    grid.query(boxOf(m), near);
+  for (std::uint32_t m : moved) {
+    grid.query(keptBoxes[m], near);
     for (std::uint32_t k : near)
-      if (csg::trianglesIntersectBeyondShared<IK>(m, kept[k], pt)) return false;
+      if (!(isMoved[k] && k <= m) && csg::trianglesIntersectBeyondShared<IK>(kept[m], kept[k], pt)) return false;
   }
   return true;
 }
@@ -936,6 +940,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   // The new surface in unified vertex ids: kept patch faces, and tool faces inside the bone reversed.
   std::vector<std::array<std::uint32_t, 3>> kept;  // all kept faces of the Boolean (for the closedness check)
   std::vector<std::array<std::uint32_t, 3>> added;
+  std::vector<std::uint32_t> addedKept;  // the index in `kept` of each added face
   std::vector<std::uint32_t> removed;
   std::vector<char> origSeenUnchanged(patchSlots.size(), 0);
   const Vec3 o = {0.5 * (toolBox.lo[0] + toolBox.hi[0]), 0.5 * (toolBox.lo[1] + toolBox.hi[1]),
@@ -968,6 +973,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
       }
     }
     added.push_back(ids);
+    addedKept.push_back(std::uint32_t(kept.size() - 1));
   }
   // Removed in slot order (the order decides which freed slots new faces reuse): near faces that did not
   // come through unchanged, and far faces inside the tool (the other far faces stay).
@@ -989,6 +995,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
     const std::array<std::uint32_t, 3> reversed = {ids[0], ids[2], ids[1]};
     kept.push_back(reversed);
     added.push_back(reversed);
+    addedKept.push_back(std::uint32_t(kept.size() - 1));
   };
   for (FI f : tool.faces()) {
     if (tside[tcomp[f.idx()]] != kInside) continue;
@@ -1061,9 +1068,11 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
     const std::uint32_t s = slotOfV[VI(uid)];
     return s == kNone || knownExactly(s);
   };
-  std::vector<std::array<std::uint32_t, 3>> moved;
-  for (const auto& t : added)
-    if (moves(t[0]) || moves(t[1]) || moves(t[2])) moved.push_back(t);
+  std::vector<std::uint32_t> moved;  // indices into kept
+  for (std::size_t i = 0; i < added.size(); ++i) {
+    const auto& t = added[i];
+    if (moves(t[0]) || moves(t[1]) || moves(t[2])) moved.push_back(addedKept[i]);
+  }
   // The check runs on a second thread, beside the commit and the clean-up's planning, which assume that
   // it passes (it nearly always does). If it fails, the exact points are kept after all and the clean-up
   // is planned again, since vertices known exactly must not move.

@@ -64,14 +64,18 @@ class Cleanup {
     for (std::uint32_t s : seeds)
       for (std::uint32_t v : state_.triangle(s)) domain.add(at(v));
     made_.init(domain.bounds(), seeds.size(), 2.0);
-    std::vector<int> work;
+    // Sized for the faces and vertices a cut's band looks at, so that the maps are not rehashed as they grow.
+    localOfSlot_.reserve(4 * seeds.size());
+    star_.reserve(2 * seeds.size());
+    faces_.reserve(4 * seeds.size());
+    std::vector<int> work, made;
     for (std::uint32_t s : seeds) work.push_back(localFace(s));
     std::size_t ops = 0;
     while (!work.empty() && ops < kMaxOperations) {
       const int f = work.back();
       work.pop_back();
       if (!faces_[f].alive || !bad(f)) continue;
-      std::vector<int> made;
+      made.clear();
       if (tryCollapseShortest(f, made)) {
         ++plan.collapses;
       } else if (tryFlipLongest(f, made)) {
@@ -241,22 +245,19 @@ class Cleanup {
     }
     return false;
   }
-  // The vertices next to v, sorted, each once.
-  std::vector<std::uint32_t> neighbours(const std::vector<int>& star, std::uint32_t v) const {
-    std::vector<std::uint32_t> out;
-    out.reserve(2 * star.size());
+  // The vertices next to v, sorted, each once, into `out`.
+  void neighbours(const std::vector<int>& star, std::uint32_t v, std::vector<std::uint32_t>& out) const {
+    out.clear();
     for (int f : star)
       for (std::uint32_t w : faces_[f].v)
         if (w != v) out.push_back(w);
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
   }
   // A replacement face: not degenerate, turned by less than ~45 degrees from `was`.
   bool acceptableFace(const Tri& t, const Vec3& was) const {
-    if (CGAL::collinear(kp(t[0]), kp(t[1]), kp(t[2]))) return false;
-    const Vec3 n = normalOf(t);
-    return dot(n, was) > kNormalAgreement * norm(n) * norm(was);
+    const Vec3 n = normalOf(t);  // the turn first, in doubles; the exact collinearity test last
+    return dot(n, was) > kNormalAgreement * norm(n) * norm(was) && !CGAL::collinear(kp(t[0]), kp(t[1]), kp(t[2]));
   }
   // Distance of point p from the plane of t.
   double planeDistance(const Vec3& p, const Tri& t) const {
@@ -341,39 +342,54 @@ class Cleanup {
   // two in three), and they need only v's faces.
   bool collapse(std::uint32_t v, std::uint32_t u, std::vector<int>& made) {
     if (!movable(v) || !movable(u)) return false;
-    const std::vector<int> sv = aliveStar(v);
+    // A reference into the star map (its nodes do not move); nothing below changes v's faces before
+    // replace() retires them.
+    const std::vector<int>& sv = aliveStar(v);
     if (sv.size() < 3) return false;
-    std::vector<std::uint32_t> opposite;
+    std::uint32_t opposite[2];
+    int opposites = 0;
     for (int f : sv) {
       const Tri& t = faces_[f].v;
       if (std::find(t.begin(), t.end(), u) == t.end()) continue;
       for (std::uint32_t w : t)
-        if (w != u && w != v) opposite.push_back(w);
+        if (w != u && w != v) {
+          if (opposites == 2) return false;
+          opposite[opposites++] = w;
+        }
     }
-    if (opposite.size() != 2 || opposite[0] == opposite[1]) return false;
+    if (opposites != 2 || opposite[0] == opposite[1]) return false;
 
-    std::vector<Tri> newFaces;
-    double oldQuality = std::numeric_limits<double>::infinity(), newQuality = oldQuality;
+    std::vector<Tri>& newFaces = newFaces_;
+    newFaces.clear();
     for (int f : sv) {
       Tri t = faces_[f].v;
-      oldQuality = std::min(oldQuality, angleOf(t));
       if (std::find(t.begin(), t.end(), u) != t.end()) continue;
       const Vec3 was = normalOf(t);
       for (std::uint32_t& w : t) {
         if (w == v) w = u;
         if (frozenVertex_(w)) return false;  // only known rounded here
       }
-      if (!acceptableFace(t, was) || planeDistance(at(v), t) > opt_.maxDeviationMm) return false;
-      newQuality = std::min(newQuality, angleOf(t));
+      // The deviation first: it is cheap and rejects most candidates (three in four at the glenoid).
+      if (planeDistance(at(v), t) > opt_.maxDeviationMm || !acceptableFace(t, was)) return false;
       newFaces.push_back(t);
     }
-    if (newQuality < std::min(oldQuality, minAngle_)) return false;
+    // The smallest angle may not drop below the old one or the threshold, whichever is lower; the old one
+    // is needed only when the new one is under the threshold.
+    double newQuality = std::numeric_limits<double>::infinity();
+    for (const Tri& t : newFaces) newQuality = std::min(newQuality, angleOf(t));
+    if (newQuality < minAngle_) {
+      double oldQuality = std::numeric_limits<double>::infinity();
+      for (int f : sv) oldQuality = std::min(oldQuality, angleOf(faces_[f].v));
+      if (newQuality < oldQuality) return false;
+    }
 
     if (!closedFan(v) || !closedFan(u)) return false;
     const std::vector<int>& su = aliveStar(u);
     if (su.size() < 3) return false;
     // Link condition: u and v share exactly the two neighbours across the edge.
-    const auto nu = neighbours(su, u), nv = neighbours(sv, v);
+    std::vector<std::uint32_t>&nu = nu_, &nv = nv_;
+    neighbours(su, u, nu);
+    neighbours(sv, v, nv);
     std::size_t common = 0;
     for (std::size_t i = 0, j = 0; i < nu.size() && j < nv.size();) {
       if (nu[i] < nv[j]) ++i;
@@ -403,8 +419,8 @@ class Cleanup {
       }
     }
     const std::uint32_t a = t[e], b = t[(e + 1) % 3], c = t[(e + 2) % 3];
-    if (!movable(a) || !movable(b) || !movable(c)) return false;
-    if (!closedFan(a) || !closedFan(b)) return false;
+    // All tests must pass; the cheap geometric ones run first (nineteen in twenty tries fail).
+    if (!movable(a)) return false;
     int g = -1;
     std::uint32_t d = kNone;
     for (int h : aliveStar(a)) {
@@ -419,12 +435,15 @@ class Cleanup {
     }
     // A neighbour across a-b running the same way would break orientation; such faces are flagged as
     // defects (frozen vertices are not movable), so only the consistent twin b->a is looked for.
-    if (g < 0 || d == c || !movable(d)) return false;
-    const auto nc = neighbours(aliveStar(c), c);
-    if (std::binary_search(nc.begin(), nc.end(), d)) return false;  // the edge c-d exists already
+    if (g < 0 || d == c) return false;
     const Tri tf = faces_[f].v, tg = faces_[g].v;
     if (planeDistance(at(d), tf) > opt_.maxDeviationMm || planeDistance(at(c), tg) > opt_.maxDeviationMm)
       return false;
+    if (!movable(b) || !movable(c) || !movable(d)) return false;
+    if (!closedFan(a) || !closedFan(b)) return false;
+    std::vector<std::uint32_t>& nc = nu_;
+    neighbours(aliveStar(c), c, nc);
+    if (std::binary_search(nc.begin(), nc.end(), d)) return false;  // the edge c-d exists already
     const std::vector<Tri> newFaces = {{c, a, d}, {d, b, c}};
     const Vec3 was = normalOf(tf) / norm(normalOf(tf)) + normalOf(tg) / norm(normalOf(tg));
     for (const Tri& n : newFaces)
@@ -455,6 +474,8 @@ class Cleanup {
   std::vector<std::uint32_t> hits_;
   std::vector<Box3> madeBoxes_;      // scratch for intersectionFree
   std::vector<std::uint32_t> ring_;  // scratch for closedFan
+  std::vector<std::uint32_t> nu_, nv_;  // scratch for neighbours
+  std::vector<Tri> newFaces_;         // scratch for collapse
 };
 
 }  // namespace

@@ -23,6 +23,7 @@ void TriangleGrid::init(const Bounds& domain, std::size_t faces, double targetPe
   for (int i = 0; i < 3; ++i) {
     cell_ = std::max(cell_, ext[i] / 256.0);
   }
+  invCell_ = 1.0 / cell_;
   for (int i = 0; i < 3; ++i) {
     n_[i] = std::max(1, std::min(256, int(std::ceil(ext[i] / cell_))));
     origin_[i] = (!domain.empty() ? domain.min[i] : 0.0);
@@ -31,6 +32,7 @@ void TriangleGrid::init(const Bounds& domain, std::size_t faces, double targetPe
   for (int i = 0; i < 3; ++i) nb_[i] = (n_[i] + kBlock - 1) / kBlock;
   blockCount_.assign(std::size_t(nb_[0]) * nb_[1] * nb_[2], 0);
   boxes_.clear();
+  loCell_.clear();
   present_.clear();
   stamp_.clear();
   epoch_ = 0;
@@ -39,7 +41,7 @@ void TriangleGrid::init(const Bounds& domain, std::size_t faces, double targetPe
 std::array<int, 3> TriangleGrid::cellOf(const std::array<double, 3>& p) const {
   std::array<int, 3> c{};
   for (int i = 0; i < 3; ++i) {
-    const double f = std::floor((p[i] - origin_[i]) / cell_);
+    const double f = std::floor((p[i] - origin_[i]) * invCell_);
     c[i] = f < 0 ? 0 : (f >= n_[i] ? n_[i] - 1 : int(f));
   }
   return c;
@@ -75,11 +77,14 @@ void TriangleGrid::forEveryCell(const Box3& b, F&& f) const {
 void TriangleGrid::insert(std::uint32_t slot, const Box3& box) {
   if (slot >= boxes_.size()) {
     boxes_.resize(slot + 1);
+    loCell_.resize(slot + 1);
     present_.resize(slot + 1, 0);
     stamp_.resize(slot + 1, 0);
   }
   if (present_[slot]) remove(slot);
   boxes_[slot] = box;
+  const auto lo = cellOf(box.lo);
+  loCell_[slot] = {std::uint8_t(lo[0]), std::uint8_t(lo[1]), std::uint8_t(lo[2])};
   present_[slot] = 1;
   forEveryCell(box, [&](std::size_t c, std::size_t block) {
     cells_[c].push_back(slot);
@@ -159,8 +164,8 @@ void TriangleGrid::queryShared(const Box3& q, std::vector<std::uint32_t>& out) c
         continue;
       }
       // cellOf is monotone, so the first cell both ranges share is the larger of their first cells.
-      const auto slo = cellOf(boxes_[s].lo);
-      if (index(std::max(slo[0], qlo[0]), std::max(slo[1], qlo[1]), std::max(slo[2], qlo[2])) == c) out.push_back(s);
+      const CellCoords& slo = loCell_[s];
+      if (index(std::max(int(slo[0]), qlo[0]), std::max(int(slo[1]), qlo[1]), std::max(int(slo[2]), qlo[2])) == c) out.push_back(s);
     }
   });
 }

@@ -66,6 +66,8 @@ class TriangleGrid {
 
  private:
   std::array<int, 3> cellOf(const std::array<double, 3>& p) const;
+  // A slot's first cell (its box's lo corner), kept so that shared queries need no cellOf per face found.
+  using CellCoords = std::array<std::uint8_t, 3>;  // n_ <= 256 along every axis
   std::size_t index(int i, int j, int k) const { return (std::size_t(k) * n_[1] + j) * n_[0] + i; }
   // Cells are grouped in blocks of kBlock³ that count the entries of their cells, so that queries skip
   // empty space a block at a time (a tool's box at 400k faces spans ~10⁵ cells, most of them empty).
@@ -86,11 +88,13 @@ class TriangleGrid {
 
   std::array<double, 3> origin_{};
   double cell_ = 1;
+  double invCell_ = 1;  // cellOf multiplies (a division per axis showed in profiles); still monotone
   std::array<int, 3> n_{1, 1, 1};
   std::array<int, 3> nb_{1, 1, 1};
   std::vector<std::vector<std::uint32_t>> cells_;
   std::vector<std::uint32_t> blockCount_;  // entries in the cells of each block
   std::vector<Box3> boxes_;
+  std::vector<CellCoords> loCell_;
   std::vector<std::uint8_t> present_;
   std::vector<std::uint32_t> stamp_;
   std::uint32_t epoch_ = 0;
