@@ -728,7 +728,13 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
       if (patch.point(VI(it->second)) == p) return it->second;
     return kNone;
   };
-  std::unordered_map<std::uint64_t, HI> patchEdge, toolEdge;
+  // The curve's edges of each side by key (sorted below; vectors, not maps: no allocation per edge).
+  std::vector<std::pair<std::uint64_t, HI>> patchEdge, toolEdge;
+  auto sortByKey = [](std::vector<std::pair<std::uint64_t, HI>>& edges) {
+    std::stable_sort(edges.begin(), edges.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    edges.erase(std::unique(edges.begin(), edges.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+                edges.end());
+  };
   std::vector<char> visitedCurve(nP, 0);
   for (EI e : patch.edges()) {
     if (!conP[e]) continue;
@@ -745,8 +751,9 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
         curve.emplace(approxKey(patch.point(v)), std::uint32_t(v.idx()));
       }
     }
-    patchEdge.emplace(pairKey(patch.source(h).idx(), patch.target(h).idx()), h);
+    patchEdge.emplace_back(pairKey(patch.source(h).idx(), patch.target(h).idx()), h);
   }
+  sortByKey(patchEdge);
   // Unified ids: patch vertices [0, nP), near-tool vertices [nP, nP + nT) unless on the curve, other tool
   // vertices nP + nT + their index in the tool mesh.
   std::vector<std::uint32_t> toolUid(nT);
@@ -760,8 +767,9 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
         throw CutError(CutError::Kind::Inconsistent, "an intersection vertex of the tool has no bone twin");
       toolUid[v.idx()] = twin;
     }
-    toolEdge.emplace(pairKey(toolUid[tool.source(h).idx()], toolUid[tool.target(h).idx()]), h);
+    toolEdge.emplace_back(pairKey(toolUid[tool.source(h).idx()], toolUid[tool.target(h).idx()]), h);
   }
+  sortByKey(toolEdge);
   if (toolEdge.size() != patchEdge.size())
     throw CutError(CutError::Kind::Inconsistent, "the intersection curves of bone and tool differ");
   const std::uint32_t uidCount = nP + nT + std::uint32_t(toolMesh.vertices.size());
@@ -780,11 +788,11 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   const std::vector<int> pcomp = components(patch, conP, nPC);
   const std::vector<int> tcomp = components(tool, conT, nTC);
   std::vector<Side> pside(nPC, kUndecided), tside(nTC, kUndecided);
-  for (const auto& [key, hp0] : patchEdge) {
-    const auto found = toolEdge.find(key);
-    if (found == toolEdge.end())
+  for (std::size_t k = 0; k < patchEdge.size(); ++k) {  // the same keys in the same order, or they differ
+    const HI hp0 = patchEdge[k].second;
+    if (toolEdge[k].first != patchEdge[k].first)
       throw CutError(CutError::Kind::Inconsistent, "the intersection curves of bone and tool differ");
-    const HI ht0 = found->second;
+    const HI ht0 = toolEdge[k].second;
     for (HI hp : {hp0, patch.opposite(hp0)}) {  // patch faces against the tool's wedge
       const int c = pcomp[patch.face(hp).idx()];
       if (pside[c] != kUndecided) continue;
@@ -1010,17 +1018,30 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
 
   // Closedness check: every directed edge of the new surface is used once, and its twin is used too
   // unless it lies on the patch border (edges shared with faces outside the patch, or open borders).
+  // Each use of an edge is one 64-bit key (smaller id, larger id, direction), sorted, so the uses of an edge
+  // are neighbours: no map with a node per edge (that map was a third of the classification).
   {
-    std::unordered_map<std::uint64_t, std::uint32_t> use;
-    use.reserve(3 * kept.size());
+    if (uidCount >= (std::uint32_t(1) << 31))
+      throw CutError(CutError::Kind::Inconsistent, "the cut has too many vertices; the bone is unchanged");
+    std::vector<std::uint64_t> uses;
+    uses.reserve(3 * kept.size());
     for (const auto& t : kept)
-      for (int i = 0; i < 3; ++i)
-        if (++use[directedKey(t[i], t[(i + 1) % 3])] > 1)
-          throw CutError(CutError::Kind::Degenerate,
-                         "the cut would leave a non-manifold edge (tangential contact); the bone is unchanged");
-    for (const auto& [key, count] : use) {
-      const std::uint32_t a = std::uint32_t(key >> 32), b = std::uint32_t(key & 0xffffffffu);
-      if (use.count(directedKey(b, a))) continue;
+      for (int i = 0; i < 3; ++i) {
+        const std::uint32_t a = t[i], b = t[(i + 1) % 3];
+        uses.push_back((std::uint64_t(std::min(a, b)) << 33) | (std::uint64_t(std::max(a, b)) << 1) | (a > b ? 1u : 0u));
+      }
+    std::sort(uses.begin(), uses.end());
+    if (std::adjacent_find(uses.begin(), uses.end()) != uses.end())
+      throw CutError(CutError::Kind::Degenerate,
+                     "the cut would leave a non-manifold edge (tangential contact); the bone is unchanged");
+    for (std::size_t k = 0; k < uses.size(); ++k) {
+      if (k + 1 < uses.size() && (uses[k] >> 1) == (uses[k + 1] >> 1)) {  // used both ways
+        ++k;
+        continue;
+      }
+      const std::uint32_t lo = std::uint32_t(uses[k] >> 33), hi = std::uint32_t((uses[k] >> 1) & 0xffffffffu);
+      const bool reversed = (uses[k] & 1) != 0;
+      const std::uint32_t a = reversed ? hi : lo, b = reversed ? lo : hi;  // the edge a → b has no twin
       bool onPatchBorder = false;
       if (a < nP && b < nP) {
         const auto h = CGAL::halfedge(VI(a), VI(b), patch);
