@@ -338,8 +338,8 @@ class Cleanup {
     return collapse(a, b, made) || collapse(b, a, made);
   }
 
-  // Half-edge collapse: v moves onto u. The geometric tests come first: most candidates fail them (at 405k
-  // two in three), and they need only v's faces.
+  // Half-edge collapse: v moves onto u. The geometric tests come first, cheapest first: most candidates fail
+  // them (three in four at the 405k glenoid), and they need only v's faces.
   bool collapse(std::uint32_t v, std::uint32_t u, std::vector<int>& made) {
     if (!movable(v) || !movable(u)) return false;
     // A reference into the star map (its nodes do not move); nothing below changes v's faces before
