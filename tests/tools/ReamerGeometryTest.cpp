@@ -57,14 +57,40 @@ TEST(toolsReamerGeometry, SphericalSolidIsClosedOutwardAndBounded) {
   EXPECT_NEAR(b.max.z, 0.0, 1e-12);
   EXPECT_NEAR(b.min.z, -capHeight(s) - 12, 1e-12);
   EXPECT_NEAR(b.max.x, 22.0, 1e-12);  // vertex at phi = 0 lies on the rim circle
-  EXPECT_EQ(m.vertexCount(), static_cast<std::size_t>(1 + 64 * 10 + 64 + 1));
-  EXPECT_EQ(m.triangleCount(), static_cast<std::size_t>(64 + 2 * 64 * 9 + 2 * 64 + 64));
+  // The face's vertices, the body's back ring and its centre; a fan and zipped bands on the face (two
+  // triangles per face vertex but the apex, less the rim's), the body band and the back fan.
+  const std::size_t faceVertices = cuttingFaceVertices(s).size();
+  EXPECT_EQ(m.vertexCount(), faceVertices + 64 + 1);
+  EXPECT_EQ(m.triangleCount(), 2 * (faceVertices - 1) - 64 + 2 * 64 + 64);
+}
+
+// A spherical cap's rings carry vertices in proportion to their radius (the rim all `segments`, at least
+// six), so the face's facets keep about the rim's size up to the apex: no needles there.
+TEST(toolsReamerGeometry, FaceRingsFollowTheRadiusSoFacetsStayWellShaped) {
+  for (const ReamerSpec& s : {spherical(36, 30, 12, 96, 12), spherical(44, 35, 12, 64, 10), spherical(50, 25, 0, 32, 6)}) {
+    const auto face = cuttingFaceVertices(s);
+    const TriangleMesh m = buildCuttingSolid(s);
+    std::size_t rim = 0;
+    for (const Vec3& p : face) rim += std::abs(std::hypot(p.x, p.y) - s.diameterMm / 2) < 1e-9;
+    EXPECT_EQ(rim, static_cast<std::size_t>(s.segments));
+    EXPECT_LT(face.size(), static_cast<std::size_t>(1 + s.segments * s.rings));
+    double smallest = 180;
+    for (const Triangle& t : m.triangles)
+      if (t[0] < face.size() && t[1] < face.size() && t[2] < face.size())
+        smallest = std::min(smallest, smallestAngle(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]) * 180 / kPi);
+    EXPECT_GT(smallest, 15.0) << s.segments << " x " << s.rings;
+    // Still convex (a moved reamer is swept by hulls): every vertex on or behind every facet's plane.
+    for (const Triangle& t : m.triangles) {
+      const Vec3 a = m.vertices[t[0]], n = normalized(cross(m.vertices[t[1]] - a, m.vertices[t[2]] - a));
+      for (const Vec3& p : m.vertices) ASSERT_LE(dot(n, p - a), 1e-9 * 50) << s.segments << " x " << s.rings;
+    }
+  }
 }
 
 TEST(toolsReamerGeometry, FaceVerticesLieOnTheSphereAndStartTheSolid) {
   const ReamerSpec s = spherical(36, 30, 12, 32, 6);
   const auto face = cuttingFaceVertices(s);
-  ASSERT_EQ(face.size(), static_cast<std::size_t>(1 + 32 * 6));
+  ASSERT_GT(face.size(), static_cast<std::size_t>(1 + 32));
   EXPECT_EQ(face.front(), Vec3(0, 0, 0));
   const TriangleMesh m = buildCuttingSolid(s);
   for (std::size_t i = 0; i < face.size(); ++i) {
@@ -80,12 +106,16 @@ TEST(toolsReamerGeometry, FaceTrianglesPointForward) {
   // The cutting face is the front of the solid: its facets' normals have a positive Z component.
   const ReamerSpec s = spherical(40, 32, 12, 24, 4);
   const TriangleMesh m = buildCuttingSolid(s);
-  const std::size_t faceTriangles = 24 + 2 * 24 * 3;
-  for (std::size_t i = 0; i < faceTriangles; ++i) {
+  const std::size_t faceVertices = cuttingFaceVertices(s).size();
+  std::size_t faceTriangles = 0;
+  for (std::size_t i = 0; i < m.triangles.size(); ++i) {
     const Triangle& t = m.triangles[i];
+    if (t[0] >= faceVertices || t[1] >= faceVertices || t[2] >= faceVertices) continue;
+    ++faceTriangles;
     const Vec3 n = cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]);
     EXPECT_GT(n.z, 0) << "triangle " << i;
   }
+  EXPECT_EQ(faceTriangles, 2 * (faceVertices - 1) - 24);  // fan and zipped bands
 }
 
 TEST(toolsReamerGeometry, FlatReamer) {
@@ -94,7 +124,7 @@ TEST(toolsReamerGeometry, FlatReamer) {
   EXPECT_TRUE(test::isClosedOriented(m));
   EXPECT_GT(signedVolume(m), 0);
   const auto face = cuttingFaceVertices(s);
-  ASSERT_EQ(face.size(), static_cast<std::size_t>(1 + 48 * 5));
+  ASSERT_GT(face.size(), static_cast<std::size_t>(1 + 48));
   for (const Vec3& p : face) {
     EXPECT_EQ(p.z, 0.0);
     EXPECT_LE(std::hypot(p.x, p.y), 15.0 + 1e-12);

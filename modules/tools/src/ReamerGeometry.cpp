@@ -10,28 +10,38 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Ring k (1..rings) of the face, at polar angle k/rings * alpha on the sphere (equal arc steps keep the
 // facets well shaped) or at radius k/rings * D/2 on a flat disc.
-void appendFaceVertices(const ReamerSpec& spec, std::vector<Vec3>& out) {
-  const int n = spec.segments, rings = spec.rings;
+struct Ring {
+  double radius, z;
+};
+Ring faceRing(const ReamerSpec& spec, int k) {
   const double rimRadius = spec.diameterMm / 2;
-  out.reserve(out.size() + 1 + static_cast<std::size_t>(n) * rings);
+  if (spec.isFlat()) return {rimRadius * k / spec.rings, 0};
+  if (k == spec.rings) return {rimRadius, -capHeight(spec)};  // exact rim, so the body cylinder lines up with it
+  const double alpha = std::asin(std::min(1.0, rimRadius / spec.sphereRadiusMm));
+  const double theta = alpha * k / spec.rings, R = spec.sphereRadiusMm;
+  return {R * std::sin(theta), -R * (1 - std::cos(theta))};
+}
+// Vertices on ring k: `segments` on the rim, and on a spherical cap fewer inwards in proportion to the
+// ring's radius (at least six), so that the facets keep about the rim's size and shape up to the apex. With
+// as many on every ring, the faces near the apex were needles (3.75° at 96 segments): a third of the cap's
+// faces, which the cutting engine imprints on the bone with every cut. A flat disc keeps `segments` on every
+// ring: its faces lie in the plane of the floor it cut before, and fewer vertices inwards made a disc moved
+// sideways at one depth split that floor into many more faces.
+int ringSegments(const ReamerSpec& spec, int k) {
+  const int n = spec.segments;
+  if (k >= spec.rings || spec.isFlat()) return n;
+  const int proportional = static_cast<int>(std::lround(n * faceRing(spec, k).radius / (spec.diameterMm / 2)));
+  return std::min(n, std::max(std::min(n, 6), proportional));
+}
+
+void appendFaceVertices(const ReamerSpec& spec, std::vector<Vec3>& out) {
   out.push_back({0, 0, 0});  // apex
-  const double alpha = spec.isFlat() ? 0.0 : std::asin(std::min(1.0, rimRadius / spec.sphereRadiusMm));
-  for (int k = 1; k <= rings; ++k) {
-    double radius, z;
-    if (spec.isFlat()) {
-      radius = rimRadius * k / rings;
-      z = 0;
-    } else if (k == rings) {
-      radius = rimRadius;  // exact rim, so the body cylinder lines up with it
-      z = -capHeight(spec);
-    } else {
-      const double theta = alpha * k / rings, R = spec.sphereRadiusMm;
-      radius = R * std::sin(theta);
-      z = -R * (1 - std::cos(theta));
-    }
+  for (int k = 1; k <= spec.rings; ++k) {
+    const Ring r = faceRing(spec, k);
+    const int n = ringSegments(spec, k);
     for (int j = 0; j < n; ++j) {
       const double phi = 2 * kPi * j / n;
-      out.push_back({radius * std::cos(phi), radius * std::sin(phi), z});
+      out.push_back({r.radius * std::cos(phi), r.radius * std::sin(phi), r.z});
     }
   }
 }
@@ -51,6 +61,31 @@ void appendBand(std::vector<Triangle>& tris, Index a, Index b, int n) {
     const Index jn = static_cast<Index>((j + 1) % n), jj = static_cast<Index>(j);
     tris.push_back({a + jj, b + jj, b + jn});
     tris.push_back({a + jj, b + jn, a + jn});
+  }
+}
+// Band between ring a (na vertices, nearer the apex) and ring b (nb vertices), both starting at phi = 0,
+// each triangle advancing one ring by one vertex; oriented as appendBand's. The triangle is the one whose
+// plane has the other candidate vertex behind it (gift wrapping: the band is the convex hull of the two
+// rings, so the solid stays convex and is swept by hulls); coplanar rings are zipped by angle.
+void appendZipBand(std::vector<Triangle>& tris, const std::vector<Vec3>& v, Index a, int na, Index b, int nb) {
+  int i = 0, j = 0;
+  while (i < na || j < nb) {
+    bool advanceB = i == na;
+    if (i < na && j < nb) {
+      const Vec3 &ai = v[a + i % na], &bj = v[b + j % nb], &an = v[a + (i + 1) % na], &bn = v[b + (j + 1) % nb];
+      const double behind = dot(cross(bj - ai, bn - ai), an - ai);  // < 0: a's next vertex is behind (a, bj, bn)
+      const double scale = norm(bj - ai) * norm(bn - ai) * norm(an - ai);
+      advanceB = std::abs(behind) > 1e-12 * scale ? behind < 0
+                                                  : std::int64_t(j + 1) * na <= std::int64_t(i + 1) * nb;
+    }
+    const Index ai = a + static_cast<Index>(i % na), bj = b + static_cast<Index>(j % nb);
+    if (advanceB) {
+      tris.push_back({ai, bj, b + static_cast<Index>((j + 1) % nb)});
+      ++j;
+    } else {
+      tris.push_back({ai, bj, a + static_cast<Index>((i + 1) % na)});
+      ++i;
+    }
   }
 }
 // Fan from `centre` to ring `r`; `towardPlusZ` selects the normal direction.
@@ -77,13 +112,15 @@ TriangleMesh buildCuttingSolid(const ReamerSpec& spec) {
   const int n = spec.segments, rings = spec.rings;
   TriangleMesh m;
   appendFaceVertices(spec, m.vertices);
-  auto ringStart = [n](int k) { return static_cast<Index>(1 + (k - 1) * n); };  // ring k = 1..rings
+  std::vector<Index> ringStart(static_cast<std::size_t>(rings) + 2, 1);  // ring k = 1..rings
+  for (int k = 1; k <= rings; ++k) ringStart[k + 1] = ringStart[k] + static_cast<Index>(ringSegments(spec, k));
 
   // Face: apex fan, then bands outwards to the rim.
-  appendFan(m.triangles, 0, ringStart(1), n, true);
-  for (int k = 1; k < rings; ++k) appendBand(m.triangles, ringStart(k), ringStart(k + 1), n);
+  appendFan(m.triangles, 0, ringStart[1], ringSegments(spec, 1), true);
+  for (int k = 1; k < rings; ++k)
+    appendZipBand(m.triangles, m.vertices, ringStart[k], ringSegments(spec, k), ringStart[k + 1], ringSegments(spec, k + 1));
 
-  const Index rim = ringStart(rings);
+  const Index rim = ringStart[rings];
   const double rimZ = m.vertices[rim].z;
   Index back = rim;  // ring closed by the back disc
   if (spec.bodyLengthMm > 0) {
