@@ -20,16 +20,18 @@ void validateReamerSpec(const ReamerSpec& spec);
 // Height of the spherical cap (0 for a flat reamer).
 double capHeight(const ReamerSpec& spec);
 
-// Closed, 2-manifold, outward-oriented cutting solid: spec.segments around the axis, spec.rings on the
-// face (pole at the apex as a triangle fan; a flat face also gets `rings` concentric rings so that
-// ray casts from its vertices sample the whole disc).
+// Closed, 2-manifold, outward-oriented, convex cutting solid: spec.rings rings on the face (pole at the apex
+// as a triangle fan; a flat face also gets `rings` concentric rings so that ray casts from its vertices
+// sample the whole disc), spec.segments vertices around the rim and the body; a spherical cap's inner rings
+// have fewer, in proportion to their radius (no needle facets at the apex).
 TriangleMesh buildCuttingSolid(const ReamerSpec& spec);
 
 // Closed-form volume of the ideal (smooth) cutting solid, mm^3.
 double idealCuttingVolume(const ReamerSpec& spec);
 
 // The vertices of the cutting face (cap or disc) in local coordinates: the apex first, then ring by ring
-// from the apex outwards, `segments` vertices per ring. They are the first vertices of buildCuttingSolid().
+// from the apex outwards (as many per ring as buildCuttingSolid() gives it). They are the first vertices of
+// buildCuttingSolid().
 std::vector<Vec3> cuttingFaceVertices(const ReamerSpec& spec);
 
 // Display-only parts: the guide pin sticks out of the tip along +Z; the shaft continues behind the body
