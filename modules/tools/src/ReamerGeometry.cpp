@@ -72,9 +72,10 @@ void appendZipBand(std::vector<Triangle>& tris, const std::vector<Vec3>& v, Inde
   while (i < na || j < nb) {
     bool advanceB = i == na;
     if (i < na && j < nb) {
-      const Vec3 &ai = v[a + i % na], &bj = v[b + j % nb], &an = v[a + (i + 1) % na], &bn = v[b + (j + 1) % nb];
-      const double behind = dot(cross(bj - ai, bn - ai), an - ai);  // < 0: a's next vertex is behind (a, bj, bn)
-      const double scale = norm(bj - ai) * norm(bn - ai) * norm(an - ai);
+      const Vec3 &pa = v[a + i % na], &pb = v[b + j % nb], &paNext = v[a + (i + 1) % na], &pbNext = v[b + (j + 1) % nb];
+      // < 0: a's next vertex is behind the plane of (pa, pb, pbNext)
+      const double behind = dot(cross(pb - pa, pbNext - pa), paNext - pa);
+      const double scale = norm(pb - pa) * norm(pbNext - pa) * norm(paNext - pa);
       advanceB = std::abs(behind) > 1e-12 * scale ? behind < 0
                                                   : std::int64_t(j + 1) * na <= std::int64_t(i + 1) * nb;
     }
@@ -112,13 +113,18 @@ TriangleMesh buildCuttingSolid(const ReamerSpec& spec) {
   const int n = spec.segments, rings = spec.rings;
   TriangleMesh m;
   appendFaceVertices(spec, m.vertices);
-  std::vector<Index> ringStart(static_cast<std::size_t>(rings) + 2, 1);  // ring k = 1..rings
-  for (int k = 1; k <= rings; ++k) ringStart[k + 1] = ringStart[k] + static_cast<Index>(ringSegments(spec, k));
+  // Ring k = 1..rings: its vertex count and first vertex (the apex is vertex 0).
+  std::vector<int> count(static_cast<std::size_t>(rings) + 1, 0);
+  std::vector<Index> ringStart(static_cast<std::size_t>(rings) + 2, 1);
+  for (int k = 1; k <= rings; ++k) {
+    count[k] = ringSegments(spec, k);
+    ringStart[k + 1] = ringStart[k] + static_cast<Index>(count[k]);
+  }
 
   // Face: apex fan, then bands outwards to the rim.
-  appendFan(m.triangles, 0, ringStart[1], ringSegments(spec, 1), true);
+  appendFan(m.triangles, 0, ringStart[1], count[1], true);
   for (int k = 1; k < rings; ++k)
-    appendZipBand(m.triangles, m.vertices, ringStart[k], ringSegments(spec, k), ringStart[k + 1], ringSegments(spec, k + 1));
+    appendZipBand(m.triangles, m.vertices, ringStart[k], count[k], ringStart[k + 1], count[k + 1]);
 
   const Index rim = ringStart[rings];
   const double rimZ = m.vertices[rim].z;
