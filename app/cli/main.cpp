@@ -33,7 +33,7 @@ const char* kUsageText =
     "            [--path jitter|soak] [--cut-site glenoid|top] [--depth MM] [--tilt DEG] [--no-cleanup] [--cleanup-deviation-mm MM]\n"
     "            [--check-every N] [--table-5-1] [--export-sequence DIR] [--json]\n"
     "      time the local CSG engine on a reaming path; one JSON object (docs/BENCHMARKS.md)\n"
-    "  bench collision --bone MESH|default [--reamer PRESET|MESH [--solid-only]] [--poses N] [--cut-site glenoid|random] [--json]\n"
+    "  bench collision --bone MESH|default [--reamer PRESET|MESH [--solid-only]] [--segments N --rings M] [--poses N] [--cut-site glenoid|random] [--json]\n"
     "      time the collision queries vs the thesis brute force and CGAL AABB_tree; one JSON object (docs/COLLISION.md)\n"
     "\n"
     "  glenoid MESH [--units ...] [--out FILE.json]\n"

@@ -55,6 +55,26 @@ TEST(collisionBenchCli, PrintsOneJsonObjectWithEveryQueryType) {
   EXPECT_EQ(j["checks"]["ray_first_hit_identical_to_brute_force"], "40/40");
   EXPECT_TRUE(j.contains("targets"));
   EXPECT_TRUE(j["update_local"].is_null());  // open bone: ReamSim's own engine is not run
+  // The reamer of 2k-5k faces: the preset refined to 128 x 16 unless told otherwise.
+  EXPECT_EQ(j["reamer"]["segments"], 128);
+  EXPECT_EQ(j["reamer"]["rings"], 16);
+  const int faces = j["reamer"]["faces"].get<int>();
+  EXPECT_GE(faces, 2000);
+  EXPECT_LE(faces, 5000);
+  EXPECT_EQ(j["targets"]["reamer_has_2k_to_5k_faces"], true);
+}
+
+// --segments / --rings choose the preset's tessellation (the application's own 96 x 12 here), and the JSON
+// says what was measured.
+TEST(collisionBenchCli, SegmentsAndRingsRefineThePreset) {
+  const CliRun r = run("bench collision --bone " + kBone + " --segments 96 --rings 12 --poses 10 --no-baselines "
+                       "--cut-steps 1 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["reamer"]["segments"], 96);
+  EXPECT_EQ(j["reamer"]["rings"], 12);
+  EXPECT_LT(j["reamer"]["faces"].get<int>(), 2000);
+  EXPECT_EQ(j["targets"]["reamer_has_2k_to_5k_faces"], false);
 }
 
 // A closed bone (the bundled default, 15k faces): the update is measured after exact CGAL cuts and after
@@ -91,4 +111,7 @@ TEST(collisionBenchCli, BadInputIsAClearError) {
   EXPECT_NE(r.err.find("no-such-preset"), std::string::npos) << r.err;
   EXPECT_EQ(run("bench").exitCode, 2);
   EXPECT_EQ(run("bench frobnicate").exitCode, 2);
+  r = run("bench collision --bone " + kBone + " --segments 2");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("segments"), std::string::npos) << r.err;
 }
