@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <memory>
+#include <vector>
 #include <cmath>
 
 #include "ReamFixture.h"
@@ -11,6 +14,8 @@
 #include "reamsim/csg/SweptVolume.h"
 #include "reamsim/mesh/TriangleMesh.h"
 #include "reamsim/tools/Primitives.h"
+#include "reamsim/tools/ReamerPresets.h"
+#include "reamsim/ream/DefaultCase.h"
 
 namespace reamsim {
 namespace {
@@ -162,6 +167,66 @@ TEST(SweptCut, TurnPathFollowsTheGreatCircleAndEndsAtThePose) {
   EXPECT_EQ(turnSubSteps(TurnPath(from, toTransform(Pose{{0, 0, 0}, {1, 0, 0}, 0})), 100.0, 0.25, true, 96), 96);
 }
 
+// The real local engine, raising a flag after its n-th Boolean: a user pressing Stop while a swing is cut.
+class StopAfterCuts : public CutBackend {
+ public:
+  StopAfterCuts(std::unique_ptr<CutBackend> inner, std::atomic<bool>& stop, int n) : inner_(std::move(inner)), stop_(stop), n_(n) {}
+  ReferenceCut subtract(const TriangleMesh& tool) override {
+    ReferenceCut c = inner_->subtract(tool);
+    if (++cuts_ == n_) stop_ = true;
+    return c;
+  }
+  TriangleMesh mesh() const override { return inner_->mesh(); }
+  const BoneState* state() const override { return inner_->state(); }
+  BoneInvariants checkInvariants() const override { return inner_->checkInvariants(); }
+
+ private:
+  std::unique_ptr<CutBackend> inner_;
+  std::atomic<bool>& stop_;
+  int n_, cuts_ = 0;
+};
+
+TEST(SweptCut, StoppedSwingLeavesTheBoneWholeAndTheNextStepCutsItAll) {
+  // A 10 degree swing is 26 Booleans. Stopped after the third, the step throws ReamCancelled and returns
+  // nothing; the same step asked again (the engine resyncs from the bone it is given) removes what an
+  // engine that was never stopped removes.
+  test::ReamScene s(block(), test::flatReamer20(), localCutBackendFactory());
+  s.controller->moveTo(at(0, 1.0));
+  s.controller->moveTo(at(0, -1.0));
+  const BoneState before = s.bone->current();
+  const std::uint64_t revision = s.bone->currentRevision();
+  const Pose start = at(0, -1.0);
+  std::atomic<bool> stop{false};
+  const CutBackendFactory local = localCutBackendFactory();
+  ReamEngine engine(s.reamer->cuttingVolume(), makeBvhContactBackend(),
+                    [&](const BoneState& b) { return std::make_unique<StopAfterCuts>(local(b), stop, 3); });
+  EXPECT_THROW(engine.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start, &stop), ReamCancelled);
+  EXPECT_TRUE(stop.load());
+  EXPECT_EQ(s.bone->currentRevision(), revision);  // the document never saw the partial swing
+
+  stop = false;
+  std::atomic<bool> never{false};
+  const ReamComputation again = engine.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start, &never);
+  ReamEngine fresh(s.reamer->cuttingVolume(), makeBvhContactBackend(), localCutBackendFactory());
+  const ReamComputation whole = fresh.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start);
+  EXPECT_EQ(again.sweepCuts, 26);
+  EXPECT_GT(whole.cut.removedMm3, 100.0);
+  // Not bit for bit: where the flat face lies exactly on the floor it cut, the result may differ by ~1e-6
+  // from run to run (docs/CSG.md, "Reproducibility").
+  EXPECT_NEAR(again.cut.removedMm3, whole.cut.removedMm3, 1e-5 * whole.cut.removedMm3);
+  EXPECT_LT(again.volumeBookkeepingError, 1e-6 * again.cut.removedMm3);
+  ASSERT_TRUE(again.next && whole.next);
+  EXPECT_NEAR(double(again.next->liveTriangleCount()), double(whole.next->liveTriangleCount()),
+              0.03 * double(whole.next->liveTriangleCount()));
+  const BoneInvariants inv = engine.checkBone();
+  EXPECT_TRUE(inv.closed);
+  EXPECT_FALSE(inv.selfIntersectsExact);
+
+  // Raised before the step, nothing is cut at all (the cutter is still in step with the bone).
+  stop = true;
+  EXPECT_THROW(fresh.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start, &stop), ReamCancelled);
+}
+
 TEST(SweptCut, TurnInPlaceIsAChainOfPlacements) {
   // Tilting about the tip sweeps little beyond the end pose for a flat reamer (its body leans over the
   // bone its face passed), but what it sweeps is cut, the chain costs a few Booleans, and the bone stays
@@ -191,6 +256,32 @@ TEST(SweptCut, HullOfTwoPlacementsIsClosedAndHasTheExpectedVolume) {
   RigidTransform turned = b;
   turned.rotation[0] = 0.5;
   EXPECT_THROW(sweptByTranslation(solid, a, turned), std::invalid_argument);
+}
+
+TEST(SweptCut, HullIsWrittenInACanonicalOrder) {
+  // CGAL lists the hull in an order that follows memory addresses; the engine breaks ties by the tool's
+  // order, so the hull comes out the same however the heap looks: vertices in the order of the points they
+  // are (the first placement's, then the second's), faces from their smallest vertex, sorted.
+  const TriangleMesh solid = buildCuttingSolid(loadPreset("glenoid-36-R30", reamerPresetsPath()));
+  const RigidTransform a = toTransform(Pose{{1, 2, 3}, normalized(Vec3{0.1, -0.2, 1}), 0.3});
+  RigidTransform b = a;
+  b.translation = b.translation + Vec3{2.5, -1.0, 0.5};
+  const TriangleMesh first = sweptByTranslation(solid, a, b);
+  std::vector<std::unique_ptr<std::vector<double>>> clutter;  // another heap layout for the second hull
+  for (int i = 0; i < 64; ++i) clutter.push_back(std::make_unique<std::vector<double>>(std::size_t(97 * (i + 1))));
+  const TriangleMesh second = sweptByTranslation(solid, a, b);
+  EXPECT_EQ(first.vertices, second.vertices);
+  EXPECT_EQ(first.triangles, second.triangles);
+  EXPECT_TRUE(std::is_sorted(first.triangles.begin(), first.triangles.end()));
+  for (const Triangle& t : first.triangles) EXPECT_TRUE(t[0] < t[1] && t[0] < t[2]);
+  // Vertices follow the input: a point of the first placement before any of the second.
+  std::vector<int> placement;
+  for (const Vec3& p : first.vertices) {
+    bool fromA = false;
+    for (const Vec3& q : solid.vertices) fromA = fromA || a.apply(q) == p;
+    placement.push_back(fromA ? 0 : 1);
+  }
+  EXPECT_TRUE(std::is_sorted(placement.begin(), placement.end()));
 }
 
 }  // namespace

@@ -140,7 +140,7 @@ std::vector<TriangleMesh> ReamEngine::sweepTools(const RigidTransform& from, con
 }
 
 ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm,
-                                    const Pose* sweptFrom) {
+                                    const Pose* sweptFrom, const std::atomic<bool>* cancel) {
   sync(bone, revision);
   ReamComputation out;
   out.pose = pose;
@@ -178,8 +178,15 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
     tools.push_back(std::move(tool));
   }
   if (mayCut && cutter_) {
+    auto stopIfCancelled = [&] {
+      if (cancel && cancel->load(std::memory_order_relaxed)) throw ReamCancelled();
+    };
+    stopIfCancelled();  // before the first Boolean the cutter is still in step with `revision`
     pendingAdopt_ = true;  // from here the cutter may differ from `revision` (also if subtract throws)
-    for (const TriangleMesh& t : tools) accumulate(out.cut, cutter_->subtract(t));
+    for (std::size_t i = 0; i < tools.size(); ++i) {
+      if (i > 0) stopIfCancelled();
+      accumulate(out.cut, cutter_->subtract(tools[i]));
+    }
     out.times.cut = out.cut.milliseconds;
     if (!out.cut.changed) {
       pendingAdopt_ = false;

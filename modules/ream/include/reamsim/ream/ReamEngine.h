@@ -5,9 +5,11 @@
 //
 // Threading: one call at a time (compute on a worker, adopt on the UI thread while no compute runs).
 // BoneState values are immutable, so the caller may hand the current state to a worker.
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -34,6 +36,13 @@ struct ReamComputation {
   } times;
 };
 
+// Thrown by ReamEngine::compute when its cancel flag is up before a Boolean: the step is abandoned whole
+// (a swept turn is a chain of Booleans, and the document never sees part of one), and the next compute
+// restarts the cutter from the bone it is given, as after an undo.
+struct ReamCancelled : std::runtime_error {
+  ReamCancelled() : std::runtime_error("step cancelled") {}
+};
+
 class ReamEngine {
  public:
   // `contact` may be null (no collision: nothing is cut) and `cut` empty (collision and alerts only).
@@ -51,9 +60,10 @@ class ReamEngine {
   // translation with a sideways part cuts the whole volume swept between the two poses (SweptVolume.h), so
   // a long move leaves no ridge; a turn is cut in sub-steps along it (TurnPath), one Boolean each,
   // reported as one step. Throws std::runtime_error when a Boolean fails; the engine then resyncs (the
-  // document never sees a partly cut turn).
+  // document never sees a partly cut turn). `cancel` (another thread may raise it) is read before each
+  // Boolean: raised, the step throws ReamCancelled, so a long swing stops within one Boolean.
   ReamComputation compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm,
-                          const Pose* sweptFrom = nullptr);
+                          const Pose* sweptFrom = nullptr, const std::atomic<bool>* cancel = nullptr);
   // The `next` of the last compute was committed to the bone history as `revision`.
   void adopt(std::uint64_t revision);
 
