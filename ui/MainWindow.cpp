@@ -51,6 +51,9 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   connect(session_.get(), &ReamSession::engineError, this, [this](const QString& m) {
     showError(tr("Cutting failed"), tr("The cutting engine reported an error; the bone is unchanged.\n\n%1").arg(m));
   });
+  connect(session_.get(), &ReamSession::stepCancelled, this, [this] {
+    statusBar()->showMessage(tr("Step stopped: the bone is unchanged"), 5000);
+  });
   connect(session_.get(), &ReamSession::progress, this, [this](int done, int total) {
     progress_->setVisible(total > 0);
     progress_->setRange(0, std::max(1, total));
@@ -165,7 +168,7 @@ void MainWindow::buildMenus() {
   add(reamer, "ream_to_depth", tr("Ream to &depth below first contact…"), QKeySequence("Ctrl+D"),
       [this] { askReamToDepth(); });
   add(reamer, "feed_by", tr("&Feed along the axis by…"), QKeySequence("Ctrl+F"), [this] { askFeedBy(); });
-  add(reamer, "stop", tr("&Stop queued steps"), QKeySequence("Esc"), [this] { session_->cancelQueued(); });
+  add(reamer, "stop", tr("&Stop steps"), QKeySequence("Esc"), [this] { session_->cancelQueued(); });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   add(help, "plugins", tr("&Plugins…"), {}, [this] { showPluginsDialog(); });

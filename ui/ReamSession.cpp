@@ -30,6 +30,7 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
 ReamSession::~ReamSession() {
   queued_.clear();
   latestUserPose_.reset();
+  if (stopRunning_) stopRunning_->store(true);  // a long swing stops at its next Boolean
   if (running_) watcher_.waitForFinished();  // the job uses engine_
   watcher_.disconnect(this);
 }
@@ -124,6 +125,7 @@ void ReamSession::runSteps(const std::vector<Pose>& poses) {
 }
 
 void ReamSession::cancelQueued() {
+  if (running_ && stopRunning_) stopRunning_->store(true);
   queued_.clear();
   latestUserPose_.reset();
   waitingForFrame_ = false;
@@ -172,18 +174,22 @@ void ReamSession::startNext() {
   }
   const double stepMm = lastComputedPose_ ? norm(pose.tip - lastComputedPose_->tip) : 0.0;
   const std::optional<Pose> sweptFrom = moved ? lastComputedPose_ : std::nullopt;
+  poseBeforeRunning_ = lastComputedPose_;
   lastComputedPose_ = pose;
   running_ = true;
   Q_EMIT busyChanged(true);
   ReamEngine* engine = engine_.get();
   const BoneState state = bone_->current();  // immutable value: safe on the worker
   const std::uint64_t revision = bone_->currentRevision();
-  watcher_.setFuture(QtConcurrent::run([engine, state, revision, pose, stepMm, sweptFrom] {
+  stopRunning_ = std::make_shared<std::atomic<bool>>(false);
+  watcher_.setFuture(QtConcurrent::run([engine, state, revision, pose, stepMm, sweptFrom, stop = stopRunning_] {
     StepResult r;
     QElapsedTimer timer;
     timer.start();
     try {
-      r.computation = engine->compute(state, revision, pose, stepMm, sweptFrom ? &*sweptFrom : nullptr);
+      r.computation = engine->compute(state, revision, pose, stepMm, sweptFrom ? &*sweptFrom : nullptr, stop.get());
+    } catch (const ReamCancelled&) {
+      r.cancelled = true;
     } catch (const std::exception& e) {
       r.error = QString::fromStdString(e.what());
     }
@@ -195,7 +201,13 @@ void ReamSession::startNext() {
 void ReamSession::finished() {
   running_ = false;
   StepResult r = watcher_.result();
-  if (!r.error.isEmpty()) {
+  if (r.cancelled) {
+    // The step never happened: the next one sweeps from where the bone was last cut, and unless a newer
+    // move is pending the reamer goes back there.
+    lastComputedPose_ = poseBeforeRunning_;
+    if (!latestUserPose_ && queued_.empty() && poseBeforeRunning_) reamer_->setPose(*poseBeforeRunning_);
+    Q_EMIT stepCancelled();
+  } else if (!r.error.isEmpty()) {
     // Stop the rest of a queued sequence: its steps would meet the same problem (one message, not one per step).
     queued_.clear();
     sequenceDone_ = sequenceTotal_ = 0;

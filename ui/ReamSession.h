@@ -11,6 +11,7 @@
 #include <QObject>
 #include <QString>
 #include <QUndoStack>
+#include <atomic>
 #include <deque>
 #include <memory>
 #include <optional>
@@ -30,7 +31,8 @@ class PluginHost;
 
 struct StepResult {
   ReamComputation computation;
-  QString error;  // the engine threw: nothing was computed
+  QString error;           // the engine threw: nothing was computed
+  bool cancelled = false;  // stopped between the Booleans of a swept turn: nothing was computed
   double computeMs = 0;
 };
 
@@ -64,6 +66,8 @@ class ReamSession : public QObject {
   // was (keys, drag), so a sideways translation cuts the volume it swept; false: it was placed here.
   void moveReamer(const Pose& pose, bool moved = false);
   void runSteps(const std::vector<Pose>& poses);  // every step runs (feed, ream to depth, plan)
+  // Drops the queued steps and stops the running one between two of its Booleans (a long swing is a chain
+  // of them): a stopped step leaves the bone as it was and the reamer where that step started.
   void cancelQueued();
   std::size_t queuedSteps() const { return queued_.size(); }
   // Show first, compute next: with the gate on, a move by hand starts its step once the view has presented
@@ -86,6 +90,7 @@ class ReamSession : public QObject {
   void progress(int done, int total);  // of the current step sequence
   void stepFinished(double minDistanceMm, bool contact);
   void engineError(const QString& message);
+  void stepCancelled();  // the running step was stopped (cancelQueued): the bone is unchanged
   void boneReplaced();
 
  private:
@@ -115,6 +120,8 @@ class ReamSession : public QObject {
   bool frameGate_ = false, waitingForFrame_ = false;
   static constexpr int kFrameGateMs = 50;  // every coalesced move since the last step was a travel (see moveReamer)
   std::optional<Pose> lastComputedPose_;
+  std::optional<Pose> poseBeforeRunning_;             // lastComputedPose_ before the running step
+  std::shared_ptr<std::atomic<bool>> stopRunning_;    // raised by cancelQueued, read by the running step
   int sequenceDone_ = 0, sequenceTotal_ = 0;
   std::size_t cuts_ = 0, steps_ = 0;
   double lastMinDistance_ = std::numeric_limits<double>::infinity();

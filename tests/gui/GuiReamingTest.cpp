@@ -1,6 +1,8 @@
 // Reaming actions through the real window: "Ream to depth" measures from the first contact; a move by hand
 // during a queued feed starts where the reamer is shown (it interrupts the feed, it does not jump to its end).
 #include <QAction>
+#include <cmath>
+#include <QSignalSpy>
 #include <QUndoStack>
 #include <QtTest/QTest>
 
@@ -145,6 +147,44 @@ TEST(GuiReaming, KeyMovesSweepPlacementsDoNot) {
   QTest::keyClick(w.windowHandle(), Qt::Key_A);  // 0.5 degrees: the end pose covers it (ridges under 1 µm)
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_FALSE(s.lastStepSwept());
+}
+
+TEST(GuiReaming, StopEndsALongSwingAndLeavesTheBoneAsItWas) {
+  // A 60 degree turn in the bone is a chain of placements (about a hundred Booleans); Stop (Esc) while it
+  // runs ends it at the next Boolean: nothing is committed, no error is shown, the reamer goes back to
+  // where the step started, and the next step cuts as usual.
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const Pose start = pastFirstContact(s, s.plan()->poses().front(), 0.5);
+  s.moveReamer(start);
+  ASSERT_TRUE(s.waitIdle(60000));
+  const std::uint64_t revision = s.bone()->currentRevision();
+  const std::size_t logged = s.log()->size();
+  const double volume = s.bone()->current().volume();
+  Pose swung = start;
+  const Vec3 across = normalized(cross(start.axis, Vec3{1, 0, 0}));
+  swung.axis = normalized(normalized(start.axis) * 0.5 + across * std::sqrt(0.75));
+
+  QSignalSpy stopped(&s, &ReamSession::stepCancelled);
+  s.runSteps({swung});  // queued steps start at once: the swing is running now
+  ASSERT_TRUE(s.busy());
+  w.action("stop")->trigger();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(stopped.count(), 1);
+  EXPECT_EQ(s.bone()->currentRevision(), revision);
+  EXPECT_EQ(s.log()->size(), logged);
+  EXPECT_EQ(s.bone()->current().volume(), volume);
+  EXPECT_EQ(s.reamer()->pose().tip, start.tip);
+  EXPECT_EQ(s.reamer()->pose().axis, start.axis);
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+
+  s.runSteps({advancedAlongAxis(start, 0.3)});  // the engine resyncs and cuts
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(stopped.count(), 1);
+  EXPECT_LT(s.bone()->current().volume(), volume - 1.0);
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
 }
 
 }  // namespace
