@@ -150,7 +150,7 @@ TEST(GuiReaming, KeyMovesSweepPlacementsDoNot) {
 }
 
 TEST(GuiReaming, StopEndsALongSwingAndLeavesTheBoneAsItWas) {
-  // A 60 degree turn in the bone is a chain of placements (about a hundred Booleans); Stop (Esc) while it
+  // A 60 degree turn in the bone is a chain of 54 placements (one Boolean each); Stop (Esc) while it
   // runs ends it at the next Boolean: nothing is committed, no error is shown, the reamer goes back to
   // where the step started, and the next step cuts as usual.
   REAMSIM_REQUIRE_DISPLAY();
