@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <memory>
-#include <vector>
 #include <cmath>
 
 #include "ReamFixture.h"
@@ -14,8 +12,6 @@
 #include "reamsim/csg/SweptVolume.h"
 #include "reamsim/mesh/TriangleMesh.h"
 #include "reamsim/tools/Primitives.h"
-#include "reamsim/tools/ReamerPresets.h"
-#include "reamsim/ream/DefaultCase.h"
 
 namespace reamsim {
 namespace {
@@ -256,32 +252,6 @@ TEST(SweptCut, HullOfTwoPlacementsIsClosedAndHasTheExpectedVolume) {
   RigidTransform turned = b;
   turned.rotation[0] = 0.5;
   EXPECT_THROW(sweptByTranslation(solid, a, turned), std::invalid_argument);
-}
-
-TEST(SweptCut, HullIsWrittenInACanonicalOrder) {
-  // CGAL lists the hull in an order that follows memory addresses; the engine breaks ties by the tool's
-  // order, so the hull comes out the same however the heap looks: vertices in the order of the points they
-  // are (the first placement's, then the second's), faces from their smallest vertex, sorted.
-  const TriangleMesh solid = buildCuttingSolid(loadPreset("glenoid-36-R30", reamerPresetsPath()));
-  const RigidTransform a = toTransform(Pose{{1, 2, 3}, normalized(Vec3{0.1, -0.2, 1}), 0.3});
-  RigidTransform b = a;
-  b.translation = b.translation + Vec3{2.5, -1.0, 0.5};
-  const TriangleMesh first = sweptByTranslation(solid, a, b);
-  std::vector<std::unique_ptr<std::vector<double>>> clutter;  // another heap layout for the second hull
-  for (int i = 0; i < 64; ++i) clutter.push_back(std::make_unique<std::vector<double>>(std::size_t(97 * (i + 1))));
-  const TriangleMesh second = sweptByTranslation(solid, a, b);
-  EXPECT_EQ(first.vertices, second.vertices);
-  EXPECT_EQ(first.triangles, second.triangles);
-  EXPECT_TRUE(std::is_sorted(first.triangles.begin(), first.triangles.end()));
-  for (const Triangle& t : first.triangles) EXPECT_TRUE(t[0] < t[1] && t[0] < t[2]);
-  // Vertices follow the input: a point of the first placement before any of the second.
-  std::vector<int> placement;
-  for (const Vec3& p : first.vertices) {
-    bool fromA = false;
-    for (const Vec3& q : solid.vertices) fromA = fromA || a.apply(q) == p;
-    placement.push_back(fromA ? 0 : 1);
-  }
-  EXPECT_TRUE(std::is_sorted(placement.begin(), placement.end()));
 }
 
 }  // namespace
