@@ -184,6 +184,7 @@ void ReamSession::startNext() {
   stopRunning_ = std::make_shared<std::atomic<bool>>(false);
   watcher_.setFuture(QtConcurrent::run([engine, state, revision, pose, stepMm, sweptFrom, stop = stopRunning_] {
     StepResult r;
+    r.revision = revision;
     QElapsedTimer timer;
     timer.start();
     try {
@@ -202,11 +203,14 @@ void ReamSession::finished() {
   running_ = false;
   StepResult r = watcher_.result();
   if (r.cancelled) {
-    // The step never happened: the next one sweeps from where the bone was last cut, and unless a newer
-    // move is pending the reamer goes back there.
-    lastComputedPose_ = poseBeforeRunning_;
-    if (!latestUserPose_ && queued_.empty() && poseBeforeRunning_) reamer_->setPose(*poseBeforeRunning_);
-    Q_EMIT stepCancelled();
+    // Stop: the step never happened, so the next one sweeps from where the bone was last cut and, unless a
+    // newer move is pending, the reamer goes back there. Stopped because the bone changed (undo, another
+    // bone) it is simply dropped, as a finished step would be.
+    if (r.revision == bone_->currentRevision()) {
+      lastComputedPose_ = poseBeforeRunning_;
+      if (!latestUserPose_ && queued_.empty() && poseBeforeRunning_) reamer_->setPose(*poseBeforeRunning_);
+      Q_EMIT stepCancelled();
+    }
   } else if (!r.error.isEmpty()) {
     // Stop the rest of a queued sequence: its steps would meet the same problem (one message, not one per step).
     queued_.clear();

@@ -33,6 +33,7 @@ struct StepResult {
   ReamComputation computation;
   QString error;           // the engine threw: nothing was computed
   bool cancelled = false;  // stopped between the Booleans of a swept turn: nothing was computed
+  std::uint64_t revision = 0;  // the bone revision the step started from
   double computeMs = 0;
 };
 

@@ -185,6 +185,20 @@ TEST(GuiReaming, StopEndsALongSwingAndLeavesTheBoneAsItWas) {
   EXPECT_EQ(stopped.count(), 1);
   EXPECT_LT(s.bone()->current().volume(), volume - 1.0);
   EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+
+  // A new bone while a swing runs stops it too, and the new bone keeps its own start pose: the stopped
+  // step belonged to the old bone (loadBone waits for it; its result arrives after the new bone is in).
+  s.runSteps({swung});
+  ASSERT_TRUE(s.busy());
+  ImportedBone other;
+  other.mesh = s.bone()->current().toMesh();
+  other.cuttable = true;
+  const Pose newStart{start.tip + Vec3{0, 0, 40}, start.axis, 0};
+  s.loadBone(std::move(other), "the same bone again", newStart);
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(s.reamer()->pose().tip, newStart.tip);
+  EXPECT_EQ(stopped.count(), 1);  // not a Stop: nothing to report
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
 }
 
 }  // namespace
