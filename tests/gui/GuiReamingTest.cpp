@@ -17,6 +17,15 @@ Pose pastFirstContact(ReamSession& s, const Pose& start, double mm) {
   return advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + mm);
 }
 
+// Places the reamer (nothing swept) `mm` past where it first touches the bone in front of the glenoid and
+// waits for that step; returns the pose.
+Pose placeInTheBone(ReamSession& s, double mm) {
+  const Pose start = pastFirstContact(s, s.plan()->poses().front(), mm);
+  s.moveReamer(start);
+  EXPECT_TRUE(s.waitIdle(60000));
+  return start;
+}
+
 TEST(GuiReaming, ReamToDepthStartsAtTheFirstContact) {
   REAMSIM_REQUIRE_DISPLAY();
   GuiFixture f;
@@ -87,9 +96,7 @@ TEST(GuiReaming, HeldFeedKeyQueuesOnlyAFewSteps) {
   MainWindow& w = *f.window;
   ReamSession& s = f.session();
   // Already in the bone, so that every feed step cuts.
-  const Pose start = pastFirstContact(s, s.plan()->poses().front(), 0.3);
-  s.moveReamer(start);
-  ASSERT_TRUE(s.waitIdle(60000));
+  const Pose start = placeInTheBone(s, 0.3);
   w.setSteps(0.5, 2.0, 0.2);
   // Twelve presses of the feed key within one turn of the event loop, as a held key's repeats reach a busy
   // window: no cut can finish between them, however fast cuts are (QTest::keyClick processes events after
@@ -132,9 +139,7 @@ TEST(GuiReaming, KeyMovesSweepPlacementsDoNot) {
   GuiFixture f;
   MainWindow& w = *f.window;
   ReamSession& s = f.session();
-  const Pose start = pastFirstContact(s, s.plan()->poses().front(), 0.5);
-  s.moveReamer(start);  // placed: nothing swept
-  ASSERT_TRUE(s.waitIdle(60000));
+  placeInTheBone(s, 0.5);  // placed: nothing swept
   EXPECT_FALSE(s.lastStepSwept());
   w.setSteps(3.0, 2.0, 0.2);
   QTest::keyClick(w.windowHandle(), Qt::Key_Up);  // 3 mm sideways, in the bone: the sweep is cut
@@ -157,9 +162,7 @@ TEST(GuiReaming, StopEndsALongSwingAndLeavesTheBoneAsItWas) {
   GuiFixture f;
   MainWindow& w = *f.window;
   ReamSession& s = f.session();
-  const Pose start = pastFirstContact(s, s.plan()->poses().front(), 0.5);
-  s.moveReamer(start);
-  ASSERT_TRUE(s.waitIdle(60000));
+  const Pose start = placeInTheBone(s, 0.5);
   const std::uint64_t revision = s.bone()->currentRevision();
   const std::size_t logged = s.log()->size();
   const double volume = s.bone()->current().volume();
