@@ -54,7 +54,15 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   connect(session_.get(), &ReamSession::stepCancelled, this, [this] {
     statusBar()->showMessage(tr("Step stopped: the bone is unchanged"), 5000);
   });
+  // A long step (a swing's chain of Booleans) shows its own progress when no sequence is running.
+  connect(session_.get(), &ReamSession::stepProgress, this, [this](int done, int total) {
+    if (session_->queuedSteps() > 0 || sequenceShown_) return;
+    progress_->setVisible(true);
+    progress_->setRange(0, total);
+    progress_->setValue(done);
+  });
   connect(session_.get(), &ReamSession::progress, this, [this](int done, int total) {
+    sequenceShown_ = total > 0;
     progress_->setVisible(total > 0);
     progress_->setRange(0, std::max(1, total));
     progress_->setValue(done);

@@ -127,6 +127,7 @@ class MainWindow : public QMainWindow {
   QLabel* distanceLabel_ = nullptr;
   QLabel* engineLabel_ = nullptr;
   QProgressBar* progress_ = nullptr;
+  bool sequenceShown_ = false;  // the progress bar shows a step sequence (a step's own progress waits)
   Subscription alertSubscription_;
   QFutureWatcher<ImportOutcome> importWatcher_;
   QProgressBar* importBusy_ = nullptr;

@@ -25,12 +25,19 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
     if (!pushingCut_ && (!queued_.empty() || running_)) cancelQueued();
   });
   connect(&watcher_, &QFutureWatcher<StepResult>::finished, this, &ReamSession::finished);
+  progressTimer_ = new QTimer(this);
+  progressTimer_->setInterval(kProgressMs);
+  connect(progressTimer_, &QTimer::timeout, this, [this] {
+    if (!control_) return;
+    const int total = control_->booleansTotal.load();
+    if (total > 1) Q_EMIT stepProgress(control_->booleansDone.load(), total);
+  });
 }
 
 ReamSession::~ReamSession() {
   queued_.clear();
   latestUserPose_.reset();
-  if (stopRunning_) stopRunning_->store(true);  // a long swing stops at its next Boolean
+  if (control_) control_->stop = true;  // a long swing stops at its next Boolean
   if (running_) watcher_.waitForFinished();  // the job uses engine_
   watcher_.disconnect(this);
 }
@@ -125,7 +132,7 @@ void ReamSession::runSteps(const std::vector<Pose>& poses) {
 }
 
 void ReamSession::cancelQueued() {
-  if (running_ && stopRunning_) stopRunning_->store(true);
+  if (running_ && control_) control_->stop = true;
   queued_.clear();
   latestUserPose_.reset();
   waitingForFrame_ = false;
@@ -181,14 +188,15 @@ void ReamSession::startNext() {
   ReamEngine* engine = engine_.get();
   const BoneState state = bone_->current();  // immutable value: safe on the worker
   const std::uint64_t revision = bone_->currentRevision();
-  stopRunning_ = std::make_shared<std::atomic<bool>>(false);
-  watcher_.setFuture(QtConcurrent::run([engine, state, revision, pose, stepMm, sweptFrom, stop = stopRunning_] {
+  control_ = std::make_shared<StepControl>();
+  progressTimer_->start();
+  watcher_.setFuture(QtConcurrent::run([engine, state, revision, pose, stepMm, sweptFrom, control = control_] {
     StepResult r;
     r.revision = revision;
     QElapsedTimer timer;
     timer.start();
     try {
-      r.computation = engine->compute(state, revision, pose, stepMm, sweptFrom ? &*sweptFrom : nullptr, stop.get());
+      r.computation = engine->compute(state, revision, pose, stepMm, sweptFrom ? &*sweptFrom : nullptr, control.get());
     } catch (const ReamCancelled&) {
       r.cancelled = true;
     } catch (const std::exception& e) {
@@ -201,6 +209,7 @@ void ReamSession::startNext() {
 
 void ReamSession::finished() {
   running_ = false;
+  progressTimer_->stop();
   StepResult r = watcher_.result();
   if (r.cancelled) {
     // Stop: the step never happened, so the next one sweeps from where the bone was last cut and, unless a

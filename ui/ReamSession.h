@@ -10,6 +10,7 @@
 #include <QFutureWatcher>
 #include <QObject>
 #include <QString>
+#include <QTimer>
 #include <QUndoStack>
 #include <atomic>
 #include <deque>
@@ -92,6 +93,8 @@ class ReamSession : public QObject {
   void stepFinished(double minDistanceMm, bool contact);
   void engineError(const QString& message);
   void stepCancelled();  // the running step was stopped (cancelQueued): the bone is unchanged
+  // How far the running step has got when it is a chain of Booleans (a swept turn), every kProgressMs.
+  void stepProgress(int booleansDone, int booleansTotal);
   void boneReplaced();
 
  private:
@@ -122,7 +125,9 @@ class ReamSession : public QObject {
   static constexpr int kFrameGateMs = 50;  // every coalesced move since the last step was a travel (see moveReamer)
   std::optional<Pose> lastComputedPose_;
   std::optional<Pose> poseBeforeRunning_;             // lastComputedPose_ before the running step
-  std::shared_ptr<std::atomic<bool>> stopRunning_;    // raised by cancelQueued, read by the running step
+  std::shared_ptr<StepControl> control_;              // of the running step: Stop raises it, progress reads it
+  QTimer* progressTimer_ = nullptr;
+  static constexpr int kProgressMs = 100;
   int sequenceDone_ = 0, sequenceTotal_ = 0;
   std::size_t cuts_ = 0, steps_ = 0;
   double lastMinDistance_ = std::numeric_limits<double>::infinity();

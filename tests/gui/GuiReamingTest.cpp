@@ -204,5 +204,30 @@ TEST(GuiReaming, StopEndsALongSwingAndLeavesTheBoneAsItWas) {
   EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
 }
 
+TEST(GuiReaming, ALongSwingReportsHowFarItHasGot) {
+  // The 60 degree swing's 54 Booleans take a few hundred milliseconds here: the session reports them
+  // every 100 ms (the window shows them on the progress bar), counting up to the whole chain.
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  ReamSession& s = f.session();
+  const Pose start = placeInTheBone(s, 0.5);
+  Pose swung = start;
+  const Vec3 across = normalized(cross(start.axis, Vec3{1, 0, 0}));
+  swung.axis = normalized(normalized(start.axis) * 0.5 + across * std::sqrt(0.75));
+  QSignalSpy progress(&s, &ReamSession::stepProgress);
+  s.runSteps({swung});
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_GE(progress.count(), 1);
+  int last = 0;
+  for (const QList<QVariant>& p : progress) {
+    EXPECT_EQ(p.at(1).toInt(), 54);
+    EXPECT_GE(p.at(0).toInt(), last);  // it only counts up
+    EXPECT_LE(p.at(0).toInt(), 54);
+    last = p.at(0).toInt();
+  }
+  EXPECT_TRUE(s.lastStepSwept());
+  EXPECT_TRUE(f.window->lastError().isEmpty()) << f.window->lastError().toStdString();
+}
+
 }  // namespace
 }  // namespace reamsim::ui::test

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <utility>
+#include <vector>
 #include <cmath>
 
 #include "ReamFixture.h"
@@ -163,13 +165,16 @@ TEST(SweptCut, TurnPathFollowsTheGreatCircleAndEndsAtThePose) {
   EXPECT_EQ(turnSubSteps(TurnPath(from, toTransform(Pose{{0, 0, 0}, {1, 0, 0}, 0})), 100.0, 0.25, true, 96), 96);
 }
 
-// The real local engine, raising a flag after its n-th Boolean: a user pressing Stop while a swing is cut.
+// The real local engine, raising the stop flag after its n-th Boolean (a user pressing Stop while a swing
+// is cut), and noting at each Boolean how far the step said it had got.
 class StopAfterCuts : public CutBackend {
  public:
-  StopAfterCuts(std::unique_ptr<CutBackend> inner, std::atomic<bool>& stop, int n) : inner_(std::move(inner)), stop_(stop), n_(n) {}
+  StopAfterCuts(std::unique_ptr<CutBackend> inner, StepControl& control, int n, std::vector<std::pair<int, int>>& seen)
+      : inner_(std::move(inner)), control_(control), n_(n), seen_(seen) {}
   ReferenceCut subtract(const TriangleMesh& tool) override {
+    seen_.emplace_back(control_.booleansDone.load(), control_.booleansTotal.load());
     ReferenceCut c = inner_->subtract(tool);
-    if (++cuts_ == n_) stop_ = true;
+    if (++cuts_ == n_) control_.stop = true;
     return c;
   }
   TriangleMesh mesh() const override { return inner_->mesh(); }
@@ -178,49 +183,56 @@ class StopAfterCuts : public CutBackend {
 
  private:
   std::unique_ptr<CutBackend> inner_;
-  std::atomic<bool>& stop_;
+  StepControl& control_;
   int n_, cuts_ = 0;
+  std::vector<std::pair<int, int>>& seen_;
 };
 
 TEST(SweptCut, StoppedSwingLeavesTheBoneWholeAndTheNextStepCutsItAll) {
   // A 10 degree swing is 26 Booleans. Stopped after the third, the step throws ReamCancelled and returns
   // nothing; the same step asked again (the engine resyncs from the bone it is given) removes what an
-  // engine that was never stopped removes.
+  // engine that was never stopped removes. Along the way the step says how many Booleans it has done.
   test::ReamScene s(block(), test::flatReamer20(), localCutBackendFactory());
   s.controller->moveTo(at(0, 1.0));
   s.controller->moveTo(at(0, -1.0));
   const BoneState before = s.bone->current();
   const std::uint64_t revision = s.bone->currentRevision();
   const Pose start = at(0, -1.0);
-  std::atomic<bool> stop{false};
+  StepControl control;
+  std::vector<std::pair<int, int>> seen;
   const CutBackendFactory local = localCutBackendFactory();
   ReamEngine engine(s.reamer->cuttingVolume(), makeBvhContactBackend(),
-                    [&](const BoneState& b) { return std::make_unique<StopAfterCuts>(local(b), stop, 3); });
-  EXPECT_THROW(engine.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start, &stop), ReamCancelled);
-  EXPECT_TRUE(stop.load());
+                    [&](const BoneState& b) { return std::make_unique<StopAfterCuts>(local(b), control, 3, seen); });
+  EXPECT_THROW(engine.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start, &control), ReamCancelled);
+  EXPECT_TRUE(control.stop.load());
+  EXPECT_EQ(control.booleansDone.load(), 3);
+  ASSERT_EQ(seen.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(seen[std::size_t(k)], std::make_pair(k, 26)) << k;
   EXPECT_EQ(s.bone->currentRevision(), revision);  // the document never saw the partial swing
 
-  stop = false;
-  std::atomic<bool> never{false};
-  const ReamComputation again = engine.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start, &never);
+  StepControl again;
+  const ReamComputation resumed = engine.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start, &again);
+  EXPECT_EQ(again.booleansDone.load(), 26);
   ReamEngine fresh(s.reamer->cuttingVolume(), makeBvhContactBackend(), localCutBackendFactory());
   const ReamComputation whole = fresh.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start);
-  EXPECT_EQ(again.sweepCuts, 26);
+  EXPECT_EQ(resumed.sweepCuts, 26);
   EXPECT_GT(whole.cut.removedMm3, 100.0);
   // Not bit for bit: where the flat face lies exactly on the floor it cut, the result may differ by ~1e-6
   // from run to run (docs/CSG.md, "Reproducibility").
-  EXPECT_NEAR(again.cut.removedMm3, whole.cut.removedMm3, 1e-5 * whole.cut.removedMm3);
-  EXPECT_LT(again.volumeBookkeepingError, 1e-6 * again.cut.removedMm3);
-  ASSERT_TRUE(again.next && whole.next);
-  EXPECT_NEAR(double(again.next->liveTriangleCount()), double(whole.next->liveTriangleCount()),
+  EXPECT_NEAR(resumed.cut.removedMm3, whole.cut.removedMm3, 1e-5 * whole.cut.removedMm3);
+  EXPECT_LT(resumed.volumeBookkeepingError, 1e-6 * resumed.cut.removedMm3);
+  ASSERT_TRUE(resumed.next && whole.next);
+  EXPECT_NEAR(double(resumed.next->liveTriangleCount()), double(whole.next->liveTriangleCount()),
               0.03 * double(whole.next->liveTriangleCount()));
   const BoneInvariants inv = engine.checkBone();
   EXPECT_TRUE(inv.closed);
   EXPECT_FALSE(inv.selfIntersectsExact);
 
   // Raised before the step, nothing is cut at all (the cutter is still in step with the bone).
-  stop = true;
-  EXPECT_THROW(fresh.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start, &stop), ReamCancelled);
+  StepControl early;
+  early.stop = true;
+  EXPECT_THROW(fresh.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start, &early), ReamCancelled);
+  EXPECT_EQ(early.booleansDone.load(), 0);
 }
 
 TEST(SweptCut, TurnInPlaceIsAChainOfPlacements) {

@@ -140,7 +140,7 @@ std::vector<TriangleMesh> ReamEngine::sweepTools(const RigidTransform& from, con
 }
 
 ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm,
-                                    const Pose* sweptFrom, const std::atomic<bool>* cancel) {
+                                    const Pose* sweptFrom, StepControl* control) {
   sync(bone, revision);
   ReamComputation out;
   out.pose = pose;
@@ -179,13 +179,15 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   }
   if (mayCut && cutter_) {
     auto stopIfCancelled = [&] {
-      if (cancel && cancel->load(std::memory_order_relaxed)) throw ReamCancelled();
+      if (control && control->stop.load(std::memory_order_relaxed)) throw ReamCancelled();
     };
+    if (control) control->booleansTotal = static_cast<int>(tools.size());
     stopIfCancelled();  // before the first Boolean the cutter is still in step with `revision`
     pendingAdopt_ = true;  // from here the cutter may differ from `revision` (also if subtract throws)
     for (std::size_t i = 0; i < tools.size(); ++i) {
       if (i > 0) stopIfCancelled();
       accumulate(out.cut, cutter_->subtract(tools[i]));
+      if (control) control->booleansDone = static_cast<int>(i + 1);
     }
     out.times.cut = out.cut.milliseconds;
     if (!out.cut.changed) {

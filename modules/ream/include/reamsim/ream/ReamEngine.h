@@ -36,11 +36,19 @@ struct ReamComputation {
   } times;
 };
 
-// Thrown by ReamEngine::compute when its cancel flag is up before a Boolean: the step is abandoned whole
+// Thrown by ReamEngine::compute when its stop flag is up before a Boolean: the step is abandoned whole
 // (a swept turn is a chain of Booleans, and the document never sees part of one), and the next compute
 // restarts the cutter from the bone it is given, as after an undo.
 struct ReamCancelled : std::runtime_error {
   ReamCancelled() : std::runtime_error("step cancelled") {}
+};
+
+// What another thread can do to, and see of, a running compute: raise `stop` to abandon the step before
+// its next Boolean, read how many of its Booleans are done (a swept turn has tens of them).
+struct StepControl {
+  std::atomic<bool> stop{false};
+  std::atomic<int> booleansDone{0};
+  std::atomic<int> booleansTotal{0};  // 0 until the step knows (after its collision query)
 };
 
 class ReamEngine {
@@ -60,10 +68,10 @@ class ReamEngine {
   // translation with a sideways part cuts the whole volume swept between the two poses (SweptVolume.h), so
   // a long move leaves no ridge; a turn is cut in sub-steps along it (TurnPath), one Boolean each,
   // reported as one step. Throws std::runtime_error when a Boolean fails; the engine then resyncs (the
-  // document never sees a partly cut turn). `cancel` (another thread may raise it) is read before each
-  // Boolean: raised, the step throws ReamCancelled, so a long swing stops within one Boolean.
+  // document never sees a partly cut turn). `control` (see StepControl) is read before each Boolean: its
+  // stop raised, the step throws ReamCancelled, so a long swing stops within one Boolean.
   ReamComputation compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm,
-                          const Pose* sweptFrom = nullptr, const std::atomic<bool>* cancel = nullptr);
+                          const Pose* sweptFrom = nullptr, StepControl* control = nullptr);
   // The `next` of the last compute was committed to the bone history as `revision`.
   void adopt(std::uint64_t revision);
 
