@@ -17,6 +17,14 @@ Pose pastFirstContact(ReamSession& s, const Pose& start, double mm) {
   return advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + mm);
 }
 
+// The pose turned by 60 degrees about its tip: in the bone, a chain of 54 placements for the default reamer.
+Pose turned60(const Pose& p) {
+  Pose q = p;
+  const Vec3 across = normalized(cross(p.axis, Vec3{1, 0, 0}));
+  q.axis = normalized(normalized(p.axis) * 0.5 + across * std::sqrt(0.75));
+  return q;
+}
+
 // Places the reamer (nothing swept) `mm` past where it first touches the bone in front of the glenoid and
 // waits for that step; returns the pose.
 Pose placeInTheBone(ReamSession& s, double mm) {
@@ -166,9 +174,7 @@ TEST(GuiReaming, StopEndsALongSwingAndLeavesTheBoneAsItWas) {
   const std::uint64_t revision = s.bone()->currentRevision();
   const std::size_t logged = s.log()->size();
   const double volume = s.bone()->current().volume();
-  Pose swung = start;
-  const Vec3 across = normalized(cross(start.axis, Vec3{1, 0, 0}));
-  swung.axis = normalized(normalized(start.axis) * 0.5 + across * std::sqrt(0.75));
+  const Pose swung = turned60(start);
 
   QSignalSpy stopped(&s, &ReamSession::stepCancelled);
   s.runSteps({swung});  // queued steps start at once: the swing is running now
@@ -211,9 +217,7 @@ TEST(GuiReaming, ALongSwingReportsHowFarItHasGot) {
   GuiFixture f;
   ReamSession& s = f.session();
   const Pose start = placeInTheBone(s, 0.5);
-  Pose swung = start;
-  const Vec3 across = normalized(cross(start.axis, Vec3{1, 0, 0}));
-  swung.axis = normalized(normalized(start.axis) * 0.5 + across * std::sqrt(0.75));
+  const Pose swung = turned60(start);
   QSignalSpy progress(&s, &ReamSession::stepProgress);
   s.runSteps({swung});
   ASSERT_TRUE(s.waitIdle(60000));
