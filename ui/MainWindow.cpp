@@ -56,7 +56,7 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   });
   // A long step (a swing's chain of Booleans) shows its own progress when no sequence is running.
   connect(session_.get(), &ReamSession::stepProgress, this, [this](int done, int total) {
-    if (session_->queuedSteps() > 0 || sequenceShown_) return;
+    if (sequenceShown_) return;
     progress_->setVisible(true);
     progress_->setRange(0, total);
     progress_->setValue(done);
@@ -69,7 +69,10 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   });
   connect(session_.get(), &ReamSession::busyChanged, this, [this](bool busy) {
     engineLabel_->setText(busy ? tr("computing…") : session_->cuttingStatus());
-    if (!busy) progress_->setVisible(false);
+    if (!busy) {
+      progress_->setVisible(false);
+      sequenceShown_ = false;  // a finished sequence does not report (0, 0): it just goes idle
+    }
   });
   connect(&importWatcher_, &QFutureWatcher<ImportOutcome>::finished, this, &MainWindow::importFinished);
   connect(&contactSearch_, &QFutureWatcher<std::optional<double>>::finished, this, &MainWindow::contactSearchFinished);

@@ -2,6 +2,7 @@
 // during a queued feed starts where the reamer is shown (it interrupts the feed, it does not jump to its end).
 #include <QAction>
 #include <cmath>
+#include <QProgressBar>
 #include <QSignalSpy>
 #include <QUndoStack>
 #include <QtTest/QTest>
@@ -217,11 +218,18 @@ TEST(GuiReaming, ALongSwingReportsHowFarItHasGot) {
   GuiFixture f;
   ReamSession& s = f.session();
   const Pose start = placeInTheBone(s, 0.5);
-  const Pose swung = turned60(start);
+  s.runSteps({advancedAlongAxis(start, 0.1), advancedAlongAxis(start, 0.2)});  // a sequence, finished first
+  ASSERT_TRUE(s.waitIdle(60000));
+  const Pose swung = turned60(advancedAlongAxis(start, 0.2));
   QSignalSpy progress(&s, &ReamSession::stepProgress);
-  s.runSteps({swung});
+  auto* bar = f.window->findChild<QProgressBar*>("StepProgress");
+  ASSERT_NE(bar, nullptr);
+  bool barShown = false;  // read after the window's own handler (connected first)
+  QObject::connect(&s, &ReamSession::stepProgress, [&] { barShown = barShown || bar->isVisible(); });
+  s.moveReamer(swung, true);  // by hand: no sequence, so the bar shows the step's Booleans
   ASSERT_TRUE(s.waitIdle(60000));
   ASSERT_GE(progress.count(), 1);
+  EXPECT_TRUE(barShown);
   int last = 0;
   for (const QList<QVariant>& p : progress) {
     EXPECT_EQ(p.at(1).toInt(), 54);
