@@ -61,10 +61,12 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
     progress_->setRange(0, total);
     progress_->setValue(done);
   });
+  // A sequence of one step ("Ream to depth" with one step, a plan of one pose) has nothing to count but the
+  // step itself: the bar runs as busy until the step reports its own Booleans (a swing) or ends.
   connect(session_.get(), &ReamSession::progress, this, [this](int done, int total) {
-    sequenceShown_ = total > 0;
+    sequenceShown_ = total > 1;
     progress_->setVisible(total > 0);
-    progress_->setRange(0, std::max(1, total));
+    progress_->setRange(0, total > 1 ? total : 0);
     progress_->setValue(done);
   });
   connect(session_.get(), &ReamSession::busyChanged, this, [this](bool busy) {

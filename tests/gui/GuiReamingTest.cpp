@@ -1,6 +1,7 @@
 // Reaming actions through the real window: "Ream to depth" measures from the first contact; a move by hand
 // during a queued feed starts where the reamer is shown (it interrupts the feed, it does not jump to its end).
 #include <QAction>
+#include <algorithm>
 #include <cmath>
 #include <QProgressBar>
 #include <QSignalSpy>
@@ -237,6 +238,30 @@ TEST(GuiReaming, ALongSwingReportsHowFarItHasGot) {
     EXPECT_LE(p.at(0).toInt(), 54);
     last = p.at(0).toInt();
   }
+  EXPECT_TRUE(s.lastStepSwept());
+  EXPECT_TRUE(f.window->lastError().isEmpty()) << f.window->lastError().toStdString();
+}
+
+TEST(GuiReaming, ASequenceOfOneSwingCountsItsBooleans) {
+  // A sequence of one step has nothing to count but that step: the bar shows the swing's Booleans (it
+  // showed "0 of 1" until the step ended).
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  ReamSession& s = f.session();
+  const Pose start = placeInTheBone(s, 0.5);
+  auto* bar = f.window->findChild<QProgressBar*>("StepProgress");
+  ASSERT_NE(bar, nullptr);
+  int largestMaximum = -1;  // read after the window's own handlers (connected first)
+  QObject::connect(&s, &ReamSession::stepProgress, [&] {
+    if (bar->isVisible()) largestMaximum = std::max(largestMaximum, bar->maximum());
+  });
+  s.runSteps({advancedAlongAxis(start, 0.2)});  // a feed: one Boolean, nothing to report
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(largestMaximum, -1);
+  s.runSteps({turned60(advancedAlongAxis(start, 0.2))});  // the swing of the test above, as a sequence
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(largestMaximum, 54);
+  EXPECT_FALSE(bar->isVisible());
   EXPECT_TRUE(s.lastStepSwept());
   EXPECT_TRUE(f.window->lastError().isEmpty()) << f.window->lastError().toStdString();
 }
