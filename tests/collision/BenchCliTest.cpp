@@ -80,10 +80,25 @@ TEST(collisionBenchCli, SegmentsAndRingsRefineThePreset) {
 // A closed bone (the bundled default, 15k faces): the update is measured after exact CGAL cuts and after
 // ReamSim's own cuts at the glenoid, each sequence on its own collider.
 TEST(collisionBenchCli, ClosedBoneTimesTheUpdateAfterBothEngines) {
-  const CliRun r = run("bench collision --bone default --poses 10 --no-baselines --cut-steps 3 --json");
+  const CliRun r = run("bench collision --bone default --poses 10 --no-baselines --cut-steps 3 "
+                       "--hand-held-approaches 2 --json");
   ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["bone"]["closed"], true);
+  // The hand-held session at the glenoid: two approaches, each apart, then meeting, then pressed in.
+  const auto& hand = j["hand_held_path"];
+  ASSERT_TRUE(hand.is_object());
+  const auto& outcomes = hand["first_contact"]["by_outcome"];
+  int ticks = 0;
+  for (const char* k : {"no_contact", "touching_at_start", "contact_during_motion"}) {
+    ASSERT_TRUE(outcomes[k].is_object()) << k;  // every kind occurs
+    ticks += outcomes[k]["samples"].get<int>();
+  }
+  EXPECT_EQ(ticks, hand["ticks"].get<int>());
+  EXPECT_GE(outcomes["contact_during_motion"]["samples"].get<int>(), 2);
+  EXPECT_GT(hand["min_distance"]["by_outcome"]["apart"]["samples"].get<int>(), 100);
+  EXPECT_GT(hand["min_distance"]["by_outcome"]["touching"]["samples"].get<int>(), 100);
+  EXPECT_GE(hand["min_distance"]["max_us"].get<double>(), hand["min_distance"]["median_us"].get<double>());
   EXPECT_NE(j["update"]["kind"].get<std::string>().find("exact"), std::string::npos);
   ASSERT_TRUE(j["update_local"].is_object()) << r.err;
   EXPECT_NE(j["update_local"]["kind"].get<std::string>().find("local"), std::string::npos);

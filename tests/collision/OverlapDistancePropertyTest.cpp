@@ -110,6 +110,48 @@ TEST(collisionDistanceProperty, BundledScapula) {
   EXPECT_GT(c.touching, 100u);
 }
 
+// The reamer seated in a concave bone, where every bone face is nearly as far from the cap as the nearest:
+// the distance search's node bounds (box and slab) are tested where they decide the most. The cap (sphere
+// radius 16) turns about the centre of a 17 mm spherical cavity, its centre up to 0.9 mm off; the flat
+// reamer hovers over the slab's top within 2 degrees of parallel.
+TEST(collisionDistanceProperty, ReamerSeatedInAConcaveBone) {
+  const Vec3 o{3, -2, 1};
+  const TriangleMesh cavity = icosphere(4, 17, o);
+  const TriangleBvh cavityBvh = TriangleBvh::fromMesh(cavity), slabBvh = TriangleBvh::fromMesh(slab());
+  const ReamerModel round = ReamerModel::fromSpec(test::smallSpec(false, 24, 6));
+  const ReamerModel flat = ReamerModel::fromSpec(test::smallSpec(true, 24, 6));
+  std::mt19937_64 rng(24);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto unit = [&] {
+    Vec3 v;
+    do v = {u(rng), u(rng), u(rng)};
+    while (squaredNorm(v) > 1 || squaredNorm(v) < 1e-4);
+    return normalized(v);
+  };
+  for (int i = 0; i < 600; ++i) {
+    const bool seated = i % 2 == 0;
+    Pose p;
+    if (seated) {  // sphere centre = tip - 16 axis
+      p.axis = unit();
+      p.tip = o + unit() * (0.9 * std::abs(u(rng))) + p.axis * 16;
+    } else {
+      p.axis = normalized(Vec3{0, 0, -1} + unit() * std::tan(2 * 3.14159265358979 / 180 * std::abs(u(rng))));
+      p.tip = {8 * u(rng), 8 * u(rng), 20 + 0.4 + 1.6 * std::abs(u(rng))};  // the rim tilts by <= 0.35 mm
+    }
+    p.rollDeg = 180 * u(rng);
+    const RigidTransform T = toTransform(p);
+    const TriangleMesh& bone = seated ? cavity : slab();
+    const ReamerModel& reamer = seated ? round : flat;
+    const DistanceResult ref = bruteForceFaceDistance(bone, reamer, T);
+    const DistanceResult got = queryFaceDistance(seated ? cavityBvh : slabBvh, reamer, T);
+    ASSERT_TRUE(ref.found && got.found);
+    EXPECT_GT(ref.distanceMm, 0) << "query " << i;  // apart: the nearest search decides, not the crossing
+    EXPECT_NEAR(got.distanceMm, ref.distanceMm, 1e-9 * (1 + ref.distanceMm)) << "query " << i;
+    EXPECT_NEAR(norm(got.onReamer - got.onBone), got.distanceMm, 1e-9 * (1 + got.distanceMm));
+    if (::testing::Test::HasFailure()) return;
+  }
+}
+
 // Touching without penetration, coplanar faces, parallel faces at a known gap.
 TEST(collisionOverlapProperty, DegenerateConfigurationsOnTheSlab) {
   const TriangleMesh& bone = slab();  // top face z = 20, grid vertices every 10 mm

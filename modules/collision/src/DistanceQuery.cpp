@@ -59,7 +59,11 @@ class FaceDistanceSearch {
  private:
   double nodeBound(std::int32_t b) const {
     const BvhNode& B = bone_.nodes()[b];
-    return std::max(boxSquaredDistance(B.lo, B.hi, faceLo_, faceHi_), region_.box(B.lo, B.hi));
+    // The nearest search bounds nodes by box and slab (FaceRegionBounds::node: a reamer seated in the glenoid
+    // opened ~1,000 nodes a query by boxes alone); the crossing search by the box alone (with the slab it
+    // opened fewer nodes but took longer on random poses: docs/COLLISION.md, session 18).
+    const double region = crossing_ ? region_.box(B.lo, B.hi) : region_.node(B.lo, B.hi, bone_.slab(b));
+    return std::max(boxSquaredDistance(B.lo, B.hi, faceLo_, faceHi_), region);
   }
 
   // Best-first over the bone tree (a min-heap on the lower bound), so the first triangles measured are the
@@ -73,8 +77,8 @@ class FaceDistanceSearch {
       if (!triangle) {  // its children are read when it is taken: fetch them now (see prefetchNode)
         const BvhNode& N = bone_.nodes()[b];
         if (!N.isLeaf()) {
-          bone_.prefetchNode(N.left, false);
-          bone_.prefetchNode(N.right, false);
+          bone_.prefetchNode(N.left, !crossing_);
+          bone_.prefetchNode(N.right, !crossing_);
         }
       }
       heap_.push_back({lb, b, triangle});

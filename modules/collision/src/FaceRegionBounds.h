@@ -38,6 +38,30 @@ class FaceRegionBounds {
     return gap * gap;
   }
 
+  // The same over a node's box ∩ slab (TriangleBvh.h). A patch of surface is thin along its own normal
+  // however it is tilted, where its box is as thick as it is wide: where the bone runs parallel to the face
+  // (a reamer seated in the glenoid, a flat reamer on a plateau) the box's corners reach far nearer the face
+  // than the patch does, and a search bounded by boxes alone opens every node down to the size of the gap.
+  // Ranged along the axis (z) and, for a shell, along the direction from the centre to the box's middle
+  // (|x - c| >= u . (x - c) for unit u); never looser than box().
+  double node(const Vec3& lo, const Vec3& hi, const BvhSlab& slab) const {
+    double zlo, zhi;
+    regionRange(lo, hi, slab, axis_, zlo, zhi);
+    double gap = std::max({0.0, zlo - z0_ - r_.zMax, r_.zMin - (zhi - z0_)});
+    if (r_.shell) {
+      Vec3 u = (lo + hi) * 0.5 - centre_;
+      const double len = norm(u);
+      if (len > 0) {
+        u = u / len;
+        double ulo, uhi;
+        regionRange(lo, hi, slab, u, ulo, uhi);
+        const double uc = dot(u, centre_);
+        gap = std::max(gap, ulo - uc - r_.rOut - 1e-12 * (std::abs(uc) + r_.rOut));
+      }
+    }
+    return std::max(gap * gap, box(lo, hi));
+  }
+
   // Is a's box centre nearer the region's middle surface (sphere or plane) than b's? A search for a crossing
   // looks there first.
   bool nearerToSurface(const BvhNode& a, const BvhNode& b) const { return offset(a) < offset(b); }
