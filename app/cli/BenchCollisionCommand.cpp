@@ -532,7 +532,8 @@ int runBenchCollision(const std::vector<std::string>& args) {
   json handHeld = nullptr;
   if (!ticks.empty()) {
     std::vector<double> contactUs, distanceUs, byKind[3], distanceByKind[2];
-    std::size_t contactPairs = 0, distancePairs = 0;
+    std::vector<double> penetrationUs, overlapUs, penetrationByKind[2];
+    std::size_t contactPairs = 0, distancePairs = 0, penetrationPairs = 0;
     contactUs.reserve(ticks.size());
     distanceUs.reserve(ticks.size());
     for (const HandHeldTick& tick : ticks) {  // in order, as the device sends them
@@ -546,6 +547,14 @@ int runBenchCollision(const std::vector<std::string>& args) {
       distanceUs.push_back(microsSince(t0));
       distanceByKind[d.distanceMm == 0].push_back(distanceUs.back());
       distancePairs += d.trianglePairs;
+      t0 = Clock::now();
+      const PenetrationResult pr = collider.axialPenetration(rm, tick.to);
+      penetrationUs.push_back(microsSince(t0));
+      penetrationByKind[pr.penetrating].push_back(penetrationUs.back());
+      penetrationPairs += pr.trianglePairs;
+      t0 = Clock::now();
+      (void)collider.overlap(rm, tick.to, OverlapMode::AnyContact);
+      overlapUs.push_back(microsSince(t0));
     }
     auto withMax = [](const std::vector<double>& us) {
       json j = summary(us);
@@ -559,7 +568,12 @@ int runBenchCollision(const std::vector<std::string>& args) {
                              "caches stay warm, unlike the random poses of `queries`"},
                 {"ticks", ticks.size()},
                 {"first_contact", withMax(contactUs)},
-                {"min_distance", withMax(distanceUs)}};
+                {"min_distance", withMax(distanceUs)},
+                {"penetration_depth", withMax(penetrationUs)},
+                {"overlap_any", withMax(overlapUs)}};
+    handHeld["penetration_depth"]["mean_triangle_pairs"] = double(penetrationPairs) / double(ticks.size());
+    handHeld["penetration_depth"]["by_outcome"] = {{"apart", withMax(penetrationByKind[0])},
+                                                   {"penetrating", withMax(penetrationByKind[1])}};
     handHeld["first_contact"]["mean_triangle_pairs"] = double(contactPairs) / double(ticks.size());
     handHeld["min_distance"]["mean_triangle_pairs"] = double(distancePairs) / double(ticks.size());
     handHeld["min_distance"]["by_outcome"] = {{"apart", withMax(distanceByKind[0])},

@@ -188,3 +188,48 @@ TEST(collisionPenetrationProperty, BundledScapulaOpen) {
   EXPECT_EQ(c.queries, kScapulaQueries);
   EXPECT_GT(c.hits, 1000u);
 }
+
+// Pressed into a bone that runs parallel to it, where every pair of the contact starts near 0 and many
+// end near the depth: the cap (sphere radius 16) 0.05-0.5 mm into the wall of a 17 mm spherical cavity
+// (triangles turned inwards: the bone is around the hole), the flat reamer into the slab's top within 2
+// degrees of parallel. The sweep's node bounds from the two trees' slabs are tested where they prune most.
+TEST(collisionPenetrationProperty, PressedIntoAParallelBone) {
+  const Vec3 o{3, -2, 1};
+  TriangleMesh cavity = icosphere(3, 17, o);
+  for (Triangle& t : cavity.triangles) std::swap(t[1], t[2]);
+  const TriangleBvh cavityBvh = TriangleBvh::fromMesh(cavity), slabBvh = TriangleBvh::fromMesh(slab());
+  const ReamerModel round = ReamerModel::fromSpec(test::smallSpec(false, 24, 6));
+  const ReamerModel flat = ReamerModel::fromSpec(test::smallSpec(true, 24, 6));
+  std::mt19937_64 rng(44);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto unit = [&] {
+    Vec3 v;
+    do v = {u(rng), u(rng), u(rng)};
+    while (squaredNorm(v) > 1 || squaredNorm(v) < 1e-4);
+    return normalized(v);
+  };
+  std::size_t deep = 0;
+  for (int i = 0; i < 300; ++i) {
+    const bool cup = i % 2 == 0;
+    const double press = 0.05 + 0.45 * std::abs(u(rng));
+    Pose p;
+    if (cup) {  // sphere centre = tip - 16 axis, 1 mm + press from the cavity's centre (a hair off the axis)
+      p.axis = unit();
+      p.tip = o + p.axis * (17 + press) + unit() * (0.3 * std::abs(u(rng)));
+    } else {
+      p.axis = normalized(Vec3{0, 0, -1} + unit() * std::tan(2 * 3.14159265358979 / 180 * std::abs(u(rng))));
+      p.tip = {8 * u(rng), 8 * u(rng), 20 - press};
+    }
+    p.rollDeg = 180 * u(rng);
+    const RigidTransform T = toTransform(p);
+    const TriangleMesh& bone = cup ? cavity : slab();
+    const ReamerModel& reamer = cup ? round : flat;
+    const PenetrationResult ref = bruteForceAxialPenetration(bone, reamer, T, true);
+    const PenetrationResult got = queryAxialPenetration(cup ? cavityBvh : slabBvh, reamer, T, true);
+    EXPECT_EQ(got.penetrating, ref.penetrating) << "query " << i;
+    EXPECT_NEAR(got.depthMm, ref.depthMm, kChainToleranceRelative * reamer.radius()) << "query " << i;
+    if (::testing::Test::HasFailure()) return;
+    deep += ref.depthMm > 0.04;
+  }
+  EXPECT_GT(deep, 250u);  // nearly all pressed in, as set up
+}

@@ -20,12 +20,20 @@ using detail::PoseFrame;
 
 struct AxialScratch {
   std::vector<std::uint32_t> nodeStamp, triStamp;
-  std::vector<Vec3> lo, hi;
+  std::vector<Vec3> lo, hi;  // reamer nodes' world boxes
+  std::vector<Vec3> axis;    // reamer nodes' slab axes in the world
+  std::vector<double> axisAtTip;  // axis . tip
   std::vector<std::array<Vec3, 3>> tri;
   std::vector<Vec3> tlo, thi;
   std::uint32_t stamp = 0;
   void begin(std::size_t nodes, std::size_t tris) {
-    if (nodeStamp.size() < nodes) { nodeStamp.resize(nodes, 0); lo.resize(nodes); hi.resize(nodes); }
+    if (nodeStamp.size() < nodes) {
+      nodeStamp.resize(nodes, 0);
+      lo.resize(nodes);
+      hi.resize(nodes);
+      axis.resize(nodes);
+      axisAtTip.resize(nodes);
+    }
     if (triStamp.size() < tris) { triStamp.resize(tris, 0); tri.resize(tris); tlo.resize(tris); thi.resize(tris); }
     if (++stamp == 0) {
       std::fill(nodeStamp.begin(), nodeStamp.end(), 0);
@@ -36,10 +44,13 @@ struct AxialScratch {
 };
 thread_local AxialScratch tlsAxial;
 
-// The run of touch intervals as a sweep in back-out distance: (bone node, reamer node) pairs come out of a
-// min-heap in order of where their box interval starts, triangle pairs in order of where their exact
-// interval starts; the run grows while the next item starts before its end (+ tolerance). Nothing that starts
-// after the run ends is ever evaluated, and every pair is evaluated once.
+// The run of touch intervals as a sweep in back-out distance. The run's end E is the least fixpoint of
+// E = max{hi of the intervals with lo <= E + tol} (from 0, or from the first contact backing out): items
+// (bone node, reamer node) pairs with their box interval, triangle pairs with their exact interval) wait in
+// a min-heap on where they start until the run reaches them, then in a max-heap on where they can end, and
+// the one reaching farthest is taken first. So the deepest contact raises the end early and everything
+// that cannot pass it is dropped unopened: with the cap pressed into a glenoid every pair starts near 0,
+// and a sweep in order of the start opened them all. Every pair is evaluated at most once.
 class AxialSweep {
  public:
   AxialSweep(const TriangleBvh& bone, const ReamerModel& reamer, const PoseFrame& frame, const Vec3& u, double tol)
@@ -54,23 +65,42 @@ class AxialSweep {
   bool run(bool touching, double& depth, Vec3& point) {
     started_ = touching;
     end_ = 0;
-    heap_.clear();
+    waiting_.clear();
+    reached_.clear();
     pushNodes(bone_.root(), rtree_.root());
-    while (!heap_.empty()) {
-      const Item top = heap_.front();
-      if (started_ && top.key > end_ + tol_) break;
-      std::pop_heap(heap_.begin(), heap_.end());
-      heap_.pop_back();
-      if (top.hi < floor() - tol_) continue;  // ends before the run's current end
+    while (true) {
+      if (!started_) {
+        // Until the first contact: in order of the start (node keys bound their pairs' starts from below).
+        if (waiting_.empty()) break;
+        std::pop_heap(waiting_.begin(), waiting_.end(), startsLater);
+        const Item top = waiting_.back();
+        waiting_.pop_back();
+        if (!top.interval) {
+          expand(top.b, top.r);
+          continue;
+        }
+        started_ = true;
+        end_ = std::max(top.key, 0.0);
+        point_ = top.point;
+        if (top.hi > end_) end_ = top.hi;
+        continue;
+      }
+      while (!waiting_.empty() && waiting_.front().key <= end_ + tol_) {
+        std::pop_heap(waiting_.begin(), waiting_.end(), startsLater);
+        reach(waiting_.back());
+        waiting_.pop_back();
+      }
+      if (reached_.empty()) break;  // nothing else starts before the run's end
+      std::pop_heap(reached_.begin(), reached_.end(), endsSooner);
+      const Item top = reached_.back();
+      reached_.pop_back();
+      if (top.hi <= end_) {  // the farthest-reaching cannot extend the run: none of them can
+        reached_.clear();
+        continue;
+      }
       if (top.interval) {
-        if (!started_) {
-          started_ = true;
-          end_ = std::max(top.key, 0.0);
-        }
-        if (top.key <= end_ + tol_ && top.hi > end_) {
-          end_ = top.hi;
-          point_ = top.point;
-        }
+        end_ = top.hi;
+        point_ = top.point;
         continue;
       }
       expand(top.b, top.r);
@@ -86,18 +116,83 @@ class AxialSweep {
     std::int32_t b, r;
     bool interval;
     Vec3 point;
-    bool operator<(const Item& o) const { return key > o.key; }  // min-heap
   };
+  static bool startsLater(const Item& a, const Item& b) { return a.key > b.key; }  // min-heap on the start
+  static bool endsSooner(const Item& a, const Item& b) { return a.hi < b.hi; }     // max-heap on the end
   double floor() const { return started_ ? end_ : 0.0; }
   void push(const Item& it) {
-    heap_.push_back(it);
-    std::push_heap(heap_.begin(), heap_.end());
+    if (started_ && it.key <= end_ + tol_) {
+      reach(it);
+      return;
+    }
+    waiting_.push_back(it);
+    std::push_heap(waiting_.begin(), waiting_.end(), startsLater);
+  }
+  void reach(const Item& it) {
+    if (it.hi <= end_) return;  // cannot extend the run
+    reached_.push_back(it);
+    std::push_heap(reached_.begin(), reached_.end(), endsSooner);
   }
 
   void worldBox(std::int32_t r) {
     if (sc_.nodeStamp[r] == sc_.stamp) return;
     frame_.localBoxToWorld(rtree_.nodes()[r].lo, rtree_.nodes()[r].hi, sc_.lo[r], sc_.hi[r]);
+    sc_.axis[r] = frame_.R * rtree_.slab(r).axis;
+    sc_.axisAtTip[r] = dot(sc_.axis[r], frame_.t);
     sc_.nodeStamp[r] = sc_.stamp;
+  }
+
+  // Where backing out can make the pair's triangles meet, from the reamer node's slab: its triangles lie
+  // within [lo, hi] along the slab's axis n (reamer frame), and backed out by d a world point x lies at
+  // n' . (x - tip) + d n.z along it (n' = R n; the tip moves by -d u and n' . u = n.z). The bone node's box
+  // ∩ slab ranges n' . x, so d is confined to where the two ranges overlap. A cap patch is thin along its
+  // normal, which is nearly the axis, so this is far tighter than the boxes' interval, which grows with the
+  // boxes' thickness along the axis. False if they cannot meet at any d.
+  bool slabInterval(std::int32_t b, std::int32_t r, double& dlo, double& dhi) const {
+    const BvhSlab& rs = rtree_.slab(r);
+    double alo, ahi;
+    regionRange(bone_.nodes()[b].lo, bone_.nodes()[b].hi, bone_.slab(b), sc_.axis[r], alo, ahi);
+    const double c = sc_.axisAtTip[r];
+    const double pad = 1e-12 * (std::abs(c) + std::abs(alo) + std::abs(ahi) + std::abs(rs.lo) + std::abs(rs.hi)) + 1e-300;
+    alo -= c + pad;
+    ahi -= c - pad;
+    const double k = rs.axis.z;
+    if (std::abs(k) < 1e-9) {  // the slab runs along the axis: backing out does not move it across
+      dlo = -std::numeric_limits<double>::infinity();
+      dhi = std::numeric_limits<double>::infinity();
+      return alo <= rs.hi && ahi >= rs.lo;
+    }
+    double a = (rs.lo - ahi) / k, z = (rs.hi - alo) / k;
+    if (a > z) std::swap(a, z);
+    const double slack = 1e-12 * (std::abs(a) + std::abs(z)) + 1e-300;
+    dlo = a - slack;
+    dhi = z + slack;
+    return true;
+  }
+
+  // The same from the bone node's slab: its triangles lie within [lo, hi] along m (world); backed out by d
+  // a reamer point p lies at (R^T m) . p + m . tip - d m . u along it.
+  bool boneSlabInterval(std::int32_t b, std::int32_t r, double& dlo, double& dhi) const {
+    const BvhSlab& bs = bone_.slab(b);
+    double plo, phi;
+    regionRange(rtree_.nodes()[r].lo, rtree_.nodes()[r].hi, rtree_.slab(r), frame_.Rt * bs.axis, plo, phi);
+    const double c = dot(bs.axis, frame_.t);
+    const double pad = 1e-12 * (std::abs(c) + std::abs(plo) + std::abs(phi) + std::abs(bs.lo) + std::abs(bs.hi)) + 1e-300;
+    plo += c - pad;
+    phi += c + pad;
+    const double k = dot(bs.axis, u_);
+    if (std::abs(k) < 1e-9) {
+      dlo = -std::numeric_limits<double>::infinity();
+      dhi = std::numeric_limits<double>::infinity();
+      return plo <= bs.hi && phi >= bs.lo;
+    }
+    // Need plo - d k <= hi and phi - d k >= lo.
+    double a = (plo - bs.hi) / k, z = (phi - bs.lo) / k;
+    if (a > z) std::swap(a, z);
+    const double slack = 1e-12 * (std::abs(a) + std::abs(z)) + 1e-300;
+    dlo = a - slack;
+    dhi = z + slack;
+    return true;
   }
   void worldTri(std::uint32_t s) {
     if (sc_.triStamp[s] == sc_.stamp) return;
@@ -112,6 +207,14 @@ class AxialSweep {
     const BvhNode& B = bone_.nodes()[b];
     double dlo, dhi;
     if (!detail::axialBoxInterval(sc_.lo[r], sc_.hi[r], B.lo, B.hi, u_, dlo, dhi) || dhi < floor() - tol_) return;
+    double slo, shi;
+    if (!slabInterval(b, r, slo, shi)) return;
+    dlo = std::max(dlo, slo);
+    dhi = std::min(dhi, shi);
+    if (!boneSlabInterval(b, r, slo, shi)) return;
+    dlo = std::max(dlo, slo);
+    dhi = std::min(dhi, shi);
+    if (dlo > dhi || dhi < floor() - tol_) return;
     push({dlo, dhi, b, r, false, {}});
   }
 
@@ -160,7 +263,7 @@ class AxialSweep {
   Vec3 u_;
   double tol_;
   AxialScratch& sc_;
-  std::vector<Item> heap_;
+  std::vector<Item> waiting_, reached_;
   bool started_ = false;
   double end_ = 0;
   Vec3 point_;
