@@ -49,6 +49,11 @@ else:  # bench collision
     print(f"{sys.argv[2]}: faces {d['faces']}, build {d['build_ms']:.0f} ms, update {d['update_after_cut_ms']:.3f} ms, "
           f"min distance {q['min_distance']['median_us']:.1f} us, first contact {q['first_contact']['median_us']:.1f} us, "
           f"tick {q['first_contact_haptic_tick']['median_us']:.1f} us, targets {d.get('targets')}")
+    h = d.get("hand_held_path")
+    if h:
+        print("  hand-held path (median / p99 us): " + ", ".join(
+            f"{k.replace('_', ' ')} {h[k]['median_us']:.1f} / {h[k]['p99_us']:.1f}"
+            for k in ("first_contact", "min_distance", "penetration_depth", "overlap_any")))
 EOF
 }
 
