@@ -233,3 +233,60 @@ TEST(collisionPenetrationProperty, PressedIntoAParallelBone) {
   }
   EXPECT_GT(deep, 250u);  // nearly all pressed in, as set up
 }
+
+// Motions towards a bone that runs parallel to the reamer, where the hull search's node bounds decide the
+// most: the cap fed 0-1.5 mm towards the wall of a 17 mm spherical cavity from 0.05-1 mm away, turning by
+// up to 2 degrees, and the flat reamer towards the slab's top within 2 degrees of parallel.
+TEST(collisionFirstContactProperty, ApproachingAParallelBone) {
+  const Vec3 o{3, -2, 1};
+  TriangleMesh cavity = icosphere(3, 17, o);
+  for (Triangle& t : cavity.triangles) std::swap(t[1], t[2]);
+  const TriangleBvh cavityBvh = TriangleBvh::fromMesh(cavity), slabBvh = TriangleBvh::fromMesh(slab());
+  const ReamerModel round = ReamerModel::fromSpec(test::smallSpec(false, 24, 6));
+  const ReamerModel flat = ReamerModel::fromSpec(test::smallSpec(true, 24, 6));
+  std::mt19937_64 rng(45);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto unit = [&] {
+    Vec3 v;
+    do v = {u(rng), u(rng), u(rng)};
+    while (squaredNorm(v) > 1 || squaredNorm(v) < 1e-4);
+    return normalized(v);
+  };
+  std::size_t hits = 0;
+  for (int i = 0; i < 400; ++i) {
+    const bool cup = i % 2 == 0;
+    const double gap = 0.05 + 0.95 * std::abs(u(rng)), feed = 1.5 * std::abs(u(rng));
+    Pose p;
+    if (cup) {  // the cap's apex `gap` inside the wall (the cavity's radius 17, the cap's 16)
+      p.axis = unit();
+      p.tip = o + p.axis * (17 - gap) + unit() * (0.3 * std::abs(u(rng)));
+    } else {
+      p.axis = normalized(Vec3{0, 0, -1} + unit() * std::tan(2 * kPi / 180 * std::abs(u(rng))));
+      p.tip = {8 * u(rng), 8 * u(rng), 20 + 0.4 + gap};  // the rim tilts by <= 0.35 mm
+    }
+    p.rollDeg = 180 * u(rng);
+    const RigidTransform from = toTransform(p);
+    RigidTransform to = from;
+    to.translation = p.tip + p.axis * feed;
+    const Vec3 k = unit();
+    const double angle = 2 * kPi / 180 * std::abs(u(rng));
+    for (int c = 0; c < 3; ++c) {
+      const Vec3 r = test::rotate({from.rotation[c], from.rotation[3 + c], from.rotation[6 + c]}, k, angle);
+      to.rotation[c] = r.x;
+      to.rotation[3 + c] = r.y;
+      to.rotation[6 + c] = r.z;
+    }
+    const TriangleMesh& bone = cup ? cavity : slab();
+    const ReamerModel& reamer = cup ? round : flat;
+    const FirstContactResult ref = bruteForceFirstContact(bone, reamer, from, to);
+    const FirstContactResult got = queryFirstContact(cup ? cavityBvh : slabBvh, reamer, from, to);
+    EXPECT_EQ(got.hit, ref.hit) << "query " << i;
+    if (got.hit && ref.hit) {
+      EXPECT_NEAR(got.t, ref.t, 1e-9) << "query " << i;
+    }
+    if (::testing::Test::HasFailure()) return;
+    hits += got.hit;
+  }
+  EXPECT_GT(hits, 100u);
+  EXPECT_LT(hits, 350u);
+}

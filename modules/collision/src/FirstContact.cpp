@@ -255,12 +255,27 @@ class ToiSearch {
   }
 
   // Bone node b is the region of its box and its slab (BvhSlab). The ball against the slab first: for a
-  // patch of bone facing the cutting face that alone is nearly the exact time.
+  // patch of bone facing the cutting face that alone is nearly the exact time; then along the line from the
+  // ball to the node, against the box, and the reamer-frame slabs.
   double hullTime(std::int32_t b) const {
     const BvhNode& B = bone_.nodes()[b];
     const BvhSlab& slab = bone_.slab(b);
     double t = detail::axisSweepTime(detail::ballAlong(ball_, slab.axis), slab.lo, slab.hi, best_);
     if (!promising(t)) return t;
+    {
+      // Along the direction from the ball's start to the box's middle, over box ∩ slab: a patch the ball
+      // approaches off its own normal (the cap beside a curved bone) is thin along that line too, where its
+      // box is not (session 18: motions meeting the bone 1.8x faster at 405k).
+      Vec3 u = (B.lo + B.hi) * 0.5 - ball_.c0;
+      const double len = norm(u);
+      if (len > 0) {
+        u = u / len;
+        double ulo, uhi;
+        regionRange(B.lo, B.hi, slab, u, ulo, uhi);
+        t = std::max(t, detail::axisSweepTime(detail::ballAlong(ball_, u), ulo, uhi, best_));
+        if (!promising(t)) return t;
+      }
+    }
     t = std::max(t, detail::ballSweepTime(ball_, B.lo, B.hi, best_));
     for (const detail::AxisSweep& sweep : hullSlabs_) {
       if (!promising(t)) return t;
