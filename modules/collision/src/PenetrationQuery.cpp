@@ -218,6 +218,34 @@ class AxialSweep {
     push({dlo, dhi, b, r, false, {}});
   }
 
+  // Whether the two triangles can still touch at some back-out d >= floor, from their planes alone: the
+  // moving reamer triangle's plane must pass through the bone triangle, and the bone triangle's plane
+  // through the moving reamer triangle. Cheaper than the exact interval, which most pairs under a pressed
+  // cap do not need once the run has reached past them.
+  bool planesCanMeetBeyond(const Vec3 x[3], const BvhTriangle& bt, double floor) const {
+    auto latest = [&](const Vec3& n, double o, double vlo, double vhi, double rate, double& dmax) {
+      // The plane n . y = o - d rate (moving) against values [vlo, vhi] that stay: d <= dmax.
+      const double pad = 1e-10 * (std::abs(o) + std::abs(vlo) + std::abs(vhi)) + 1e-300;
+      if (std::abs(rate) <= 1e-12 * norm(n)) {
+        dmax = (o >= vlo - pad && o <= vhi + pad) ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+        return;
+      }
+      dmax = (rate > 0 ? o - (vlo - pad) : o - (vhi + pad)) / rate;
+      dmax += 1e-12 * std::abs(dmax);
+    };
+    const Vec3 n = cross(x[1] - x[0], x[2] - x[0]);
+    const double b0 = dot(n, bt.a), b1 = dot(n, bt.b), b2 = dot(n, bt.c);
+    double dmax;
+    latest(n, dot(n, x[0]), std::min({b0, b1, b2}), std::max({b0, b1, b2}), dot(n, u_), dmax);
+    if (dmax < floor) return false;
+    // The bone's plane m . y = m . a against the reamer's vertices moving by -d u: m . x_i - d (m . u).
+    const Vec3 m = cross(bt.b - bt.a, bt.c - bt.a);
+    const double x0 = dot(m, x[0]), x1 = dot(m, x[1]), x2 = dot(m, x[2]), mu = dot(m, u_);
+    // m . x_i - d mu = m . a  <=>  the plane m . y = m . a + d mu, moving at rate -mu, against the x values.
+    latest(m, dot(m, bt.a), std::min({x0, x1, x2}), std::max({x0, x1, x2}), -mu, dmax);
+    return dmax >= floor;
+  }
+
   void expand(std::int32_t b, std::int32_t r) {
     const BvhNode& B = bone_.nodes()[b];
     const BvhNode& R = rtree_.nodes()[r];
@@ -225,8 +253,8 @@ class AxialSweep {
       const double sb = (B.hi.x - B.lo.x) + (B.hi.y - B.lo.y) + (B.hi.z - B.lo.z);
       const double sr = (R.hi.x - R.lo.x) + (R.hi.y - R.lo.y) + (R.hi.z - R.lo.z);
       if (R.isLeaf() || (!B.isLeaf() && sb >= sr)) {
-        bone_.prefetchNode(B.left, false);  // both read below, behind an early return: overlap the misses
-        bone_.prefetchNode(B.right, false);
+        bone_.prefetchNode(B.left, true);  // both read below (node and slab), behind early returns: overlap
+        bone_.prefetchNode(B.right, true);  // the misses
         pushNodes(B.left, r);
         pushNodes(B.right, r);
       } else {
@@ -248,6 +276,7 @@ class AxialSweep {
         double dlo, dhi;
         if (!detail::axialBoxInterval(sc_.tlo[rs[j]], sc_.thi[rs[j]], blo, bhi, u_, dlo, dhi) || dhi < floor() - tol_)
           continue;
+        if (!planesCanMeetBeyond(x, bt, floor() - tol_)) continue;
         if (!detail::shadowsOverlap(x, bt, u_)) continue;
         ++pairs;
         const AxialInterval iv = detail::axialInterval(x, bt, u_);
