@@ -194,20 +194,11 @@ TEST(collisionPenetrationProperty, BundledScapulaOpen) {
 // (triangles turned inwards: the bone is around the hole), the flat reamer into the slab's top within 2
 // degrees of parallel. The sweep's node bounds from the two trees' slabs are tested where they prune most.
 TEST(collisionPenetrationProperty, PressedIntoAParallelBone) {
-  const Vec3 o{3, -2, 1};
-  TriangleMesh cavity = icosphere(3, 17, o);
-  for (Triangle& t : cavity.triangles) std::swap(t[1], t[2]);
-  const TriangleBvh cavityBvh = TriangleBvh::fromMesh(cavity), slabBvh = TriangleBvh::fromMesh(slab());
-  const ReamerModel round = ReamerModel::fromSpec(test::smallSpec(false, 24, 6));
-  const ReamerModel flat = ReamerModel::fromSpec(test::smallSpec(true, 24, 6));
+  const ParallelBones bones(3);
+  const Vec3& o = bones.centre;
   std::mt19937_64 rng(44);
   std::uniform_real_distribution<double> u(-1, 1);
-  auto unit = [&] {
-    Vec3 v;
-    do v = {u(rng), u(rng), u(rng)};
-    while (squaredNorm(v) > 1 || squaredNorm(v) < 1e-4);
-    return normalized(v);
-  };
+  auto unit = [&] { return randomUnit(rng); };
   std::size_t deep = 0;
   for (int i = 0; i < 300; ++i) {
     const bool cup = i % 2 == 0;
@@ -222,10 +213,10 @@ TEST(collisionPenetrationProperty, PressedIntoAParallelBone) {
     }
     p.rollDeg = 180 * u(rng);
     const RigidTransform T = toTransform(p);
-    const TriangleMesh& bone = cup ? cavity : slab();
-    const ReamerModel& reamer = cup ? round : flat;
+    const TriangleMesh& bone = cup ? bones.cavity : slab();
+    const ReamerModel& reamer = cup ? bones.round : bones.flat;
     const PenetrationResult ref = bruteForceAxialPenetration(bone, reamer, T, true);
-    const PenetrationResult got = queryAxialPenetration(cup ? cavityBvh : slabBvh, reamer, T, true);
+    const PenetrationResult got = queryAxialPenetration(cup ? bones.cavityBvh : bones.slabBvh, reamer, T, true);
     EXPECT_EQ(got.penetrating, ref.penetrating) << "query " << i;
     EXPECT_NEAR(got.depthMm, ref.depthMm, kChainToleranceRelative * reamer.radius()) << "query " << i;
     if (::testing::Test::HasFailure()) return;
@@ -238,20 +229,11 @@ TEST(collisionPenetrationProperty, PressedIntoAParallelBone) {
 // most: the cap fed 0-1.5 mm towards the wall of a 17 mm spherical cavity from 0.05-1 mm away, turning by
 // up to 2 degrees, and the flat reamer towards the slab's top within 2 degrees of parallel.
 TEST(collisionFirstContactProperty, ApproachingAParallelBone) {
-  const Vec3 o{3, -2, 1};
-  TriangleMesh cavity = icosphere(3, 17, o);
-  for (Triangle& t : cavity.triangles) std::swap(t[1], t[2]);
-  const TriangleBvh cavityBvh = TriangleBvh::fromMesh(cavity), slabBvh = TriangleBvh::fromMesh(slab());
-  const ReamerModel round = ReamerModel::fromSpec(test::smallSpec(false, 24, 6));
-  const ReamerModel flat = ReamerModel::fromSpec(test::smallSpec(true, 24, 6));
+  const ParallelBones bones(3);
+  const Vec3& o = bones.centre;
   std::mt19937_64 rng(45);
   std::uniform_real_distribution<double> u(-1, 1);
-  auto unit = [&] {
-    Vec3 v;
-    do v = {u(rng), u(rng), u(rng)};
-    while (squaredNorm(v) > 1 || squaredNorm(v) < 1e-4);
-    return normalized(v);
-  };
+  auto unit = [&] { return randomUnit(rng); };
   std::size_t hits = 0;
   for (int i = 0; i < 400; ++i) {
     const bool cup = i % 2 == 0;
@@ -276,10 +258,10 @@ TEST(collisionFirstContactProperty, ApproachingAParallelBone) {
       to.rotation[3 + c] = r.y;
       to.rotation[6 + c] = r.z;
     }
-    const TriangleMesh& bone = cup ? cavity : slab();
-    const ReamerModel& reamer = cup ? round : flat;
+    const TriangleMesh& bone = cup ? bones.cavity : slab();
+    const ReamerModel& reamer = cup ? bones.round : bones.flat;
     const FirstContactResult ref = bruteForceFirstContact(bone, reamer, from, to);
-    const FirstContactResult got = queryFirstContact(cup ? cavityBvh : slabBvh, reamer, from, to);
+    const FirstContactResult got = queryFirstContact(cup ? bones.cavityBvh : bones.slabBvh, reamer, from, to);
     EXPECT_EQ(got.hit, ref.hit) << "query " << i;
     if (got.hit && ref.hit) {
       EXPECT_NEAR(got.t, ref.t, 1e-9) << "query " << i;

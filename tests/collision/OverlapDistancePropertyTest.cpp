@@ -115,19 +115,11 @@ TEST(collisionDistanceProperty, BundledScapula) {
 // radius 16) turns about the centre of a 17 mm spherical cavity, its centre up to 0.9 mm off; the flat
 // reamer hovers over the slab's top within 2 degrees of parallel.
 TEST(collisionDistanceProperty, ReamerSeatedInAConcaveBone) {
-  const Vec3 o{3, -2, 1};
-  const TriangleMesh cavity = icosphere(4, 17, o);
-  const TriangleBvh cavityBvh = TriangleBvh::fromMesh(cavity), slabBvh = TriangleBvh::fromMesh(slab());
-  const ReamerModel round = ReamerModel::fromSpec(test::smallSpec(false, 24, 6));
-  const ReamerModel flat = ReamerModel::fromSpec(test::smallSpec(true, 24, 6));
+  const ParallelBones bones(4);
+  const Vec3& o = bones.centre;
   std::mt19937_64 rng(24);
   std::uniform_real_distribution<double> u(-1, 1);
-  auto unit = [&] {
-    Vec3 v;
-    do v = {u(rng), u(rng), u(rng)};
-    while (squaredNorm(v) > 1 || squaredNorm(v) < 1e-4);
-    return normalized(v);
-  };
+  auto unit = [&] { return randomUnit(rng); };
   for (int i = 0; i < 600; ++i) {
     const bool seated = i % 2 == 0;
     Pose p;
@@ -140,10 +132,10 @@ TEST(collisionDistanceProperty, ReamerSeatedInAConcaveBone) {
     }
     p.rollDeg = 180 * u(rng);
     const RigidTransform T = toTransform(p);
-    const TriangleMesh& bone = seated ? cavity : slab();
-    const ReamerModel& reamer = seated ? round : flat;
+    const TriangleMesh& bone = seated ? bones.cavity : slab();
+    const ReamerModel& reamer = seated ? bones.round : bones.flat;
     const DistanceResult ref = bruteForceFaceDistance(bone, reamer, T);
-    const DistanceResult got = queryFaceDistance(seated ? cavityBvh : slabBvh, reamer, T);
+    const DistanceResult got = queryFaceDistance(seated ? bones.cavityBvh : bones.slabBvh, reamer, T);
     ASSERT_TRUE(ref.found && got.found);
     EXPECT_GT(ref.distanceMm, 0) << "query " << i;  // apart: the nearest search decides, not the crossing
     EXPECT_NEAR(got.distanceMm, ref.distanceMm, 1e-9 * (1 + ref.distanceMm)) << "query " << i;

@@ -3,6 +3,7 @@
 #include <cstddef>
 
 #include "CollisionFixtures.h"
+#include "reamsim/collision/TriangleBvh.h"
 
 namespace reamsim::test {
 
@@ -21,6 +22,32 @@ inline const TriangleMesh& slab() {
 inline const TriangleMesh& scapula() {
   static const TriangleMesh m = bundledScapula();
   return m;
+}
+
+// Bones that run parallel to the reamer, as the glenoid runs beside a seated reamer, for the property tests
+// of the node bounds where they decide the most: the wall of a 17 mm spherical cavity about `centre` (faces
+// turned inwards: the bone is around the hole) and the slab's top, with the cap (sphere radius 16, so 1 mm
+// from the wall when the two centres meet) and the flat reamer, both finer than smallSpec's default.
+struct ParallelBones {
+  Vec3 centre{3, -2, 1};
+  TriangleMesh cavity;
+  TriangleBvh cavityBvh, slabBvh;
+  ReamerModel round = ReamerModel::fromSpec(smallSpec(false, 24, 6));
+  ReamerModel flat = ReamerModel::fromSpec(smallSpec(true, 24, 6));
+  explicit ParallelBones(int subdivisions) : cavity(icosphere(subdivisions, 17, centre)) {
+    for (Triangle& t : cavity.triangles) std::swap(t[1], t[2]);
+    cavityBvh = TriangleBvh::fromMesh(cavity);
+    slabBvh = TriangleBvh::fromMesh(slab());
+  }
+};
+
+// A random unit vector (rejection sampling in the unit ball).
+inline Vec3 randomUnit(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Vec3 v;
+  do v = {u(rng), u(rng), u(rng)};
+  while (squaredNorm(v) > 1 || squaredNorm(v) < 1e-4);
+  return normalized(v);
 }
 
 }  // namespace reamsim::test
