@@ -287,6 +287,8 @@ int runBenchCollision(const std::vector<std::string>& args) {
   if (cutMode != "auto" && cutMode != "exact" && cutMode != "dent")
     throw UsageError("--cut must be auto, exact or dent, not '" + cutMode + "'");
   if (n < 10) throw UsageError("--poses must be at least 10");
+  const int handApproaches = static_cast<int>(a.number("hand-held-approaches", 8));
+  if (handApproaches < 0) throw UsageError("--hand-held-approaches must be 0 (none) or more");
 
   // Bone: used as given (no repair): the bench measures the mesh it is pointed at.
   TriangleMesh mesh;
@@ -526,7 +528,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
   }
   // --- a hand-held session at the site, tick by tick (HandHeldPath.h): the warm-cache figures a device sees ---
   HandHeldPathOptions handOptions;
-  handOptions.approaches = static_cast<int>(a.number("hand-held-approaches", 8));
+  handOptions.approaches = handApproaches;
   handOptions.seed = seed;
   const std::vector<HandHeldTick> ticks = handHeldPath(collider, rm, site.point, site.outward, handOptions);
   json handHeld = nullptr;

@@ -129,4 +129,7 @@ TEST(collisionBenchCli, BadInputIsAClearError) {
   r = run("bench collision --bone " + kBone + " --segments 2");
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.err.find("segments"), std::string::npos) << r.err;
+  r = run("bench collision --bone " + kBone + " --hand-held-approaches -1");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--hand-held-approaches"), std::string::npos) << r.err;
 }
