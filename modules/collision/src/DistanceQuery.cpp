@@ -59,10 +59,11 @@ class FaceDistanceSearch {
  private:
   double nodeBound(std::int32_t b) const {
     const BvhNode& B = bone_.nodes()[b];
-    // The nearest search bounds nodes by box and slab (FaceRegionBounds::node: a reamer seated in the glenoid
-    // opened ~1,000 nodes a query by boxes alone); the crossing search by the box alone (with the slab it
-    // opened fewer nodes but took longer on random poses: docs/COLLISION.md, session 18).
-    const double region = crossing_ ? region_.box(B.lo, B.hi) : region_.node(B.lo, B.hi, bone_.slab(b));
+    // Box and slab (FaceRegionBounds::node): with boxes alone a reamer seated in the glenoid opened ~1,000
+    // nodes a distance query, and the crossing search (also the start test of first contact and overlap)
+    // had twice the tail on a hand-held path; random poses that touch pay ~2 us for the slab reads
+    // (docs/COLLISION.md, session 18).
+    const double region = region_.node(B.lo, B.hi, bone_.slab(b));
     return std::max(boxSquaredDistance(B.lo, B.hi, faceLo_, faceHi_), region);
   }
 
@@ -77,8 +78,8 @@ class FaceDistanceSearch {
       if (!triangle) {  // its children are read when it is taken: fetch them now (see prefetchNode)
         const BvhNode& N = bone_.nodes()[b];
         if (!N.isLeaf()) {
-          bone_.prefetchNode(N.left, !crossing_);
-          bone_.prefetchNode(N.right, !crossing_);
+          bone_.prefetchNode(N.left, true);
+          bone_.prefetchNode(N.right, true);
         }
       }
       heap_.push_back({lb, b, triangle});
