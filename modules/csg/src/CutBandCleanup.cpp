@@ -40,6 +40,39 @@ struct VertexStar {
   bool movable = false;    // double coordinates, no defect face about it, all its faces found, not collapsed
 };
 
+// Local face ids by bone slot: a flat array kept between cuts (one per thread), valid where its stamp is
+// the current cut's, so that a cut neither clears nor hashes (the outcome test looks up every face its
+// boxes meet).
+class SlotIndex {
+ public:
+  void begin() {
+    if (++epoch_ == 0) {
+      std::fill(stamp_.begin(), stamp_.end(), 0);
+      epoch_ = 1;
+    }
+  }
+  int find(std::uint32_t slot) const { return slot < stamp_.size() && stamp_[slot] == epoch_ ? id_[slot] : -1; }
+  // The id of `slot`, or `id` given to it now; `added` says which.
+  int insert(std::uint32_t slot, int id, bool& added) {
+    if (slot >= stamp_.size()) {
+      stamp_.resize(std::size_t(slot) + 1 + slot / 2, 0);
+      id_.resize(stamp_.size());
+    }
+    added = stamp_[slot] != epoch_;
+    if (added) {
+      stamp_[slot] = epoch_;
+      id_[slot] = id;
+    }
+    return id_[slot];
+  }
+
+ private:
+  std::vector<std::uint32_t> stamp_;
+  std::vector<int> id_;
+  std::uint32_t epoch_ = 0;
+};
+thread_local SlotIndex tlsSlotIndex;
+
 class Cleanup {
  public:
   // checkEachOperation: every operation is tested for self-intersections before it is taken; otherwise the
@@ -47,7 +80,9 @@ class Cleanup {
   Cleanup(const BoneState& state, TriangleGrid& grid, const std::function<bool(std::uint32_t)>& frozenVertex,
           const std::function<bool(std::uint32_t)>& frozenFace, const BandCleanup& options, bool checkEachOperation)
       : checkEach_(checkEachOperation), state_(state), boneGrid_(grid), frozenVertex_(frozenVertex), frozenFace_(frozenFace), opt_(options),
-        minAngle_(options.minAngleDeg * kPi / 180), cosMinAngle_(std::cos(minAngle_)) {}
+        minAngle_(options.minAngleDeg * kPi / 180), cosMinAngle_(std::cos(minAngle_)) {
+    localOfSlot_.begin();
+  }
 
   CleanupPlan run(const std::vector<std::uint32_t>& seeds) {
     CleanupPlan plan;
@@ -65,7 +100,6 @@ class Cleanup {
       for (std::uint32_t v : state_.triangle(s)) domain.add(at(v));
     made_.init(domain.bounds(), seeds.size(), 2.0);
     // Sized for the faces and vertices a cut's band looks at, so that the maps are not rehashed as they grow.
-    localOfSlot_.reserve(4 * seeds.size());
     star_.reserve(2 * seeds.size());
     faces_.reserve(4 * seeds.size());
     std::vector<int> work, made;
@@ -128,9 +162,9 @@ class Cleanup {
     const Box3 b = boxOf(m.v);
     boneGrid_.queryShared(b, hits);
     for (std::uint32_t s : hits) {
-      const auto it = localOfSlot_.find(s);
-      if (it != localOfSlot_.end()) {
-        const LocalFace& lf = faces_[it->second];
+      const int local = localOfSlot_.find(s);
+      if (local >= 0) {
+        const LocalFace& lf = faces_[local];
         if (!lf.alive) continue;
         if (lf.frozen || lf.exactVertex || meets(m.v, lf.v)) return false;
         continue;
@@ -147,13 +181,14 @@ class Cleanup {
 
   // The local face of a bone slot, made on first use.
   int localFace(std::uint32_t slot) {
-    const auto [it, added] = localOfSlot_.try_emplace(slot, static_cast<int>(faces_.size()));
+    bool added = false;
+    const int id = localOfSlot_.insert(slot, static_cast<int>(faces_.size()), added);
     if (added) {
       const Triangle& t = state_.triangle(slot);
       faces_.push_back({{t[0], t[1], t[2]}, slot, true, frozenFace_(slot),
                         frozenVertex_(t[0]) || frozenVertex_(t[1]) || frozenVertex_(t[2])});
     }
-    return it->second;
+    return id;
   }
 
   // The faces about v: the bone's (each face with v has a grid box holding v's position), gathered on first
@@ -468,7 +503,7 @@ class Cleanup {
   const double cosMinAngle_;
 
   std::vector<LocalFace> faces_;  // bone faces looked at (by localFace) and faces made here
-  std::unordered_map<std::uint32_t, int> localOfSlot_;
+  SlotIndex& localOfSlot_ = tlsSlotIndex;  // this thread's; begun anew by the constructor
   std::unordered_map<std::uint32_t, VertexStar> star_;
   TriangleGrid made_;  // the faces made here (local ids), by box
   std::vector<std::uint32_t> hits_;
