@@ -17,7 +17,7 @@ struct HandHeldTick {
 struct HandHeldPathOptions {
   int approaches = 8;           // each from its own direction, up to maxTiltDeg off the site's normal
   double maxTiltDeg = 15;
-  double maxAimOffsetMm = 2;    // where each approach aims, across the normal from the site
+  double maxAimOffsetMm = 2;    // each approach aims within ± this of the site along two axes across its normal
   double startGapMm = 3;        // the approach starts this far (along its axis) before the first contact
   double pressMm = 0.5;         // and goes this far beyond it (no cut is made: the reamer sinks in)
   double feedMmPerTick = 0.02;  // 20 mm/s at 1 kHz
