@@ -12,7 +12,6 @@
 #include <QString>
 #include <QTimer>
 #include <QUndoStack>
-#include <atomic>
 #include <deque>
 #include <memory>
 #include <optional>

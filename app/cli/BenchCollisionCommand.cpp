@@ -74,7 +74,6 @@ std::vector<double> timeEach(std::size_t n, F&& f, double budgetSeconds = 1e300,
 Vec3 rotate(const Vec3& v, const Vec3& k, double angle) {
   return v * std::cos(angle) + cross(k, v) * std::sin(angle) + k * (dot(k, v) * (1 - std::cos(angle)));
 }
-Vec3 perpendicular(const Vec3& n) { return normalized(cross(n, std::abs(n.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0})); }
 
 // Area-weighted surface samples: a point and its triangle's unit normal.
 class SurfaceSampler {
@@ -109,7 +108,7 @@ Pose poseNear(const SurfaceSampler& s, std::mt19937_64& rng, double minOffset, d
   std::uniform_real_distribution<double> u(0, 1);
   Vec3 p, n;
   s.sample(rng, p, n);
-  const Vec3 k = rotate(perpendicular(n), n, 2 * kPi * u(rng));
+  const Vec3 k = rotate(anyPerpendicular(n), n, 2 * kPi * u(rng));
   Pose pose;
   pose.axis = normalized(rotate(-n, k, maxTiltDeg * kPi / 180 * u(rng)));
   pose.tip = p - pose.axis * (minOffset + (maxOffset - minOffset) * u(rng));
@@ -330,7 +329,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
     const Pose s = poseNear(sampler, rng, 0.5, 3.0, 20);
     const RigidTransform f = toTransform(s);
     RigidTransform t = turned(f, normalized(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5}), 5 * kPi / 180 * u(rng));
-    t.translation = s.tip + s.axis * (4 * u(rng)) + perpendicular(s.axis) * (0.5 * (u(rng) - 0.5));
+    t.translation = s.tip + s.axis * (4 * u(rng)) + anyPerpendicular(s.axis) * (0.5 * (u(rng) - 0.5));
     from.push_back(f);
     to.push_back(t);
     // Haptic tick: one 1 ms step of a hand-held device at up to 100 mm/s and 100 deg/s (<= 0.1 mm of travel,
@@ -345,7 +344,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
       hf = toTransform(hs);
       hf.translation = hs.tip + hs.axis * std::max(0.0, 6.0 * touch.t - 0.1 * u(rng));
       ht = turned(hf, normalized(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5}), 0.1 * kPi / 180 * u(rng));
-      ht.translation = hf.translation + hs.axis * (0.1 * u(rng)) + perpendicular(hs.axis) * (0.02 * (u(rng) - 0.5));
+      ht.translation = hf.translation + hs.axis * (0.1 * u(rng)) + anyPerpendicular(hs.axis) * (0.02 * (u(rng) - 0.5));
       if (touch.hit && touch.t > 0) break;
     }
     tickFrom.push_back(hf);

@@ -1,18 +1,12 @@
 #include "HandHeldPath.h"
 
-#include <algorithm>
 #include <cmath>
 #include <random>
-
 
 namespace reamsim::cli {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-Vec3 anyPerpendicular(const Vec3& n) {
-  return normalized(cross(n, std::abs(n.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
-}
 
 }  // namespace
 

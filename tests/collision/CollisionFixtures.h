@@ -84,11 +84,6 @@ inline Vec3 triangleNormal(const TriangleMesh& m, std::size_t i) {
   return normalized(cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]));
 }
 
-inline Vec3 anyPerpendicular(const Vec3& n) {
-  const Vec3 r = std::abs(n.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  return normalized(cross(n, r));
-}
-
 // v rotated about the unit axis k by angle (Rodrigues).
 inline Vec3 rotate(const Vec3& v, const Vec3& k, double angle) {
   return v * std::cos(angle) + cross(k, v) * std::sin(angle) + k * (dot(k, v) * (1 - std::cos(angle)));

@@ -44,7 +44,7 @@ bool surfacesTouch(const TriangleMesh& bone, const ReamerModel& reamer, const Ri
 std::pair<RigidTransform, RigidTransform> randomMotion(const TriangleMesh& bone, std::mt19937_64& rng, std::size_t i) {
   std::uniform_real_distribution<double> u(0, 1);
   const Pose start = i % 5 == 4 ? test::poseNearSurface(bone, rng, -1, 0.3, 30) : test::poseNearSurface(bone, rng, 0.3, 3, 30);
-  const Vec3 lateral = test::anyPerpendicular(start.axis) * (u(rng) - 0.5);
+  const Vec3 lateral = anyPerpendicular(start.axis) * (u(rng) - 0.5);
   const Vec3 tip1 = start.tip + start.axis * (5 * u(rng) - 0.5) + lateral;
   const Vec3 k = normalized(Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
   // Mostly small turns; every 50th motion turns by more than 90 degrees (several path segments).

@@ -91,7 +91,7 @@ AxialInterval axialInterval(const Vec3 (&x)[3], const BvhTriangle& bone, const V
 
 bool shadowsOverlap(const Vec3 (&x)[3], const BvhTriangle& bone, const Vec3& u) {
   // 2D coordinates in the plane across u, relative to the first reamer vertex.
-  const Vec3 e1 = normalized(cross(u, std::abs(u.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  const Vec3 e1 = anyPerpendicular(u);
   const Vec3 e2 = cross(u, e1);
   double ax[3], ay[3], bx[3], by[3];
   const Vec3 B[3] = {bone.a, bone.b, bone.c};

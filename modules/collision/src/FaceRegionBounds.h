@@ -48,16 +48,11 @@ class FaceRegionBounds {
     double zlo, zhi;
     regionRange(lo, hi, slab, axis_, zlo, zhi);
     double gap = std::max({0.0, zlo - z0_ - r_.zMax, r_.zMin - (zhi - z0_)});
-    if (r_.shell) {
-      Vec3 u = (lo + hi) * 0.5 - centre_;
-      const double len = norm(u);
-      if (len > 0) {
-        u = u / len;
-        double ulo, uhi;
-        regionRange(lo, hi, slab, u, ulo, uhi);
-        const double uc = dot(u, centre_);
-        gap = std::max(gap, ulo - uc - r_.rOut - 1e-12 * (std::abs(uc) + r_.rOut));
-      }
+    Vec3 u;
+    double ulo, uhi;
+    if (r_.shell && regionRangeFrom(lo, hi, slab, centre_, u, ulo, uhi)) {
+      const double uc = dot(u, centre_);
+      gap = std::max(gap, ulo - uc - r_.rOut - 1e-12 * (std::abs(uc) + r_.rOut));
     }
     return std::max(gap * gap, box(lo, hi));
   }

@@ -44,6 +44,23 @@ struct AxialScratch {
 };
 thread_local AxialScratch tlsAxial;
 
+// The back-out distances d at which the range [alo, ahi] along an axis, moving by d * rate, overlaps [lo, hi]
+// (a node's range and the other node's slab), widened for the rounding of the divisions. False when they
+// never overlap.
+bool overlapWhileBackingOut(double alo, double ahi, double rate, double lo, double hi, double& dlo, double& dhi) {
+  if (std::abs(rate) < 1e-9) {  // the axis runs across the back-out direction: the ranges do not move
+    dlo = -std::numeric_limits<double>::infinity();
+    dhi = std::numeric_limits<double>::infinity();
+    return alo <= hi && ahi >= lo;
+  }
+  double a = (lo - ahi) / rate, z = (hi - alo) / rate;
+  if (a > z) std::swap(a, z);
+  const double slack = 1e-12 * (std::abs(a) + std::abs(z)) + 1e-300;
+  dlo = a - slack;
+  dhi = z + slack;
+  return true;
+}
+
 // The run of touch intervals as a sweep in back-out distance. The run's end E is the least fixpoint of
 // E = max{hi of the intervals with lo <= E + tol} (from 0, or from the first contact backing out): items
 // (bone node, reamer node) pairs with their box interval, triangle pairs with their exact interval) wait in
@@ -154,20 +171,7 @@ class AxialSweep {
     regionRange(bone_.nodes()[b].lo, bone_.nodes()[b].hi, bone_.slab(b), sc_.axis[r], alo, ahi);
     const double c = sc_.axisAtTip[r];
     const double pad = 1e-12 * (std::abs(c) + std::abs(alo) + std::abs(ahi) + std::abs(rs.lo) + std::abs(rs.hi)) + 1e-300;
-    alo -= c + pad;
-    ahi -= c - pad;
-    const double k = rs.axis.z;
-    if (std::abs(k) < 1e-9) {  // the slab runs along the axis: backing out does not move it across
-      dlo = -std::numeric_limits<double>::infinity();
-      dhi = std::numeric_limits<double>::infinity();
-      return alo <= rs.hi && ahi >= rs.lo;
-    }
-    double a = (rs.lo - ahi) / k, z = (rs.hi - alo) / k;
-    if (a > z) std::swap(a, z);
-    const double slack = 1e-12 * (std::abs(a) + std::abs(z)) + 1e-300;
-    dlo = a - slack;
-    dhi = z + slack;
-    return true;
+    return overlapWhileBackingOut(alo - c - pad, ahi - c + pad, rs.axis.z, rs.lo, rs.hi, dlo, dhi);
   }
 
   // The same from the bone node's slab: its triangles lie within [lo, hi] along m (world); backed out by d
@@ -178,21 +182,7 @@ class AxialSweep {
     regionRange(rtree_.nodes()[r].lo, rtree_.nodes()[r].hi, rtree_.slab(r), frame_.Rt * bs.axis, plo, phi);
     const double c = dot(bs.axis, frame_.t);
     const double pad = 1e-12 * (std::abs(c) + std::abs(plo) + std::abs(phi) + std::abs(bs.lo) + std::abs(bs.hi)) + 1e-300;
-    plo += c - pad;
-    phi += c + pad;
-    const double k = dot(bs.axis, u_);
-    if (std::abs(k) < 1e-9) {
-      dlo = -std::numeric_limits<double>::infinity();
-      dhi = std::numeric_limits<double>::infinity();
-      return plo <= bs.hi && phi >= bs.lo;
-    }
-    // Need plo - d k <= hi and phi - d k >= lo.
-    double a = (plo - bs.hi) / k, z = (phi - bs.lo) / k;
-    if (a > z) std::swap(a, z);
-    const double slack = 1e-12 * (std::abs(a) + std::abs(z)) + 1e-300;
-    dlo = a - slack;
-    dhi = z + slack;
-    return true;
+    return overlapWhileBackingOut(plo + c - pad, phi + c + pad, -dot(bs.axis, u_), bs.lo, bs.hi, dlo, dhi);
   }
   void worldTri(std::uint32_t s) {
     if (sc_.triStamp[s] == sc_.stamp) return;

@@ -32,6 +32,16 @@ void regionRange(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3
   outHi = std::min(bhi, shi + whi) + pad;
 }
 
+bool regionRangeFrom(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& p, Vec3& u, double& outLo,
+                     double& outHi) {
+  u = (lo + hi) * 0.5 - p;
+  const double len = norm(u);
+  if (!(len > 0)) return false;
+  u = u / len;
+  regionRange(lo, hi, slab, u, outLo, outHi);
+  return true;
+}
+
 Bounds TriangleBvh::bounds() const {
   Bounds b;
   if (root_ >= 0) {

@@ -58,6 +58,11 @@ struct BvhSlab {
 // w normal to the slab's axis n, so u.x lies within a [slab.lo, slab.hi] + the box's range of w.x; the
 // box's own range of u.x also holds, and the tighter of the two is returned.
 void regionRange(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& u, double& outLo, double& outHi);
+// The same along the unit direction u from point p to the box's middle (false, nothing set, when p is that
+// middle). A patch seen from a point off its own normal is thin along that line too, where its box is not:
+// |x - p| >= u . (x - p) bounds the distance from p, and a ball about p is ranged along u as an interval.
+bool regionRangeFrom(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& p, Vec3& u, double& outLo,
+                     double& outHi);
 
 struct BvhUpdateStats {
   std::size_t removed = 0;

@@ -41,6 +41,10 @@ inline Vec3 normalized(const Vec3& v) {
   const double n = norm(v);
   return n > 0 ? v / n : Vec3{};
 }
+// A unit vector perpendicular to n (n nonzero): across n from whichever of x and y is farther from it.
+inline Vec3 anyPerpendicular(const Vec3& n) {
+  return normalized(cross(n, std::abs(n.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+}
 // The smallest interior angle of the triangle abc, in radians: the angle opposite the shortest edge (atan2
 // of |u × w| and u · w: accurate for slivers, where acos of the cosine is not).
 inline double smallestAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
