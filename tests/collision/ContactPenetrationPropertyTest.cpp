@@ -9,6 +9,7 @@
 
 #include "CollisionFixtures.h"
 #include "PropertyBones.h"
+#include "TestMeshes.h"
 #include "reamsim/collision/BruteForce.h"
 #include "reamsim/collision/FirstContact.h"
 #include "reamsim/collision/PenetrationQuery.h"
@@ -271,4 +272,42 @@ TEST(collisionFirstContactProperty, ApproachingAParallelBone) {
   }
   EXPECT_GT(hits, 100u);
   EXPECT_LT(hits, 350u);
+}
+
+// The reamer's body (not its cutting face) already in the bone: a box through the cylinder wall, below the
+// cap. A parametric reamer tests the body and back at the start only when its sweep meets bone its ideal
+// solid reaches there (FirstContact.cpp), so this is the case where that test has to fire: time 0, whatever
+// the motion, as the brute force says.
+TEST(collisionFirstContact, BodyTouchingAtTheStartIsTimeZero) {
+  for (const bool flat : {false, true}) {
+    const ReamerModel reamer = ReamerModel::fromSpec(test::smallSpec(flat));
+    const ReamerModel::IdealSolid& id = reamer.idealSolid();
+    ASSERT_TRUE(id.valid);
+    const double capBase = flat ? 0.0 : id.capBaseZ;
+    ASSERT_LT(id.zBack + 2, capBase - 1);
+    const TriangleMesh box = test::makeBox({id.radius - 0.5, -1, id.zBack + 1}, {id.radius + 4, 1, capBase - 1});
+    const TriangleBvh bvh = TriangleBvh::fromMesh(box);
+    const RigidTransform from;  // the reamer's own frame
+    for (const Vec3& move : {Vec3{-5, 0, 0}, Vec3{5, 0, 0}, Vec3{0, 0, 3}, Vec3{0, 0, 0}}) {
+      RigidTransform to = from;
+      to.translation = move;
+      const FirstContactResult got = queryFirstContact(bvh, reamer, from, to);
+      const FirstContactResult ref = bruteForceFirstContact(box, reamer, from, to);
+      ASSERT_TRUE(ref.hit);
+      EXPECT_EQ(ref.t, 0.0);
+      EXPECT_TRUE(got.hit) << "flat " << flat;
+      EXPECT_EQ(got.t, 0.0) << "flat " << flat;
+      EXPECT_EQ(got.feature, ContactFeature::Initial) << "flat " << flat;
+      EXPECT_TRUE(surfacesTouch(box, reamer, from));
+    }
+    // Moved 0.3 mm clear of the wall, the start is apart and the contact comes later.
+    const TriangleMesh clear = test::makeBox({id.radius + 0.3, -1, id.zBack + 1}, {id.radius + 4, 1, capBase - 1});
+    RigidTransform to = from;
+    to.translation = {1, 0, 0};
+    const FirstContactResult got = queryFirstContact(TriangleBvh::fromMesh(clear), reamer, from, to);
+    const FirstContactResult ref = bruteForceFirstContact(clear, reamer, from, to);
+    ASSERT_TRUE(ref.hit && got.hit);
+    EXPECT_GT(got.t, 0.2);
+    EXPECT_NEAR(got.t, ref.t, 1e-9);
+  }
 }

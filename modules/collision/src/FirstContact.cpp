@@ -30,7 +30,13 @@ struct ToiItem {
   // BoneTriangle: (bone slot, -1 for its first window, else its bitset of offered reamer slots).
   std::int32_t b, r;
   Kind kind;
-  bool operator<(const ToiItem& o) const { return slb > o.slb; }  // min-heap
+  // Min-heap on slb; on ties (many items start at 0 when the reamer starts near bone) bone triangles first,
+  // then the deeper bone node (children follow their parent in the tree's array): depth-first among them.
+  bool operator<(const ToiItem& o) const {
+    if (slb != o.slb) return slb > o.slb;
+    if (kind != o.kind) return kind < o.kind;
+    return b < o.b;
+  }
 };
 
 // Per-thread scratch: reamer node boxes rotated by R0 and reamer triangles rotated by R0, filled on first use;
@@ -84,6 +90,20 @@ struct ToiScratch {
 };
 thread_local ToiScratch tlsScratch;
 
+// Touching at the start (time 0): fills `out` from the touching pair.
+FirstContactResult touchAtStart(const TriangleBvh& bone, const detail::TouchPair& touch) {
+  FirstContactResult out;
+  const BvhTriangle& bt = bone.triangle(touch.boneSlot);
+  out.hit = true;
+  out.t = 0;
+  out.point = touch.point;
+  out.normal = normalized(cross(bt.b - bt.a, bt.c - bt.a));
+  out.boneSlot = touch.boneSlot;
+  out.reamerTriangle = touch.reamerTriangle;
+  out.feature = ContactFeature::Initial;
+  return out;
+}
+
 // Best-first search for the earliest contact along one segment, on lower bounds of the time things can
 // first meet; everything that cannot meet before the best contact so far is dropped, and triangle pairs
 // that survive get the exact cubic events.
@@ -102,8 +122,12 @@ thread_local ToiScratch tlsScratch;
 // patch thin).
 class ToiSearch {
  public:
-  ToiSearch(const TriangleBvh& bone, const ReamerModel& reamer, const SegmentMotion& m, FirstContactResult& out)
-      : bone_(bone), rtree_(reamer.solidBvh()), radius_(reamer.solidNodeRadius()), slabs_(reamer.solidNodeSlabs()),
+  // `untestedStart`: the pose at s = 0, when whether the reamer's body and back touch the bone there is
+  // still open (see run()).
+  ToiSearch(const TriangleBvh& bone, const ReamerModel& reamer, const SegmentMotion& m, FirstContactResult& out,
+            const RigidTransform* untestedStart = nullptr)
+      : bone_(bone), reamer_(reamer), untestedStart_(untestedStart), rtree_(reamer.solidBvh()),
+        radius_(reamer.solidNodeRadius()), slabs_(reamer.solidNodeSlabs()),
         m_(m), out_(out),
         sc_(tlsScratch) {
     sc_.begin(rtree_.nodes().size(), rtree_.slotCapacity());
@@ -129,6 +153,18 @@ class ToiSearch {
       if (it.kind == Item::Triangles) {
         exact(it.b, it.r);
         continue;
+      }
+      // The body and back at s = 0: a bone triangle they touch is one the ideal solid reaches there, so its
+      // leaf's item comes before every later one and before any triangle pair is solved (pairs are queued
+      // no earlier than their bone triangle). A reamer starting clear of the bone tests nothing here.
+      if (untestedStart_ && it.slb <= kStartSlack && it.kind == Item::BoneOnly && bn[it.b].isLeaf()) {
+        detail::TouchPair touch;
+        if (detail::restTouchesBone(bone_, reamer_, *untestedStart_, &touch)) {
+          out_ = touchAtStart(bone_, touch);
+          sHit = 0;
+          return true;
+        }
+        untestedStart_ = nullptr;
       }
       if (it.kind == Item::BoneTriangle) {
         pairWithinWindow(static_cast<std::uint32_t>(it.b), it.slb, it.r);
@@ -262,11 +298,12 @@ class ToiSearch {
     const BvhSlab& slab = bone_.slab(b);
     double t = detail::axisSweepTime(detail::ballAlong(ball_, slab.axis), slab.lo, slab.hi, best_);
     if (!promising(t)) return t;
+    const BoxSlabRegion region(B.lo, B.hi, slab);
     // Along the line from the ball's start to the node: a patch the ball approaches off its own normal (the
     // cap beside a curved bone) is thin along it too (session 18: motions meeting the bone 1.8x faster at 405k).
     Vec3 u;
     double ulo, uhi;
-    if (regionRangeFrom(B.lo, B.hi, slab, ball_.c0, u, ulo, uhi)) {
+    if (region.rangeFrom(ball_.c0, u, ulo, uhi)) {
       t = std::max(t, detail::axisSweepTime(detail::ballAlong(ball_, u), ulo, uhi, best_));
       if (!promising(t)) return t;
     }
@@ -274,7 +311,7 @@ class ToiSearch {
     for (const detail::AxisSweep& sweep : hullSlabs_) {
       if (!promising(t)) return t;
       double plo, phi;
-      regionRange(B.lo, B.hi, slab, sweep.axis, plo, phi);
+      region.range(sweep.axis, plo, phi);
       t = std::max(t, detail::axisSweepTime(sweep, plo, phi, best_));
     }
     return t;
@@ -476,7 +513,12 @@ class ToiSearch {
     out_.reamerTriangle = static_cast<std::uint32_t>(reamerSlot);
   }
 
+  // Bounds this close to 0 may be a contact at s = 0 rounded up.
+  static constexpr double kStartSlack = 1e-12;
+
   const TriangleBvh& bone_;
+  const ReamerModel& reamer_;
+  const RigidTransform* untestedStart_;
   const TriangleBvh& rtree_;
   const std::vector<double>& radius_;
   const std::vector<ReamerModel::NodeSlab>& slabs_;
@@ -498,24 +540,18 @@ FirstContactResult queryFirstContact(const TriangleBvh& bone, const ReamerModel&
                                      const RigidTransform& to) {
   FirstContactResult out;
   if (bone.empty()) return out;
-  // Touching at the start: time 0 (the search below then knows the surfaces start apart).
+  // Touching at the start: time 0 (the search below then knows the surfaces start apart). The cutting face
+  // first, through its thin region; a parametric reamer's body and back only if its sweep meets bone the
+  // ideal solid reaches at the start (ToiSearch::run), which a reamer starting clear of the bone does not.
+  const bool sweepTestsRest = reamer.idealSolid().valid;
   detail::TouchPair touch;
-  if (detail::surfacesTouch(bone, reamer, from, &touch)) {
-    const BvhTriangle& bt = bone.triangle(touch.boneSlot);
-    out.hit = true;
-    out.t = 0;
-    out.point = touch.point;
-    out.normal = normalized(cross(bt.b - bt.a, bt.c - bt.a));
-    out.boneSlot = touch.boneSlot;
-    out.reamerTriangle = touch.reamerTriangle;
-    out.feature = ContactFeature::Initial;
-    return out;
-  }
+  if (sweepTestsRest ? detail::faceTouchesBone(bone, reamer, from, &touch) : detail::surfacesTouch(bone, reamer, from, &touch))
+    return touchAtStart(bone, touch);
   const MotionPlan plan = MotionPlan::between(from, to);
   for (int i = 0; i < plan.segments; ++i) {
     double s;
     FirstContactResult seg;
-    if (ToiSearch(bone, reamer, plan.segment(i), seg).run(s)) {
+    if (ToiSearch(bone, reamer, plan.segment(i), seg, i == 0 && sweepTestsRest ? &from : nullptr).run(s)) {
       seg.hit = true;
       seg.t = std::min(1.0, (i + s) / plan.segments);
       seg.trianglePairs += out.trianglePairs;

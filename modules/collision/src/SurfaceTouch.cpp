@@ -10,7 +10,11 @@ namespace reamsim::detail {
 
 bool surfacesTouch(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where) {
   if (bone.empty()) return false;
-  if (faceTouchesBone(bone, reamer, pose, where)) return true;
+  return faceTouchesBone(bone, reamer, pose, where) || restTouchesBone(bone, reamer, pose, where);
+}
+
+bool restTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where) {
+  if (bone.empty()) return false;
   const TriangleBvh& rest = reamer.restBvh();
   if (rest.empty()) return false;
   const PoseFrame frame(pose);

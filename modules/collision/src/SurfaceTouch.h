@@ -1,7 +1,7 @@
 #pragma once
 // Internal: do the posed reamer surface and the bone surface touch (closed triangles, touching counts)?
 // The cutting face is searched first through its thin region (DistanceQuery.cpp), then the body and back
-// through a plain two-frame BVH-vs-BVH traversal. First hit wins.
+// through a plain two-frame BVH-vs-BVH traversal. First hit wins. Each half is also callable alone.
 #include <cstdint>
 
 #include "reamsim/collision/ReamerModel.h"
@@ -17,6 +17,9 @@ struct TouchPair {
 };
 
 bool faceTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);
+// The body and back alone (first contact asks only when its sweep finds bone the ideal solid reaches at the
+// start, FirstContact.cpp).
+bool restTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);
 bool surfacesTouch(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);
 
 }  // namespace reamsim::detail

@@ -12,36 +12,6 @@ namespace reamsim {
 
 using namespace bvh_detail;
 
-void regionRange(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& u, double& outLo, double& outHi) {
-  const Vec3 c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
-  auto boxRange = [&](const Vec3& v, double& rlo, double& rhi) {
-    const double vc = dot(v, c), vh = std::abs(v.x) * h.x + std::abs(v.y) * h.y + std::abs(v.z) * h.z;
-    rlo = vc - vh;
-    rhi = vc + vh;
-  };
-  double blo, bhi;
-  boxRange(u, blo, bhi);
-  const double a = dot(u, slab.axis);
-  const Vec3 w = u - slab.axis * a;
-  double wlo, whi;
-  boxRange(w, wlo, whi);
-  const double slo = a >= 0 ? a * slab.lo : a * slab.hi, shi = a >= 0 ? a * slab.hi : a * slab.lo;
-  // Rounding of the products and sums above: relative to the magnitudes involved.
-  const double pad = 1e-12 * (std::abs(dot(u, c)) + std::abs(slab.lo) + std::abs(slab.hi) + h.x + h.y + h.z) + 1e-300;
-  outLo = std::max(blo, slo + wlo) - pad;
-  outHi = std::min(bhi, shi + whi) + pad;
-}
-
-bool regionRangeFrom(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& p, Vec3& u, double& outLo,
-                     double& outHi) {
-  u = (lo + hi) * 0.5 - p;
-  const double len = norm(u);
-  if (!(len > 0)) return false;
-  u = u / len;
-  regionRange(lo, hi, slab, u, outLo, outHi);
-  return true;
-}
-
 Bounds TriangleBvh::bounds() const {
   Bounds b;
   if (root_ >= 0) {

@@ -16,7 +16,9 @@
 //      the edits, so an update costs O(edits log n) amortised. See docs/COLLISION.md.
 // Boxes are padded (kBoxPadRelative x the triangle's extent + an absolute term) so that the Moeller-Trumbore
 // barycentric slack and rounding never let a query miss a triangle that the brute force would report.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -56,13 +58,44 @@ struct BvhSlab {
 
 // Range of u.x over the region box [lo, hi] ∩ slab, conservatively (padded for rounding): u = a n + w with
 // w normal to the slab's axis n, so u.x lies within a [slab.lo, slab.hi] + the box's range of w.x; the
-// box's own range of u.x also holds, and the tighter of the two is returned.
-void regionRange(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& u, double& outLo, double& outHi);
-// The same along the unit direction u from point p to the box's middle (false, nothing set, when p is that
-// middle). A patch seen from a point off its own normal is thin along that line too, where its box is not:
-// |x - p| >= u . (x - p) bounds the distance from p, and a ball about p is ranged along u as an interval.
-bool regionRangeFrom(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& p, Vec3& u, double& outLo,
-                     double& outHi);
+// box's own range of u.x also holds, and the tighter of the two is returned. Inline, with the box's middle
+// and half-extent kept, because a search ranges each node it meets along several axes.
+struct BoxSlabRegion {
+  Vec3 c, h;  // the box's middle and half-extent
+  const BvhSlab& slab;
+  BoxSlabRegion(const Vec3& lo, const Vec3& hi, const BvhSlab& s) : c((lo + hi) * 0.5), h((hi - lo) * 0.5), slab(s) {}
+  void range(const Vec3& u, double& outLo, double& outHi) const {
+    const double uc = dot(u, c);
+    const double uh = std::abs(u.x) * h.x + std::abs(u.y) * h.y + std::abs(u.z) * h.z;
+    const double a = dot(u, slab.axis);
+    const Vec3 w = u - slab.axis * a;
+    const double wc = dot(w, c), wh = std::abs(w.x) * h.x + std::abs(w.y) * h.y + std::abs(w.z) * h.z;
+    const double slo = a >= 0 ? a * slab.lo : a * slab.hi, shi = a >= 0 ? a * slab.hi : a * slab.lo;
+    // Rounding of the products and sums above: relative to the magnitudes involved.
+    const double pad = 1e-12 * (std::abs(uc) + std::abs(slab.lo) + std::abs(slab.hi) + h.x + h.y + h.z) + 1e-300;
+    outLo = std::max(uc - uh, slo + (wc - wh)) - pad;
+    outHi = std::min(uc + uh, shi + (wc + wh)) + pad;
+  }
+  // The same along the unit direction u from point p to the box's middle (false, nothing set, when p is
+  // that middle). A patch seen from a point off its own normal is thin along that line too, where its box
+  // is not: |x - p| >= u . (x - p) bounds the distance from p, and a ball about p is ranged along u as an
+  // interval.
+  bool rangeFrom(const Vec3& p, Vec3& u, double& outLo, double& outHi) const {
+    u = c - p;
+    const double len = norm(u);
+    if (!(len > 0)) return false;
+    u = u / len;
+    range(u, outLo, outHi);
+    return true;
+  }
+};
+inline void regionRange(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& u, double& outLo, double& outHi) {
+  BoxSlabRegion(lo, hi, slab).range(u, outLo, outHi);
+}
+inline bool regionRangeFrom(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& p, Vec3& u, double& outLo,
+                            double& outHi) {
+  return BoxSlabRegion(lo, hi, slab).rangeFrom(p, u, outLo, outHi);
+}
 
 struct BvhUpdateStats {
   std::size_t removed = 0;
