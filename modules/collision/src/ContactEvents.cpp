@@ -29,25 +29,6 @@ double l1(const Vec3& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z);
 double sum3(const Vec3 (&c)[3]) { return l1(c[0]) + l1(c[1]) + l1(c[2]); }
 double sum4(const Vec3 (&c)[4]) { return l1(c[0]) + l1(c[1]) + l1(c[2]) + l1(c[3]); }
 
-// The times s in [0, smax] satisfying linear constraints c0 + c1 s <= 0.
-struct TimeWindow {
-  double lo = 0, hi;
-  explicit TimeWindow(double smax) : hi(smax) {}
-  void clip(double c0, double c1) {
-    if (c1 == 0) {
-      if (c0 > 0) hi = -1;
-    } else if (c1 > 0) {
-      hi = std::min(hi, -c0 / c1);
-    } else {
-      lo = std::max(lo, -c0 / c1);
-    }
-  }
-  // The first time of the window (shaded down for rounding), +inf when it is empty.
-  double earliest() const {
-    return lo <= hi * (1 + 1e-12) + 1e-300 ? lo * (1 - 1e-12) : std::numeric_limits<double>::infinity();
-  }
-};
-
 Vec3 unitOr(const Vec3& v, const Vec3& fallback) {
   const double n = norm(v);
   return n > 0 ? v / n : fallback;
@@ -81,16 +62,6 @@ void sweptTriangleBox(const SegmentMotion& m, const Mat3& rotAtSmax, const Vec3 
                                                                       std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)}));
   lo -= Vec3{pad, pad, pad};
   hi += Vec3{pad, pad, pad};
-}
-
-double sweptBoxTime(const Vec3& lo0, const Vec3& hi0, const Vec3& rateLo, const Vec3& rateHi, const Vec3& blo,
-                    const Vec3& bhi, double smax) {
-  TimeWindow w(smax);
-  for (int i = 0; i < 3; ++i) {
-    w.clip(lo0[i] - bhi[i], rateLo[i]);   // lower face reaches the other box's upper face
-    w.clip(blo[i] - hi0[i], -rateHi[i]);  // upper face reaches the other box's lower face
-  }
-  return w.earliest();
 }
 
 // Rot(phi) q = q + phi (k x q) + e with |e| <= (phi^2/2 + phi^3/6)|q|, and phi <= 2 tau s <= 2 tau for s <= 1.
@@ -135,13 +106,6 @@ AxisSweep axisSweep(const SegmentMotion& m, const Vec3& nLocal, double dlo, doub
   return a;
 }
 
-double axisSweepTime(const AxisSweep& a, double blo, double bhi, double smax) {
-  TimeWindow w(smax);
-  w.clip(a.lo0 - bhi, a.rateLo);   // the sweep's low end reaches the interval's high end
-  w.clip(blo - a.hi0, -a.rateHi);  // the sweep's high end reaches the interval's low end
-  return w.earliest();
-}
-
 void projectBox(const Vec3& axis, const Vec3& lo, const Vec3& hi, double& plo, double& phi) {
   const Vec3 c = (lo + hi) * 0.5, h = (hi - lo) * 0.5;
   const double pc = dot(axis, c);
@@ -162,18 +126,6 @@ BallSweep ballSweep(const SegmentMotion& m, const Vec3& centreLocal, double radi
   const double scale = std::max({std::abs(b.c0.x), std::abs(b.c0.y), std::abs(b.c0.z)}) + norm(b.d) + radius + q;
   b.radius = radius + stray + 1e-9 * scale;
   return b;
-}
-
-AxisSweep ballAlong(const BallSweep& b, const Vec3& axis) {
-  AxisSweep a;
-  a.axis = axis;
-  const double c = dot(axis, b.c0), rate = dot(axis, b.d);
-  const double pad = 1e-12 * (std::abs(c) + b.radius + std::abs(rate)) + 1e-300;
-  a.lo0 = c - b.radius - pad;
-  a.hi0 = c + b.radius + pad;
-  a.rateLo = rate - pad;
-  a.rateHi = rate + pad;
-  return a;
 }
 
 double ballSweepTime(const BallSweep& b, const Vec3& lo, const Vec3& hi, double smax) {

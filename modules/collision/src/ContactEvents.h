@@ -1,11 +1,34 @@
 #pragma once
 // Internal: first contact of one moving reamer triangle with one fixed bone triangle along a segment
 // motion (the leaf test of queryFirstContact and of its brute-force reference).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "RationalMotion.h"
 #include "reamsim/collision/FirstContact.h"
 #include "reamsim/collision/TriangleBvh.h"
 
 namespace reamsim::detail {
+
+// The times s in [0, smax] satisfying linear constraints c0 + c1 s <= 0.
+struct TimeWindow {
+  double lo = 0, hi;
+  explicit TimeWindow(double smax) : hi(smax) {}
+  void clip(double c0, double c1) {
+    if (c1 == 0) {
+      if (c0 > 0) hi = -1;
+    } else if (c1 > 0) {
+      hi = std::min(hi, -c0 / c1);
+    } else {
+      lo = std::max(lo, -c0 / c1);
+    }
+  }
+  // The first time of the window (shaded down for rounding), +inf when it is empty.
+  double earliest() const {
+    return lo <= hi * (1 + 1e-12) + 1e-300 ? lo * (1 - 1e-12) : std::numeric_limits<double>::infinity();
+  }
+};
 
 struct PairContact {
   bool hit = false;
@@ -22,8 +45,16 @@ PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const V
 
 // Earliest s in [0, smax] at which a box whose faces move linearly (lower faces at rateLo, upper faces at
 // rateHi per axis, from [lo0, hi0] at s = 0) can overlap [blo, bhi]; +inf when it cannot.
-double sweptBoxTime(const Vec3& lo0, const Vec3& hi0, const Vec3& rateLo, const Vec3& rateHi, const Vec3& blo,
-                    const Vec3& bhi, double smax);
+// Inline, as the two below: the searches call them for every node and triangle they bound.
+inline double sweptBoxTime(const Vec3& lo0, const Vec3& hi0, const Vec3& rateLo, const Vec3& rateHi, const Vec3& blo,
+                           const Vec3& bhi, double smax) {
+  TimeWindow w(smax);
+  for (int i = 0; i < 3; ++i) {
+    w.clip(lo0[i] - bhi[i], rateLo[i]);   // lower face reaches the other box's upper face
+    w.clip(blo[i] - hi0[i], -rateHi[i]);  // upper face reaches the other box's lower face
+  }
+  return w.earliest();
+}
 
 // Conservative face rates of the moving box holding points q (offsets from the tip at s = 0) within
 // [qlo, qhi] (a box of radius r about the tip): translation, first-order rotation k x q over the box (its
@@ -44,7 +75,12 @@ AxisSweep axisSweep(const SegmentMotion& m, const Vec3& nLocal, double dlo, doub
                     const Vec3& phi, double r);
 // Earliest s in [0, smax] at which the sweep can overlap the fixed interval [blo, bhi] of the same axis;
 // +inf when it cannot.
-double axisSweepTime(const AxisSweep& a, double blo, double bhi, double smax);
+inline double axisSweepTime(const AxisSweep& a, double blo, double bhi, double smax) {
+  TimeWindow w(smax);
+  w.clip(a.lo0 - bhi, a.rateLo);   // the sweep's low end reaches the interval's high end
+  w.clip(blo - a.hi0, -a.rateHi);  // the sweep's high end reaches the interval's low end
+  return w.earliest();
+}
 // The projection of a fixed box on the sweep's axis, padded for rounding.
 void projectBox(const Vec3& axis, const Vec3& lo, const Vec3& hi, double& plo, double& phi);
 
@@ -58,7 +94,17 @@ struct BallSweep {
 // The ball of `radius` about the reamer-local point `centreLocal`, moving with the reamer.
 BallSweep ballSweep(const SegmentMotion& m, const Vec3& centreLocal, double radius);
 // The ball seen along a fixed world axis (unit): an AxisSweep for axisSweepTime against a slab.
-AxisSweep ballAlong(const BallSweep& b, const Vec3& axis);
+inline AxisSweep ballAlong(const BallSweep& b, const Vec3& axis) {
+  AxisSweep a;
+  a.axis = axis;
+  const double c = dot(axis, b.c0), rate = dot(axis, b.d);
+  const double pad = 1e-12 * (std::abs(c) + b.radius + std::abs(rate)) + 1e-300;
+  a.lo0 = c - b.radius - pad;
+  a.hi0 = c + b.radius + pad;
+  a.rateLo = rate - pad;
+  a.rateHi = rate + pad;
+  return a;
+}
 // Earliest s in [0, smax] at which the ball can meet the fixed box [lo, hi]; +inf when it cannot.
 double ballSweepTime(const BallSweep& b, const Vec3& lo, const Vec3& hi, double smax);
 
