@@ -10,6 +10,7 @@ PACKAGES=(
   libopenmesh-dev libhidapi-dev nlohmann-json3-dev
   libvtk-dicom-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libgoogle-perftools-dev
   xvfb xauth
 )
 

@@ -603,6 +603,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
 
   const BvhQuality q = bvh.quality();
   json out = {{"bench", "collision"},
+              {"allocator", allocatorName()},
               {"bone", {{"source", boneArg}, {"label", label}, {"faces", mesh.triangles.size()},
                         {"vertices", mesh.vertices.size()}, {"closed", collider.closed()},
                         {"bounds_diagonal_mm", boneBounds.diagonal()}}},

@@ -1,8 +1,15 @@
 // bench KIND ...: benchmarks that print one JSON object. Each kind lives in its own file.
+#include <dlfcn.h>
+
 #include "CliArgs.h"
 #include "Commands.h"
 
 namespace reamsim::cli {
+
+std::string allocatorName() {
+  // tcmalloc exports tc_malloc beside malloc; linked in (cmake/ReamSimAllocator.cmake) it serves malloc too.
+  return dlsym(RTLD_DEFAULT, "tc_malloc") ? "tcmalloc_minimal" : "glibc malloc";
+}
 
 int runBench(const std::vector<std::string>& args) {
   if (args.empty()) throw UsageError("bench needs a kind: cut, collision");

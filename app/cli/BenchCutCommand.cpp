@@ -428,6 +428,7 @@ int runBenchCut(const std::vector<std::string>& args) {
 
   nlohmann::json out = {
       {"bone", boneArg},
+      {"allocator", allocatorName()},
       {"subdivisions", subdivisions},
       {"reamer", spec.name},
       {"faces_start", bone.triangles.size()},

@@ -22,5 +22,7 @@ int runImportCt(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);     // bench KIND: dispatch (BenchCommand.cpp)
 int runBenchCut(const std::vector<std::string>& args);  // bench cut (BenchCutCommand.cpp)
 int runBenchCollision(const std::vector<std::string>& args);  // bench collision (BenchCollisionCommand.cpp)
+// The allocator serving malloc in this process, which the benchmarks report (BenchCommand.cpp).
+std::string allocatorName();
 
 }  // namespace reamsim::cli

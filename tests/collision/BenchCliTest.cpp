@@ -39,6 +39,7 @@ TEST(collisionBenchCli, PrintsOneJsonObjectWithEveryQueryType) {
   ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["faces"], 1543);
+  EXPECT_EQ(j["allocator"], REAMSIM_EXPECTED_ALLOCATOR);  // the timings' allocator, as linked
   EXPECT_EQ(j["bone"]["closed"], false);
   EXPECT_GT(j["build_ms"].get<double>(), 0.0);
   EXPECT_TRUE(j.contains("update_after_cut_ms"));
