@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <future>
 #include <map>
 #include <optional>
 #include <unordered_map>
@@ -495,7 +494,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   csg::TriangleGrid toolGrid;
   std::vector<IK::Triangle_3> toolTriangles;
   std::vector<char> toolDegenerate;
-  auto toolFaces = std::async(std::launch::async, [&] {
+  auto toolFaces = csg::inBackground([&] {
     toolGrid.init(toolBox.bounds(), toolMesh.triangles.size(), 4.0);
     toolTriangles.reserve(toolMesh.triangles.size());
     toolDegenerate.reserve(toolMesh.triangles.size());
@@ -661,7 +660,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   // Far faces grouped on a second thread while the corefinement runs: it reads the bone, the tool mesh,
   // the near flags and the vertex maps, none of which the corefinement touches (it edits only the two SMs).
   csg::FarFaceGroups<VI> farBoneGroups, farToolGroups;
-  auto farGrouping = std::async(std::launch::async, [&] {
+  auto farGrouping = csg::inBackground([&] {
     // Far bone faces: through a map of their directed edges.
     for (std::uint32_t i = 0; i < patchSlots.size(); ++i)
       if (!nearBone[i]) farBoneGroups.faces.push_back(i);
@@ -1105,7 +1104,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   const BoneState before = state;  // the check reads old vertices while the commit replaces `state`
   const auto exactBefore = exact;   // usually empty; restored if the cut is made again (below)
   double checkMs = 0;
-  std::future<bool> roundingSafe = std::async(std::launch::async, [&] {
+  auto roundingSafe = csg::inBackground([&] {
     const auto checkStart = std::chrono::steady_clock::now();
     // Close faces join `kept` (no longer needed by this thread's caller) with ids from uidCount on, unless
     // their vertices are patch vertices.

@@ -21,9 +21,10 @@
 
 #include <atomic>
 #include <cstddef>
-#include <future>
 #include <memory>
 #include <vector>
+
+#include "BackgroundTask.h"
 
 namespace reamsim::csg_detail {
 
@@ -50,7 +51,7 @@ class ExactAheadVisitor : public CGAL::Polygon_mesh_processing::Corefinement::De
     State& s = *state_;
     s.triangulating = true;
     if (s.points.size() < kMinimumPoints) return;
-    s.helper = std::async(std::launch::async, [&s] {
+    s.helper = csg::inBackground([&s] {
       for (std::size_t i = s.points.size(); i-- > 0;) {
         if (s.finishing.load(std::memory_order_relaxed)) break;
         (void)CGAL::exact(s.points[i]);
@@ -72,7 +73,7 @@ class ExactAheadVisitor : public CGAL::Polygon_mesh_processing::Corefinement::De
     std::vector<Point> points;  // every intersection point (twice if it split an edge of each mesh)
     bool triangulating = false;
     std::atomic<bool> finishing{false};
-    std::future<void> helper;
+    csg::BackgroundTask<void> helper;
     ~State() {
       finishing.store(true);
       if (helper.valid()) helper.wait();  // an exception in the corefinement must not leave it running
