@@ -45,12 +45,13 @@ class FaceRegionBounds {
   // Ranged along the axis (z) and, for a shell, along the direction from the centre to the box's middle
   // (|x - c| >= u . (x - c) for unit u); never looser than box().
   double node(const Vec3& lo, const Vec3& hi, const BvhSlab& slab) const {
+    const BoxSlabRegion region(lo, hi, slab);
     double zlo, zhi;
-    regionRange(lo, hi, slab, axis_, zlo, zhi);
+    region.range(axis_, zlo, zhi);
     double gap = std::max({0.0, zlo - z0_ - r_.zMax, r_.zMin - (zhi - z0_)});
     Vec3 u;
     double ulo, uhi;
-    if (r_.shell && regionRangeFrom(lo, hi, slab, centre_, u, ulo, uhi)) {
+    if (r_.shell && region.rangeFrom(centre_, u, ulo, uhi)) {
       const double uc = dot(u, centre_);
       gap = std::max(gap, ulo - uc - r_.rOut - 1e-12 * (std::abs(uc) + r_.rOut));
     }

@@ -92,10 +92,6 @@ struct BoxSlabRegion {
 inline void regionRange(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& u, double& outLo, double& outHi) {
   BoxSlabRegion(lo, hi, slab).range(u, outLo, outHi);
 }
-inline bool regionRangeFrom(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, const Vec3& p, Vec3& u, double& outLo,
-                            double& outHi) {
-  return BoxSlabRegion(lo, hi, slab).rangeFrom(p, u, outLo, outHi);
-}
 
 struct BvhUpdateStats {
   std::size_t removed = 0;
