@@ -38,20 +38,33 @@ class FaceDistanceSearch {
         out_(out) {
     frame_.localBoxToWorld(face_.nodes()[face_.root()].lo, face_.nodes()[face_.root()].hi, faceLo_, faceHi_);
     heap_.reserve(256);
+    frontier_.reserve(256);
     fstack_.reserve(64);
   }
 
   // Phase 1: a face triangle touching or crossing a bone triangle (distance 0). Only bone geometry meeting
-  // the face region can cross the face, which keeps this to the bone along the region's boundary.
-  bool findCrossing() {
+  // the face region can cross the face, which keeps this to the bone along the region's boundary. What it
+  // does not open (bounds above 0) and the triangles it tested are kept: they are where phase 2 starts.
+  bool findCrossing(bool keepFrontier) {
     crossing_ = true;
-    visit([&](double lb) { return lb > 0; });
-    crossing_ = false;
+    keepFrontier_ = keepFrontier;
+    frontier_.clear();
+    heap_.clear();
+    push(bone_.root(), nodeBound(bone_.root()), false);
+    search([&](double lb) { return lb > 0; });
+    crossing_ = keepFrontier_ = false;
     return found_ && best2_ == 0;
   }
 
-  // Phase 2: the nearest pair (no pair crosses).
-  void nearest() { visit([&](double lb) { return skip(lb); }); }
+  // Phase 2: the nearest pair (no pair crosses), best-first from phase 1's frontier: the nodes bounded
+  // there need not be bounded again (on a reamer hovering over the bone, about a fifth of them).
+  void nearest() {
+    heap_.clear();
+    for (const Item& it : frontier_)
+      if (!skip(it.lb)) heap_.push_back(it);
+    std::make_heap(heap_.begin(), heap_.end());
+    search([&](double lb) { return skip(lb); });
+  }
 
   bool found() const { return found_; }
   double best2() const { return best2_; }
@@ -70,22 +83,25 @@ class FaceDistanceSearch {
   // Best-first over the bone tree (a min-heap on the lower bound), so the first triangles measured are the
   // likely closest and the best distance drops early; everything whose bound reaches it is then dropped.
   // The crossing search only needs some crossing, not the nearest: plain depth-first order (no heap).
-  template <class Prune>
-  void visit(Prune&& prune) {
-    heap_.clear();
-    auto push = [&](std::int32_t b, double lb, bool triangle) {
-      if (prune(lb)) return;
-      if (!triangle) {  // its children are read when it is taken: fetch them now (see prefetchNode)
-        const BvhNode& N = bone_.nodes()[b];
-        if (!N.isLeaf()) {
-          bone_.prefetchNode(N.left, true);
-          bone_.prefetchNode(N.right, true);
-        }
+  void push(std::int32_t b, double lb, bool triangle) {
+    const Item item{lb, b, triangle};
+    if (crossing_ ? lb > 0 : skip(lb)) {
+      if (keepFrontier_) frontier_.push_back(item);
+      return;
+    }
+    if (!triangle) {  // its children are read when it is taken: fetch them now (see prefetchNode)
+      const BvhNode& N = bone_.nodes()[b];
+      if (!N.isLeaf()) {
+        bone_.prefetchNode(N.left, true);
+        bone_.prefetchNode(N.right, true);
       }
-      heap_.push_back({lb, b, triangle});
-      if (!crossing_) std::push_heap(heap_.begin(), heap_.end());
-    };
-    push(bone_.root(), nodeBound(bone_.root()), false);
+    }
+    heap_.push_back(item);
+    if (!crossing_) std::push_heap(heap_.begin(), heap_.end());
+  }
+
+  template <class Prune>
+  void search(Prune&& prune) {
     const auto& bn = bone_.nodes();
     while (!heap_.empty()) {
       if (!crossing_) std::pop_heap(heap_.begin(), heap_.end());
@@ -96,6 +112,7 @@ class FaceDistanceSearch {
         continue;
       }
       if (it.triangle) {
+        if (keepFrontier_) frontier_.push_back(it);  // tested for a crossing only: phase 2 measures it
         measure(static_cast<std::uint32_t>(it.b), bone_.triangle(static_cast<std::uint32_t>(it.b)));
         if (found_ && best2_ == 0) return;
         continue;
@@ -197,9 +214,9 @@ class FaceDistanceSearch {
   FaceRegionBounds region_;
   Vec3 faceLo_, faceHi_;
   double best2_;
-  bool found_ = false, crossing_ = false;
+  bool found_ = false, crossing_ = false, keepFrontier_ = false;
   DistanceResult& out_;
-  std::vector<Item> heap_;
+  std::vector<Item> heap_, frontier_;  // frontier_: phase 1's unopened nodes and tested triangles
   std::vector<std::int32_t> fstack_;
 };
 
@@ -210,7 +227,7 @@ bool faceTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const R
   if (bone.empty() || reamer.faceBvh().empty()) return false;
   DistanceResult out;
   FaceDistanceSearch search(bone, reamer, pose, kInf, out);
-  if (!search.findCrossing()) return false;
+  if (!search.findCrossing(false)) return false;
   if (where) *where = {out.boneSlot, out.reamerTriangle, out.onBone};
   return true;
 }
@@ -222,7 +239,7 @@ DistanceResult queryFaceDistance(const TriangleBvh& bone, const ReamerModel& rea
   if (bone.empty() || reamer.faceBvh().empty()) return out;
   const double max2 = maxDistanceMm < kInf ? maxDistanceMm * maxDistanceMm : kInf;
   FaceDistanceSearch search(bone, reamer, pose, max2, out);
-  if (!search.findCrossing()) search.nearest();
+  if (!search.findCrossing(true)) search.nearest();
   if (search.found()) {
     out.found = true;
     out.distanceMm = std::sqrt(search.best2());

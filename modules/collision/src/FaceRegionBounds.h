@@ -43,19 +43,34 @@ class FaceRegionBounds {
   // (a reamer seated in the glenoid, a flat reamer on a plateau) the box's corners reach far nearer the face
   // than the patch does, and a search bounded by boxes alone opens every node down to the size of the gap.
   // Ranged along the axis (z) and, for a shell, along the direction from the centre to the box's middle
-  // (|x - c| >= u . (x - c) for unit u); never looser than box().
+  // (|x - c| >= u . (x - c) for unit u); never looser than box() beyond the ranges' rounding pad.
   double node(const Vec3& lo, const Vec3& hi, const BvhSlab& slab) const {
     const BoxSlabRegion region(lo, hi, slab);
     double zlo, zhi;
-    region.range(axis_, zlo, zhi);
+    region.range(axis_, zlo, zhi);  // never looser than the box's own z range (box() up to its rounding pad)
     double gap = std::max({0.0, zlo - z0_ - r_.zMax, r_.zMin - (zhi - z0_)});
+    if (!r_.shell) return gap * gap;
     Vec3 u;
     double ulo, uhi;
-    if (r_.shell && region.rangeFrom(centre_, u, ulo, uhi)) {
+    if (region.rangeFrom(centre_, u, ulo, uhi)) {
       const double uc = dot(u, centre_);
       gap = std::max(gap, ulo - uc - r_.rOut - 1e-12 * (std::abs(uc) + r_.rOut));
     }
-    return std::max(gap * gap, box(lo, hi));
+    // box()'s two shell terms, each square root taken only when it raises the gap (most nodes a search
+    // bounds are decided by the terms above, and this runs for every node it bounds).
+    const double near2 = boxSquaredDistance(lo, hi, centre_, centre_);
+    const double reach = gap + r_.rOut;
+    if (near2 > reach * reach) gap = std::max(gap, std::sqrt(near2) - r_.rOut);
+    const double inner = r_.rIn - gap;
+    if (inner > 0) {
+      double far2 = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double a = centre_[k] - lo[k], b = centre_[k] - hi[k];
+        far2 += std::max(a * a, b * b);
+      }
+      if (far2 < inner * inner) gap = std::max(gap, r_.rIn - std::sqrt(far2));
+    }
+    return gap * gap;
   }
 
   // Is a's box centre nearer the region's middle surface (sphere or plane) than b's? A search for a crossing
