@@ -144,6 +144,22 @@ class FaceDistanceSearch {
   // triangles around the closest vertex) would otherwise all be measured for nothing.
   bool skip(double lb) const { return crossing_ ? lb > 0 : (lb > best2_ || (found_ && lb >= best2_ * kTie)); }
 
+  // Squared lower bound on the distance from triangle p (unit normal n, centroid pc) to triangle q, given q's
+  // distance `rise` from p's plane: along n and a unit v in p's plane, |x - y|^2 >= (n.(x-y))^2 + (v.(x-y))^2,
+  // the first term at least rise^2 and the second the triangles' separation along v, v pointing from p
+  // towards q. Where the bone runs parallel to the face, the face triangles beside the nearest one pass the
+  // box bound (their boxes are thick where the cap is tilted) and the plane bound (their planes are nearly
+  // p's); this drops them before the exact distance.
+  static double acrossBound(const Vec3& n, double rise, const BvhTriangle& p, const Vec3& pc, const BvhTriangle& q) {
+    const Vec3 g = (q.a + q.b + q.c) * (1.0 / 3) - pc;
+    Vec3 v = g - n * dot(n, g);
+    const double len2 = squaredNorm(v);
+    if (!(len2 > 0)) return 0;
+    v = v / std::sqrt(len2);
+    const double gap = std::min({dot(v, q.a), dot(v, q.b), dot(v, q.c)}) - std::max({dot(v, p.a), dot(v, p.b), dot(v, p.c)});
+    return gap > 0 ? sq(rise) + sq(gap) : 0;
+  }
+
   // One bone triangle against the face BVH (reamer frame).
   void measure(std::uint32_t slot, const BvhTriangle& bt) {
     const BvhTriangle l{frame_.toLocal(bt.a), frame_.toLocal(bt.b), frame_.toLocal(bt.c)};
@@ -151,8 +167,10 @@ class FaceDistanceSearch {
     TriangleBvh::paddedBox(l, llo, lhi);
     const Vec3 bn = normalized(cross(l.b - l.a, l.c - l.a));
     const double bo = dot(bn, l.a);
+    const Vec3 lc = (l.a + l.b + l.c) * (1.0 / 3);
     const auto& fn = face_.nodes();
     const auto& normals = reamer_.faceUnitNormals();
+    const auto& faceBoxes = reamer_.faceBoxes();
     fstack_.clear();
     fstack_.push_back(face_.root());
     while (!fstack_.empty()) {
@@ -168,17 +186,17 @@ class FaceDistanceSearch {
       }
       const std::uint32_t* rs = face_.leafSlots(R);
       for (int j = 0; j < R.count; ++j) {
+        const ReamerModel::Box& rb = faceBoxes[rs[j]];
+        if (skip(boxSquaredDistance(llo, lhi, rb.lo, rb.hi))) continue;
         const BvhTriangle& rt = face_.triangle(rs[j]);
-        Vec3 rlo, rhi;
-        TriangleBvh::paddedBox(rt, rlo, rhi);
-        const double boxLb = boxSquaredDistance(llo, lhi, rlo, rhi);
-        if (skip(boxLb)) continue;
         // Plane bounds: one triangle wholly on one side of the other's plane (whichever is flatter there
         // gives the tight bound, so both are tried).
         const Vec3& n = normals[rs[j]];
         const double o = dot(n, rt.a);
         if (skip(sq(planeGap(dot(n, l.a) - o, dot(n, l.b) - o, dot(n, l.c) - o)))) continue;
-        if (skip(sq(planeGap(dot(bn, rt.a) - bo, dot(bn, rt.b) - bo, dot(bn, rt.c) - bo)))) continue;
+        const double rise = planeGap(dot(bn, rt.a) - bo, dot(bn, rt.b) - bo, dot(bn, rt.c) - bo);
+        if (skip(sq(rise))) continue;
+        if (skip(acrossBound(bn, rise, l, lc, rt))) continue;
         ++out_.trianglePairs;
         ClosestPair cp;
         if (crossing_) {

@@ -50,19 +50,24 @@ class FaceRegionBounds {
     region.range(axis_, zlo, zhi);  // never looser than the box's own z range (box() up to its rounding pad)
     double gap = std::max({0.0, zlo - z0_ - r_.zMax, r_.zMin - (zhi - z0_)});
     if (!r_.shell) return gap * gap;
-    Vec3 u;
-    double ulo, uhi;
-    if (region.rangeFrom(centre_, u, ulo, uhi)) {
-      const double uc = dot(u, centre_);
+    const Vec3 toMiddle = region.c - centre_;
+    const double len = norm(toMiddle);
+    if (len > 0) {
+      double ulo, uhi;
+      region.range(toMiddle / len, ulo, uhi);
+      const double uc = dot(toMiddle / len, centre_);
       gap = std::max(gap, ulo - uc - r_.rOut - 1e-12 * (std::abs(uc) + r_.rOut));
     }
-    // box()'s two shell terms, each square root taken only when it raises the gap (most nodes a search
-    // bounds are decided by the terms above, and this runs for every node it bounds).
-    const double near2 = boxSquaredDistance(lo, hi, centre_, centre_);
+    // box()'s two shell terms, computed only when they can raise the gap: the box's nearest point is no
+    // farther from the centre than its middle, its farthest corner no nearer (this runs for every node a
+    // search bounds, and most are decided by the ranges above). Skipping one only loosens the bound.
     const double reach = gap + r_.rOut;
-    if (near2 > reach * reach) gap = std::max(gap, std::sqrt(near2) - r_.rOut);
+    if (len > reach) {
+      const double near2 = boxSquaredDistance(lo, hi, centre_, centre_);
+      if (near2 > reach * reach) gap = std::max(gap, std::sqrt(near2) - r_.rOut);
+    }
     const double inner = r_.rIn - gap;
-    if (inner > 0) {
+    if (len < inner) {
       double far2 = 0;
       for (int k = 0; k < 3; ++k) {
         const double a = centre_[k] - lo[k], b = centre_[k] - hi[k];

@@ -99,7 +99,11 @@ ReamerModel::ReamerModel(TriangleMesh cuttingSolid, std::vector<std::uint32_t> f
     }
     restBvh_ = TriangleBvh::fromTriangles(rslots, rtris);
   }
-  for (const BvhTriangle& t : tris) faceNormals_.push_back(normalized(cross(t.b - t.a, t.c - t.a)));
+  for (const BvhTriangle& t : tris) {
+    faceNormals_.push_back(normalized(cross(t.b - t.a, t.c - t.a)));
+    faceBoxes_.emplace_back();
+    TriangleBvh::paddedBox(t, faceBoxes_.back().lo, faceBoxes_.back().hi);
+  }
   for (const Vec3& v : solid_.vertices) radius_ = std::max(radius_, norm(v));
   const auto& nodes = solidBvh_.nodes();
   solidNodeRadius_.assign(nodes.size(), 0.0);

@@ -73,6 +73,12 @@ class ReamerModel {
   const IdealSolid& idealSolid() const { return ideal_; }
   // Unit normal of each face-BVH slot's triangle (local), for plane distance bounds.
   const std::vector<Vec3>& faceUnitNormals() const { return faceNormals_; }
+  // Padded box of each face-BVH slot's triangle (TriangleBvh::paddedBox, local): the distance query bounds
+  // face triangles by them for every bone triangle it measures.
+  struct Box {
+    Vec3 lo, hi;
+  };
+  const std::vector<Box>& faceBoxes() const { return faceBoxes_; }
 
   // Closest point of the solid's surface to p (local coordinates).
   Vec3 closestSurfacePoint(const Vec3& p) const;
@@ -93,6 +99,7 @@ class ReamerModel {
   IdealSolid ideal_;
   bool containsBySearch(const Vec3& p) const;
   std::vector<Vec3> faceNormals_;
+  std::vector<Box> faceBoxes_;
   double deepClearance_ = 0;
   double radius_ = 0;
 

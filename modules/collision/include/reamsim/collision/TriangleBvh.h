@@ -168,7 +168,16 @@ class TriangleBvh {
   std::string validate() const;
 
   // Triangle box with the padding described above (what leaves enclose).
-  static void paddedBox(const BvhTriangle& t, Vec3& lo, Vec3& hi);
+  static void paddedBox(const BvhTriangle& t, Vec3& lo, Vec3& hi) {  // inline: queries box every triangle they reach
+    lo = {std::min({t.a.x, t.b.x, t.c.x}), std::min({t.a.y, t.b.y, t.c.y}), std::min({t.a.z, t.b.z, t.c.z})};
+    hi = {std::max({t.a.x, t.b.x, t.c.x}), std::max({t.a.y, t.b.y, t.c.y}), std::max({t.a.z, t.b.z, t.c.z})};
+    const Vec3 d = hi - lo;
+    const double mag = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y),
+                                 std::abs(hi.z)});
+    const double pad = kBoxPadRelative * (d.x + d.y + d.z) + 1e-12 * (1 + mag);
+    lo -= Vec3{pad, pad, pad};
+    hi += Vec3{pad, pad, pad};
+  }
 
  private:
   struct BuildRef;
