@@ -217,12 +217,27 @@ ClosestPair closestDisjointTriangles(const Vec3& a0, const Vec3& a1, const Vec3&
       if (e < best.squaredDistance) best = {e, p, B[i]};
     }
   }
+  // The nearest pair proves itself: along v = onB - onA the triangles' ranges are apart by |v| (a slab of that
+  // width separates them), so no pair is nearer. Checked on the vertex-face pairs' best and after each edge
+  // pair that improves it; where surfaces run parallel most pairs end early. Ranges taken about onA, so the
+  // rounding is relative to the triangles' size, not their distance from the origin.
+  auto proven = [&] {
+    if (!(best.squaredDistance > 0 && best.squaredDistance < std::numeric_limits<double>::infinity())) return false;
+    const Vec3 v = best.onB - best.onA, o = best.onA;
+    const double aHi = std::max({dot(v, a0 - o), dot(v, a1 - o), dot(v, a2 - o)});
+    const double bLo = std::min({dot(v, b0 - o), dot(v, b1 - o), dot(v, b2 - o)});
+    return bLo - aHi >= best.squaredDistance * (1 - 1e-12);  // (bLo - aHi) / |v| >= |v| (1 - 1e-12)
+  };
+  if (proven()) return best;
   double s, t;
   Vec3 c1, c2;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const double d = closestSegmentSegment(A[i], A[(i + 1) % 3], B[j], B[(j + 1) % 3], s, t, c1, c2);
-      if (d < best.squaredDistance) best = {d, c1, c2};
+      if (d < best.squaredDistance) {
+        best = {d, c1, c2};
+        if (proven()) return best;
+      }
     }
   return best;
 }
