@@ -190,13 +190,14 @@ class FaceDistanceSearch {
         if (skip(boxSquaredDistance(llo, lhi, rb.lo, rb.hi))) continue;
         const BvhTriangle& rt = face_.triangle(rs[j]);
         // Plane bounds: one triangle wholly on one side of the other's plane (whichever is flatter there
-        // gives the tight bound, so both are tried).
-        const Vec3& n = normals[rs[j]];
-        const double o = dot(n, rt.a);
-        if (skip(sq(planeGap(dot(n, l.a) - o, dot(n, l.b) - o, dot(n, l.c) - o)))) continue;
+        // gives the tight bound, so both are tried; the bone triangle's plane, with the bound across it, drops
+        // most pairs, so it goes first).
         const double rise = planeGap(dot(bn, rt.a) - bo, dot(bn, rt.b) - bo, dot(bn, rt.c) - bo);
         if (skip(sq(rise))) continue;
         if (skip(acrossBound(bn, rise, l, lc, rt))) continue;
+        const Vec3& n = normals[rs[j]];
+        const double o = dot(n, rt.a);
+        if (skip(sq(planeGap(dot(n, l.a) - o, dot(n, l.b) - o, dot(n, l.c) - o)))) continue;
         ++out_.trianglePairs;
         ClosestPair cp;
         if (crossing_) {

@@ -46,10 +46,19 @@ class FaceRegionBounds {
   // (|x - c| >= u . (x - c) for unit u); never looser than box() beyond the ranges' rounding pad.
   double node(const Vec3& lo, const Vec3& hi, const BvhSlab& slab) const {
     const BoxSlabRegion region(lo, hi, slab);
-    double zlo, zhi;
-    region.range(axis_, zlo, zhi);  // never looser than the box's own z range (box() up to its rounding pad)
-    double gap = std::max({0.0, zlo - z0_ - r_.zMax, r_.zMin - (zhi - z0_)});
-    if (!r_.shell) return gap * gap;
+    double gap;
+    if (r_.shell) {
+      // Along the axis by the box alone: the shell term below decides nodes over the cap, where the slab
+      // would narrow this range for nothing (a ~20 % dearer bound, measured on the hand-held path).
+      const double zc = dot(axis_, region.c) - z0_;
+      const double zh = std::abs(axis_.x) * region.h.x + std::abs(axis_.y) * region.h.y + std::abs(axis_.z) * region.h.z;
+      gap = std::max({0.0, zc - zh - r_.zMax, r_.zMin - (zc + zh)});
+    } else {
+      double zlo, zhi;
+      region.range(axis_, zlo, zhi);  // never looser than the box's own z range beyond its rounding pad
+      const double zgap = std::max({0.0, zlo - z0_ - r_.zMax, r_.zMin - (zhi - z0_)});
+      return zgap * zgap;
+    }
     const Vec3 toMiddle = region.c - centre_;
     const double len = norm(toMiddle);
     if (len > 0) {
