@@ -144,6 +144,40 @@ TEST(collisionDistanceProperty, ReamerSeatedInAConcaveBone) {
   }
 }
 
+// Bone beside the face's rim, nearly parallel to the face and a little in front of it: the nearest pair
+// lies across the rim, so the distance query's bound across the bone triangle's plane (its plane gap and
+// the separation along a direction in that plane) is tight there, and a bound that overshoots drops the
+// nearest pair. Two triangles 0.2-2 mm across, 0.005-1 mm beyond the rim and in front of the rim's plane,
+// tilted up to 10 degrees.
+TEST(collisionDistanceProperty, BoneBesideTheRim) {
+  const ParallelBones bones(1);
+  std::mt19937_64 rng(25);
+  std::uniform_real_distribution<double> u(0, 1);
+  const RigidTransform T = toTransform(Pose{});  // the reamer's own frame: face towards +z, apex at 0
+  for (const ReamerModel* reamer : {&bones.flat, &bones.round}) {
+    const double rimZ = reamer->idealSolid().capBaseZ;
+    const double rimR = reamer->idealSolid().radius;
+    for (int i = 0; i < 400; ++i) {
+      const double phi = 2 * 3.14159265358979 * u(rng), size = 0.2 + 1.8 * u(rng);
+      const double beyond = 0.005 + u(rng), front = 0.005 + u(rng), tilt = 0.17 * (2 * u(rng) - 1);
+      const Vec3 out{std::cos(phi), std::sin(phi), 0}, side{-std::sin(phi), std::cos(phi), 0};
+      const Vec3 up = normalized(Vec3{0, 0, 1} + out * tilt);
+      const Vec3 across = normalized(out - up * dot(out, up));
+      const Vec3 inner = out * (rimR + beyond) + Vec3{0, 0, rimZ + front} + side * (size * (u(rng) - 0.5));
+      TriangleMesh bone;
+      bone.vertices = {inner, inner + across * size, inner + across * size + side * size, inner + side * size};
+      bone.triangles = {{0, 1, 2}, {0, 2, 3}};
+      const TriangleBvh bvh = TriangleBvh::fromMesh(bone);
+      const DistanceResult ref = bruteForceFaceDistance(bone, *reamer, T);
+      const DistanceResult got = queryFaceDistance(bvh, *reamer, T);
+      ASSERT_TRUE(ref.found && got.found);
+      EXPECT_GT(ref.distanceMm, 0) << "query " << i;
+      EXPECT_NEAR(got.distanceMm, ref.distanceMm, 1e-9 * (1 + ref.distanceMm)) << "query " << i;
+      if (::testing::Test::HasFailure()) return;
+    }
+  }
+}
+
 // Touching without penetration, coplanar faces, parallel faces at a known gap.
 TEST(collisionOverlapProperty, DegenerateConfigurationsOnTheSlab) {
   const TriangleMesh& bone = slab();  // top face z = 20, grid vertices every 10 mm
