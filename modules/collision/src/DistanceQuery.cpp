@@ -80,6 +80,16 @@ class FaceDistanceSearch {
     return std::max(boxSquaredDistance(B.lo, B.hi, faceLo_, faceHi_), region);
   }
 
+  // Both children of an opened node, their region bounds together (FaceRegionBounds::nodes).
+  void childBounds(const BvhNode& B, double& lbL, double& lbR) const {
+    const BvhNode& L = bone_.nodes()[B.left];
+    const BvhNode& R = bone_.nodes()[B.right];
+    double region[2];
+    region_.nodes(L.lo, L.hi, bone_.slab(B.left), R.lo, R.hi, bone_.slab(B.right), region);
+    lbL = std::max(boxSquaredDistance(L.lo, L.hi, faceLo_, faceHi_), region[0]);
+    lbR = std::max(boxSquaredDistance(R.lo, R.hi, faceLo_, faceHi_), region[1]);
+  }
+
   // Best-first over the bone tree (a min-heap on the lower bound), so the first triangles measured are the
   // likely closest and the best distance drops early; everything whose bound reaches it is then dropped.
   // The crossing search only needs some crossing, not the nearest: plain depth-first order (no heap).
@@ -129,13 +139,15 @@ class FaceDistanceSearch {
         }
         continue;
       }
+      double lbL, lbR;
+      childBounds(B, lbL, lbR);
       if (crossing_ && region_.nearerToSurface(bn[B.left], bn[B.right])) {
         // Depth-first: the child whose centre lies nearer the face region's surface goes on top.
-        push(B.right, nodeBound(B.right), false);
-        push(B.left, nodeBound(B.left), false);
+        push(B.right, lbR, false);
+        push(B.left, lbL, false);
       } else {
-        push(B.left, nodeBound(B.left), false);
-        push(B.right, nodeBound(B.right), false);
+        push(B.left, lbL, false);
+        push(B.right, lbR, false);
       }
     }
   }
