@@ -50,7 +50,7 @@ class FaceDistanceSearch {
     keepFrontier_ = keepFrontier;
     frontier_.clear();
     heap_.clear();
-    push(bone_.root(), nodeBound(bone_.root()), false);
+    push(bone_.root(), rootBound(), false);
     search([&](double lb) { return lb > 0; });
     crossing_ = keepFrontier_ = false;
     return found_ && best2_ == 0;
@@ -70,24 +70,25 @@ class FaceDistanceSearch {
   double best2() const { return best2_; }
 
  private:
-  double nodeBound(std::int32_t b) const {
-    const BvhNode& B = bone_.nodes()[b];
-    // Box and slab (FaceRegionBounds::node): with boxes alone a reamer seated in the glenoid opened ~1,000
-    // nodes a distance query, and the crossing search (also the start test of first contact and overlap)
-    // had twice the tail on a hand-held path; random poses that touch pay ~2 us for the slab reads
-    // (docs/COLLISION.md, session 18).
-    const double region = region_.node(B.lo, B.hi, bone_.slab(b));
-    return std::max(boxSquaredDistance(B.lo, B.hi, faceLo_, faceHi_), region);
+  // A bone node's lower bound: its box against the face's world box, and its region bound (box and slab,
+  // FaceRegionBounds::nodes): with boxes alone a reamer seated in the glenoid opened ~1,000 nodes a distance
+  // query, and the crossing search (also the start test of first contact and overlap) had twice the tail on
+  // a hand-held path (docs/COLLISION.md, session 18).
+  double nodeBound(const BvhNode& N, double region) const {
+    return std::max(boxSquaredDistance(N.lo, N.hi, faceLo_, faceHi_), region);
   }
-
-  // Both children of an opened node, their region bounds together (FaceRegionBounds::nodes).
+  double rootBound() const {
+    const BvhNode& B = bone_.nodes()[bone_.root()];
+    return nodeBound(B, region_.node(B.lo, B.hi, bone_.slab(bone_.root())));
+  }
+  // Both children of an opened node, their region bounds computed together.
   void childBounds(const BvhNode& B, double& lbL, double& lbR) const {
     const BvhNode& L = bone_.nodes()[B.left];
     const BvhNode& R = bone_.nodes()[B.right];
     double region[2];
     region_.nodes(L.lo, L.hi, bone_.slab(B.left), R.lo, R.hi, bone_.slab(B.right), region);
-    lbL = std::max(boxSquaredDistance(L.lo, L.hi, faceLo_, faceHi_), region[0]);
-    lbR = std::max(boxSquaredDistance(R.lo, R.hi, faceLo_, faceHi_), region[1]);
+    lbL = nodeBound(L, region[0]);
+    lbR = nodeBound(R, region[1]);
   }
 
   // Best-first over the bone tree (a min-heap on the lower bound), so the first triangles measured are the

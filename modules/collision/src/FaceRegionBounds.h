@@ -20,30 +20,12 @@ class FaceRegionBounds {
     z0_ = dot(axis_, frame.t);  // local z = axis . x - z0
   }
 
-  double box(const Vec3& lo, const Vec3& hi) const {
-    double zlo = -z0_, zhi = -z0_;
-    for (int k = 0; k < 3; ++k) {
-      zlo += axis_[k] * (axis_[k] > 0 ? lo[k] : hi[k]);
-      zhi += axis_[k] * (axis_[k] > 0 ? hi[k] : lo[k]);
-    }
-    double gap = std::max({0.0, zlo - r_.zMax, r_.zMin - zhi});
-    if (r_.shell) {
-      double far2 = 0;
-      for (int k = 0; k < 3; ++k) {
-        const double a = centre_[k] - lo[k], b = centre_[k] - hi[k];
-        far2 += std::max(a * a, b * b);
-      }
-      gap = std::max({gap, std::sqrt(boxSquaredDistance(lo, hi, centre_, centre_)) - r_.rOut, r_.rIn - std::sqrt(far2)});
-    }
-    return gap * gap;
-  }
-
-  // The same over a node's box ∩ slab (TriangleBvh.h). A patch of surface is thin along its own normal
-  // however it is tilted, where its box is as thick as it is wide: where the bone runs parallel to the face
-  // (a reamer seated in the glenoid, a flat reamer on a plateau) the box's corners reach far nearer the face
-  // than the patch does, and a search bounded by boxes alone opens every node down to the size of the gap.
-  // A lower bound like box(), not always as tight: it keeps the terms that pay for themselves in the
-  // searches (measured with callgrind on the hand-held path and random poses, session 20).
+  // Squared lower bound for a bone node over its box ∩ slab (TriangleBvh.h). A patch of surface is thin
+  // along its own normal however it is tilted, where its box is as thick as it is wide: where the bone runs
+  // parallel to the face (a reamer seated in the glenoid, a flat reamer on a plateau) the box's corners reach
+  // far nearer the face than the patch does, and a search bounded by boxes alone opens every node down to
+  // the size of the gap. Only the terms that pay for themselves in the searches are kept (measured with
+  // callgrind on the hand-held path and random poses, session 20).
   double node(const Vec3& lo, const Vec3& hi, const BvhSlab& slab) const {
     double out[2];
     nodes(lo, hi, slab, lo, hi, slab, out);
@@ -106,8 +88,8 @@ class FaceRegionBounds {
     }
     for (int k = 0; k < 2; ++k) {
       // The farthest corner, for bone inside the inner sphere (the range above bounds only from outside).
-      // (The box's nearest point to the centre, box()'s other shell term, is left out: beside the range
-      // it pruned too little to pay for itself, -8 % instructions at 405k without it.)
+      // (The box's nearest point to the centre is left out: beside the range it pruned too little to pay
+      // for itself, -8 % instructions at 405k without it.)
       double far2 = 0;
       for (int i = 0; i < 3; ++i) {
         const double a = centre_[i] - lo[i][k], b = centre_[i] - hi[i][k];
@@ -119,7 +101,6 @@ class FaceRegionBounds {
       out[k] = gap[k] * gap[k];
     }
   }
-
 
   // Is a's box centre nearer the region's middle surface (sphere or plane) than b's? A search for a crossing
   // looks there first.
