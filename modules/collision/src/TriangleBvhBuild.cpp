@@ -3,6 +3,7 @@
 #include "reamsim/collision/TriangleBvh.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -73,7 +74,13 @@ TriangleBvh TriangleBvh::fromTriangles(const std::vector<std::uint32_t>& slots,
   return bvh;
 }
 
+std::uint64_t TriangleBvh::nextRevision() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+
 void TriangleBvh::rebuild() {
+  revision_ = nextRevision();
   std::vector<BuildRef> refs;
   refs.reserve(tris_.size());
   for (std::uint32_t s = 0; s < leafOf_.size(); ++s) {

@@ -289,6 +289,7 @@ BvhUpdateStats TriangleBvh::update(const std::vector<std::uint32_t>& removedSlot
     if (!isFinite(t.a) || !isFinite(t.b) || !isFinite(t.c))
       throw std::invalid_argument("TriangleBvh::update: an added triangle has a non-finite coordinate");
 
+  revision_ = nextRevision();
   BvhUpdateStats stats;
   stats.removed = removedSlots.size();
   stats.added = addedSlots.size();

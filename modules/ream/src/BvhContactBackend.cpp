@@ -21,8 +21,10 @@ class BvhContactBackend final : public ContactBackend {
     ContactResult r;
     Bounds reamerBox = computeBounds(in.tool);
     r.boxesOverlap = boundsOverlap(in.boneBounds, reamerBox.expanded(in.stepMm));
-    // The distance is cheap on the tree, so it is always known (the status bar shows it live).
-    const DistanceResult distance = collider_->faceDistance(*reamer_, in.pose);
+    // The distance is cheap on the tree, so it is always known (the status bar shows it live). Successive
+    // poses are close: the tracker answers most of them from the triangles its last search found near the
+    // face, exactly (FaceDistanceTracker); a cut or another reamer makes it search afresh.
+    const DistanceResult distance = distanceTracker_.query(collider_->bvh(), *reamer_, in.pose);
     if (distance.found) {
       r.minDistanceMm = distance.distanceMm;
       r.contactPoint = distance.onBone;  // the closest point, or where the cutting face meets the bone
@@ -70,6 +72,7 @@ class BvhContactBackend final : public ContactBackend {
   std::shared_ptr<const TriangleMesh> reamerSource_;
   std::unique_ptr<ReamerModel> reamer_;
   std::unique_ptr<BoneCollider> collider_;
+  FaceDistanceTracker distanceTracker_;  // keyed on the tree's and the face's revisions: resets itself
   std::uint64_t revision_ = 0;
   bool axialDepth_;
 };

@@ -140,6 +140,9 @@ class TriangleBvh {
 
   // --- read access for the queries ---
   bool empty() const { return root_ < 0; }
+  // Changes whenever the triangles do (build, rebuild, update), and is never shared by two trees built or
+  // edited apart: what a query cache keyed on this tree (FaceDistanceTracker) checks before trusting itself.
+  std::uint64_t revision() const { return revision_; }
   std::int32_t root() const { return root_; }
   const HugePageVector<BvhNode>& nodes() const { return nodes_; }
   const BvhSlab& slab(std::int32_t node) const { return slabs_[std::size_t(node)]; }
@@ -208,6 +211,7 @@ class TriangleBvh {
   void fitLeafSlab(std::int32_t leaf);
   void fitInternalSlab(std::int32_t node);
   void maintainQuality(std::size_t editSize, BvhUpdateStats& stats);
+  static std::uint64_t nextRevision();
 
   // The arrays that grow with the bone are on huge pages (HugePageAllocator): queries read them scattered.
   HugePageVector<BvhNode> nodes_;
@@ -230,6 +234,7 @@ class TriangleBvh {
   HugePageVector<std::uint32_t> slotMark_;  // by slot: update()'s duplicate checks (stamped, never cleared)
   std::uint32_t markStamp_ = 0;
   std::int32_t root_ = -1;
+  std::uint64_t revision_ = 0;  // see revision(); from one process-wide counter
   std::size_t triangleCount_ = 0;
   double rebuildCredit_ = 0;  // triangles the quality maintenance may still re-sort (see update())
   double rebuildCreditPerEdit_ = 0.25;
