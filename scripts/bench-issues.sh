@@ -53,7 +53,8 @@ else:  # bench collision
     if h:
         print("  hand-held path (median / p99 us): " + ", ".join(
             f"{k.replace('_', ' ')} {h[k]['median_us']:.1f} / {h[k]['p99_us']:.1f}"
-            for k in ("first_contact", "min_distance", "penetration_depth", "overlap_any")))
+            for k in ("first_contact", "min_distance", "min_distance_tracked", "penetration_depth", "overlap_any")
+            if k in h))
 EOF
 }
 
