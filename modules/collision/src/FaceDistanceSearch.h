@@ -59,28 +59,23 @@ class FaceDistanceSearch {
   // Slower than nearest(): the search goes on past d.
   void nearestCollecting(double marginMm, std::vector<std::uint32_t>& collected) {
     margin_ = marginMm;
-    candidates_ = &collected;
-    collectLb_.clear();
+    collecting_ = true;
+    popped_.clear();
     updateReach();
     nearest();
-    const double reach2 = reach2_;
+    collecting_ = false;
+    // The reach only fell as the search went: what was popped beyond its final value is left out.
     collected.clear();
-    for (std::size_t i = 0; i < collectLb_.size(); ++i)
-      if (collectLb_[i].lb < reach2) collected.push_back(static_cast<std::uint32_t>(collectLb_[i].b));
-    candidates_ = nullptr;
+    for (const Item& it : popped_)
+      if (it.lb < reach2_) collected.push_back(static_cast<std::uint32_t>(it.b));
   }
   double reachMm() const { return std::sqrt(reach2_); }  // after nearestCollecting: d + margin
 
   // The given bone triangles only (no tree), nearest first: FaceDistanceTracker's query between searches.
   // The caller has proved that none of them crosses the face.
   void nearestAmong(const std::vector<std::uint32_t>& slots) {
-    heap_.clear();
-    for (std::uint32_t s : slots) {
-      const BvhTriangle& bt = bone_.triangle(s);
-      Vec3 blo, bhi;
-      TriangleBvh::paddedBox(bt, blo, bhi);
-      heap_.push_back({std::max(boxSquaredDistance(blo, bhi, faceLo_, faceHi_), region_.triangle(bt)), static_cast<std::int32_t>(s), true});
-    }
+    heap_.clear();  // used as a plain list here, sorted by bound
+    for (std::uint32_t s : slots) heap_.push_back({triangleBound(bone_.triangle(s)), static_cast<std::int32_t>(s), true});
     std::sort(heap_.begin(), heap_.end(), [](const Item& a, const Item& b) { return a.lb < b.lb; });
     for (const Item& it : heap_) {
       if (skip(it.lb)) break;
@@ -113,6 +108,11 @@ class FaceDistanceSearch {
   // a hand-held path (docs/COLLISION.md, session 18).
   double nodeBound(const BvhNode& N, double region) const {
     return std::max(boxSquaredDistance(N.lo, N.hi, faceLo_, faceHi_), region);
+  }
+  double triangleBound(const BvhTriangle& bt) const {
+    Vec3 blo, bhi;
+    TriangleBvh::paddedBox(bt, blo, bhi);
+    return std::max(boxSquaredDistance(blo, bhi, faceLo_, faceHi_), region_.triangle(bt));
   }
   double rootBound() const {
     const BvhNode& B = bone_.nodes()[bone_.root()];
@@ -161,8 +161,8 @@ class FaceDistanceSearch {
       }
       if (it.triangle) {
         if (keepFrontier_) frontier_.push_back(it);  // tested for a crossing only: phase 2 measures it
-        if (candidates_) {
-          collectLb_.push_back(it);
+        if (collecting_) {
+          popped_.push_back(it);
           if (skip(it.lb)) continue;  // within reach, not nearer than the best: collected, not measured
         }
         measure(static_cast<std::uint32_t>(it.b), bone_.triangle(static_cast<std::uint32_t>(it.b)));
@@ -172,13 +172,7 @@ class FaceDistanceSearch {
       const BvhNode& B = bn[it.b];
       if (B.isLeaf()) {
         const std::uint32_t* bs = bone_.leafSlots(B);
-        for (int i = 0; i < B.count; ++i) {
-          const BvhTriangle& bt = bone_.triangle(bs[i]);
-          Vec3 blo, bhi;
-          TriangleBvh::paddedBox(bt, blo, bhi);
-          push(static_cast<std::int32_t>(bs[i]), std::max(boxSquaredDistance(blo, bhi, faceLo_, faceHi_), region_.triangle(bt)),
-               true);
-        }
+        for (int i = 0; i < B.count; ++i) push(static_cast<std::int32_t>(bs[i]), triangleBound(bone_.triangle(bs[i])), true);
         continue;
       }
       double lbL, lbR;
@@ -198,9 +192,9 @@ class FaceDistanceSearch {
   // triangles around the closest vertex) would otherwise all be measured for nothing.
   bool skip(double lb) const { return crossing_ ? lb > 0 : (lb > best2_ || (found_ && lb >= best2_ * kTie)); }
   // A node or triangle the tree search drops: as skip(), or, when collecting, beyond reach.
-  bool skipNode(double lb) const { return candidates_ ? (crossing_ ? lb > 0 : lb >= reach2_) : skip(lb); }
+  bool skipNode(double lb) const { return collecting_ ? (crossing_ ? lb > 0 : lb >= reach2_) : skip(lb); }
   void updateReach() {
-    if (!candidates_) return;
+    if (!collecting_) return;
     const double r = std::sqrt(best2_) + margin_;
     reach2_ = r * r;
   }
@@ -311,9 +305,9 @@ class FaceDistanceSearch {
   DistanceResult& out_;
   std::vector<Item> heap_, frontier_;  // frontier_: phase 1's unopened nodes and tested triangles
   std::vector<std::int32_t> fstack_;
-  // Collecting (nearestCollecting): triangles popped in phase 2 with their bounds, and the reach.
-  std::vector<std::uint32_t>* candidates_ = nullptr;
-  std::vector<Item> collectLb_;
+  // Collecting (nearestCollecting): the triangles popped with their bounds, and the reach (d + margin)^2.
+  bool collecting_ = false;
+  std::vector<Item> popped_;
   double margin_ = 0, reach2_ = kInf;
   std::uint32_t bestFaceSlot_ = 0;
 };
