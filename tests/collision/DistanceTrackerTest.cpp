@@ -22,7 +22,8 @@ struct WalkCounts {
 
 // Walks of `steps` ticks from poses near the surface: a slow drift along the feed (into the bone and back),
 // tremor of up to 0.03 mm and 0.1 degree a tick, and every 60 ticks a jump of up to 3 mm.
-WalkCounts walk(const TriangleMesh& bone, int walks, int steps, std::uint64_t seed) {
+WalkCounts walk(const TriangleMesh& bone, int walks, int steps, std::uint64_t seed,
+               double marginMm = FaceDistanceTracker::kDefaultMarginMm) {
   const TriangleBvh bvh = TriangleBvh::fromMesh(bone);
   const ReamerModel reamers[2] = {ReamerModel::fromSpec(smallSpec(false)), ReamerModel::fromSpec(smallSpec(true))};
   std::mt19937_64 rng(seed);
@@ -30,7 +31,7 @@ WalkCounts walk(const TriangleMesh& bone, int walks, int steps, std::uint64_t se
   WalkCounts c;
   for (int w = 0; w < walks; ++w) {
     const ReamerModel& reamer = reamers[w % 2];
-    FaceDistanceTracker tracker;
+    FaceDistanceTracker tracker(marginMm);
     Pose p = poseNearSurface(bone, rng, -0.5, 2.5, 20);
     const double feed = 0.02 * u(rng);
     for (int i = 0; i < steps; ++i) {
@@ -74,6 +75,20 @@ void expectWalksExact(const TriangleMesh& bone, std::uint64_t seed) {
 TEST(collisionDistanceTracker, WalksOverTheSphere) { expectWalksExact(sphere(), 31); }
 TEST(collisionDistanceTracker, WalksOverTheSlab) { expectWalksExact(slab(), 32); }
 TEST(collisionDistanceTracker, WalksOverTheBundledScapula) { expectWalksExact(scapula(), 33); }
+
+// The collected set's bookkeeping with margins far from the default (a set of one or two triangles, and one
+// of hundreds), and a bone ~5 m from the origin, where the motion bound's rounding pad matters.
+TEST(collisionDistanceTracker, OtherMarginsAndFarFromTheOrigin) {
+  for (double margin : {1e-6, 0.02, 2.0}) {
+    const WalkCounts c = walk(scapula(), 4, 200, 36, margin);
+    EXPECT_EQ(c.queries, 800u) << "margin " << margin;
+  }
+  TriangleMesh far = sphere();
+  for (Vec3& v : far.vertices) v += Vec3{4000, -2500, 1500};
+  const WalkCounts c = walk(far, 6, 300, 37);
+  EXPECT_EQ(c.queries, 1800u);
+  EXPECT_LT(c.searches, c.queries / 2);
+}
 
 // The reamer seated in the concave cavity, turning about its centre: every bone face is nearly as far from
 // the cap as the nearest, so the collected set is large and the proof is tight.
@@ -170,6 +185,15 @@ TEST(collisionDistanceTracker, FollowsTheBoneThroughEdits) {
   EXPECT_NEAR(after.distanceMm, ref.distanceMm, 1e-12);
   EXPECT_GT(after.distanceMm, 1.5 + 1e-3);
   EXPECT_EQ(tracker.stats().searches, 3u);  // one per revision of the tree
+
+  // A slot removed and added again in one update, now right under the face: same slot, other geometry.
+  const std::uint32_t reused = removed[1];
+  bvh.update({}, {reused}, {BvhTriangle{{1, 2, 20.8}, {1.6, 2, 20.8}, {1, 2.6, 20.8}}});
+  (void)tracker.query(bvh, reamer, T);
+  bvh.update({reused}, {reused}, {BvhTriangle{{1, 2, 21.2}, {1.6, 2, 21.2}, {1, 2.6, 21.2}}});
+  const double reusedDistance = tracker.query(bvh, reamer, T).distanceMm;
+  EXPECT_NEAR(reusedDistance, queryFaceDistance(bvh, reamer, T).distanceMm, 1e-12);
+  EXPECT_NEAR(reusedDistance, 0.3, 1e-6);
 }
 
 // Two reamers in turn at the same poses (a tool change): each answer is that reamer's.

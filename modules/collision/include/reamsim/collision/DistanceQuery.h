@@ -37,7 +37,8 @@ DistanceResult queryFaceDistance(const TriangleBvh& bone, const ReamerModel& rea
 // then at least d + margin - m away, and if the nearest collected one is no farther, it is the answer and
 // the tree is not searched. Otherwise (moved too far, touching, the bone edited: TriangleBvh::revision(),
 // another reamer) the full search runs and collects afresh. Where the face crossed the bone, the crossing
-// pair is tried first. See docs/COLLISION.md.
+// pair is tried first. Poses are rigid (an orthonormal rotation), as for queryFaceDistance; a tracker serves one
+// loop at a time (not thread-safe). See docs/COLLISION.md.
 class FaceDistanceTracker {
  public:
   static constexpr double kDefaultMarginMm = 0.1;
