@@ -658,15 +658,15 @@ int runBenchCollision(const std::vector<std::string>& args) {
     if (qv.contains("speedup_vs_cgal")) fasterThanCgal = fasterThanCgal && qv["speedup_vs_cgal"].get<double>() > 1;
   }
   const std::size_t reamerFaces = rm.solid().triangles.size();
+  auto handHeldWithin20us = [&](const char* query) {
+    return handHeld.is_object() ? json(handHeld[query]["median_us"].get<double>() <= 20) : json(nullptr);
+  };
   out["targets"] = {{"reamer_has_2k_to_5k_faces", reamerFaces >= 2000 && reamerFaces <= 5000},
                     {"min_distance_median_le_20us", percentile(tDistance, 0.5) <= 20},
                     {"first_contact_median_le_20us", percentile(tContact, 0.5) <= 20},
-                    {"hand_held_min_distance_median_le_20us",
-                     handHeld.is_object() ? json(handHeld["min_distance"]["median_us"].get<double>() <= 20) : json(nullptr)},
-                    {"hand_held_min_distance_tracked_median_le_20us",
-                     handHeld.is_object() ? json(handHeld["min_distance_tracked"]["median_us"].get<double>() <= 20) : json(nullptr)},
-                    {"hand_held_first_contact_median_le_20us",
-                     handHeld.is_object() ? json(handHeld["first_contact"]["median_us"].get<double>() <= 20) : json(nullptr)},
+                    {"hand_held_min_distance_median_le_20us", handHeldWithin20us("min_distance")},
+                    {"hand_held_min_distance_tracked_median_le_20us", handHeldWithin20us("min_distance_tracked")},
+                    {"hand_held_first_contact_median_le_20us", handHeldWithin20us("first_contact")},
                     {"update_after_cut_le_1ms", update["median_ms"].get<double>() <= 1.0},
                     {"update_after_local_cut_le_1ms",
                      updateLocal.is_null() ? json(nullptr) : json(updateLocal["median_ms"].get<double>() <= 1.0)},

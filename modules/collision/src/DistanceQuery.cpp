@@ -27,10 +27,7 @@ DistanceResult queryFaceDistance(const TriangleBvh& bone, const ReamerModel& rea
   const double max2 = maxDistanceMm < FaceDistanceSearch::kInf ? maxDistanceMm * maxDistanceMm : FaceDistanceSearch::kInf;
   FaceDistanceSearch search(bone, reamer, pose, max2, out);
   if (!search.findCrossing(true)) search.nearest();
-  if (search.found()) {
-    out.found = true;
-    out.distanceMm = std::sqrt(search.best2());
-  }
+  search.finish();
   return out;
 }
 

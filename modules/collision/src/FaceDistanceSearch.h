@@ -86,15 +86,20 @@ class FaceDistanceSearch {
   // Does bone triangle `slot` cross face triangle `faceSlot` (face BVH slot)? If so the result is that
   // pair at distance 0. FaceDistanceTracker's first try while the face stays in the bone.
   bool crossesAt(std::uint32_t slot, std::uint32_t faceSlot) {
-    crossing_ = true;
     const BvhTriangle& bt = bone_.triangle(slot);
     const BvhTriangle l{frame_.toLocal(bt.a), frame_.toLocal(bt.b), frame_.toLocal(bt.c)};
     const BvhTriangle& rt = face_.triangle(faceSlot);
     ++out_.trianglePairs;
     const bool hit = trianglesIntersect(rt.a, rt.b, rt.c, l.a, l.b, l.c);
     if (hit) record(slot, faceSlot, closestTriangleTriangle(rt.a, rt.b, rt.c, l.a, l.b, l.c), true);
-    crossing_ = false;
     return hit;
+  }
+
+  // Writes the distance found (if any) into the result; the pair is already there.
+  void finish() {
+    if (!found_) return;
+    out_.found = true;
+    out_.distanceMm = std::sqrt(best2_);
   }
 
   bool found() const { return found_; }
@@ -133,7 +138,7 @@ class FaceDistanceSearch {
   // The crossing search only needs some crossing, not the nearest: plain depth-first order (no heap).
   void push(std::int32_t b, double lb, bool triangle) {
     const Item item{lb, b, triangle};
-    if (crossing_ ? lb > 0 : skipNode(lb)) {
+    if (skipNode(lb)) {
       if (keepFrontier_) frontier_.push_back(item);
       return;
     }
@@ -191,8 +196,8 @@ class FaceDistanceSearch {
   // A pair that could beat the best by less than kRelativeTolerance is not evaluated: ties (a fan of face
   // triangles around the closest vertex) would otherwise all be measured for nothing.
   bool skip(double lb) const { return crossing_ ? lb > 0 : (lb > best2_ || (found_ && lb >= best2_ * kTie)); }
-  // A node or triangle the tree search drops: as skip(), or, when collecting, beyond reach.
-  bool skipNode(double lb) const { return collecting_ ? (crossing_ ? lb > 0 : lb >= reach2_) : skip(lb); }
+  // A node or triangle the tree search drops: as skip(), or, when collecting (phase 2 only), beyond reach.
+  bool skipNode(double lb) const { return collecting_ ? lb >= reach2_ : skip(lb); }
   void updateReach() {
     if (!collecting_) return;
     const double r = std::sqrt(best2_) + margin_;

@@ -45,8 +45,7 @@ DistanceResult FaceDistanceTracker::query(const TriangleBvh& bone, const ReamerM
     // The face was in the bone: the pair that crossed then most likely still does (held against the bone).
     FaceDistanceSearch search(bone, reamer, pose, FaceDistanceSearch::kInf, out);
     if (search.crossesAt(crossingBoneSlot_, crossingFaceSlot_)) {
-      out.found = true;
-      out.distanceMm = 0;
+      search.finish();
       return out;
     }
   }
@@ -58,8 +57,7 @@ DistanceResult FaceDistanceTracker::query(const TriangleBvh& bone, const ReamerM
       FaceDistanceSearch search(bone, reamer, pose, FaceDistanceSearch::kInf, out);
       search.nearestAmong(collected_);
       if (search.found() && std::sqrt(search.best2()) <= reachMm_ - moved) {
-        out.found = true;
-        out.distanceMm = std::sqrt(search.best2());
+        search.finish();
         return out;
       }
     }
@@ -85,10 +83,7 @@ DistanceResult FaceDistanceTracker::query(const TriangleBvh& bone, const ReamerM
       reachMm_ = search.reachMm();
     }
   }
-  if (search.found()) {
-    out.found = true;
-    out.distanceMm = std::sqrt(search.best2());
-  }
+  search.finish();
   out.trianglePairs += spentPairs;
   return out;
 }
