@@ -1,6 +1,8 @@
 #include "BackgroundTask.h"
 
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <thread>
@@ -19,7 +21,8 @@ class Pool {
       if (!w.thread.joinable()) w.thread = std::thread([this, &w] { loop(w); });
       w.job = std::move(job);
       w.busy = true;
-      w.wake.notify_one();
+      w.hasJob.store(true, std::memory_order_release);
+      if (w.sleeping) w.wake.notify_one();  // a spinning worker sees hasJob: no system call
       return true;
     }
     return false;
@@ -28,6 +31,7 @@ class Pool {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stopping_ = true;
+      stoppingSoon_.store(true);
     }
     for (Worker& w : workers_) {
       w.wake.notify_one();
@@ -41,24 +45,53 @@ class Pool {
     std::condition_variable wake;
     std::function<void()> job;
     bool busy = false;
+    bool sleeping = false;              // waiting on `wake` (guarded by mutex_, like job and busy)
+    std::atomic<bool> hasJob{false};    // job is set: what a spinning worker watches without the lock
   };
   void loop(Worker& w) {
     std::unique_lock<std::mutex> lock(mutex_);
     for (;;) {
+      w.sleeping = true;
       w.wake.wait(lock, [&] { return stopping_ || w.job; });
+      w.sleeping = false;
       if (!w.job) return;  // stopping, nothing left to run
       std::function<void()> job = std::move(w.job);
       w.job = nullptr;
+      w.hasJob.store(false, std::memory_order_relaxed);
       lock.unlock();
       job();  // a packaged_task: it keeps its own exceptions
       job = nullptr;
       lock.lock();
       w.busy = false;
+      lock.unlock();
+      spinForNextJob(w);
+      lock.lock();
     }
   }
+  // A cut hands over its next task within a millisecond or two of the last one; a sleeping thread costs the
+  // caller a futex wake and starts tens of µs later on a virtual machine. So one worker at a time waits
+  // awake for a while (the other core is otherwise idle during a cut) before it sleeps.
+  void spinForNextJob(Worker& w) {
+    bool expected = false;
+    if (!spinning_.compare_exchange_strong(expected, true, std::memory_order_acquire)) return;
+    const auto until = std::chrono::steady_clock::now() + kSpinBeforeSleeping;
+    while (!w.hasJob.load(std::memory_order_acquire) && !stoppingSoon_.load(std::memory_order_relaxed)) {
+      for (int i = 0; i < 64; ++i) cpuRelax();
+      if (std::chrono::steady_clock::now() > until) break;
+    }
+    spinning_.store(false, std::memory_order_release);
+  }
+  static void cpuRelax() {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+  }
+  static constexpr std::chrono::microseconds kSpinBeforeSleeping{2000};
   std::mutex mutex_;
   std::array<Worker, 3> workers_;
   bool stopping_ = false;
+  std::atomic<bool> stoppingSoon_{false};  // stopping_ for the spinner, which holds no lock
+  std::atomic<bool> spinning_{false};      // one worker spins at a time: two would take the main thread's core
 };
 
 Pool& pool() {
