@@ -196,6 +196,7 @@ class TriangleBvh {
   std::int32_t buildMorton(std::vector<BuildRef>& refs, std::int32_t parent);
   std::int32_t mortonRange(const BuildRef* refs, const std::uint32_t* codes, std::size_t n, std::int32_t parent);
   std::int32_t allocNode();
+  void layOutInPairBlocks();
   std::int32_t allocBlock();
   void freeSubtree(std::int32_t node, std::vector<std::uint32_t>* slotsOut);
   void replaceChild(std::int32_t parent, std::int32_t oldChild, std::int32_t newChild);
