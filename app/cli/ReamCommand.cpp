@@ -139,12 +139,13 @@ int runReam(const std::vector<std::string>& args) {
     if (a.has("check") && step.cut.changed) {
       const BoneInvariants inv = controller.checkBone();
       // The engine's exact state is the bone; the rounded copy is what is displayed and exported.
-      if (!inv.closed || !inv.outwardOriented || inv.selfIntersectsExact) {
+      // Self-intersections the bone came with (a dirty CT mesh) are not a broken invariant; new ones are.
+      if (!inv.closed || !inv.outwardOriented || inv.newSelfIntersectionsExact) {
         invariantsHeld = false;
-        std::fprintf(stderr, "step %zu: bone invariant broken (closed %d, outward %d, self-intersects %d)\n",
-                     step.entry.stepIndex, inv.closed, inv.outwardOriented, inv.selfIntersectsExact);
+        std::fprintf(stderr, "step %zu: bone invariant broken (closed %d, outward %d, new self-intersections %d)\n",
+                     step.entry.stepIndex, inv.closed, inv.outwardOriented, inv.newSelfIntersectionsExact);
       }
-      if (inv.selfIntersectsRounded) ++roundedSelfIntersectingSteps;
+      if (inv.newSelfIntersectionsRounded) ++roundedSelfIntersectingSteps;
     }
     if (!json) printRow(step.entry);
   }

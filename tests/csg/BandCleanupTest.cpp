@@ -142,7 +142,9 @@ TEST(BandCleanup, AFailedRoundingCheckKeepsExactPointsAndThePlanAvoidsThem) {
     operations += c.cleanupCollapses + c.cleanupFlips;
     // After the first cut both engines hold the same Boolean result; the clean-up removes no vertex known
     // exactly (a plan made before the check failed would collapse many).
-    if (i == 60) EXPECT_EQ(cleaned.exactVertexCount(), exactOnly.exactVertexCount());
+    if (i == 60) {
+      EXPECT_EQ(cleaned.exactVertexCount(), exactOnly.exactVertexCount());
+    }
   }
   EXPECT_NEAR(exactOnly.volumeMm3(), reference.volumeMm3(), 1e-9 * reference.volumeMm3());
   EXPECT_GT(exactOnly.exactVertexCount(), 0u);

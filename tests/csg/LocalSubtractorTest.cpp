@@ -290,6 +290,13 @@ TEST(LocalSubtractor, SelfIntersectionAwayFromTheCutDoesNotStopIt) {
   const LocalCut c = e.subtract(toolAt(flatSpec(20), Pose{{-10, -10, -1}, kDown, 0}));
   ASSERT_TRUE(c.changed);
   EXPECT_NEAR(c.removedMm3, polygonArea(10, 64) * 1.0, 1e-9 * c.removedMm3);
+  // The checks see the bone's own pairs and tell them apart from any a cut would have made.
+  const BoneInvariants inv = e.checkInvariants();
+  EXPECT_TRUE(inv.selfIntersectsExact);
+  EXPECT_FALSE(inv.newSelfIntersectionsExact);
+  EXPECT_FALSE(inv.newSelfIntersectionsRounded);
+  EXPECT_EQ(inv.inputSelfIntersectingPairs, e.defects().selfIntersectingPairs);
+  EXPECT_GT(inv.inputSelfIntersectingPairs, 0u);
   const double before = e.volumeMm3();
   try {
     e.subtract(toolAt(flatSpec(20), Pose{{24, 24, -1}, kDown, 0}));

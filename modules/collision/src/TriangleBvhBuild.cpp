@@ -135,21 +135,37 @@ void TriangleBvh::layOutInPairBlocks() {
     }
     for (int j = count; j-- > 0;) owners.push_back(grandchildren[j]);  // the first one's subtree next
   }
-  const std::vector<BvhNode> oldNodes(nodes_.begin(), nodes_.end());
-  const std::vector<BvhSlab> oldSlabs(slabs_.begin(), slabs_.end());
-  const std::vector<NodeBook> oldBook(book_.begin(), book_.end());
+  // Moved in place, cycle by cycle (every node of a fresh build is reached, so newIndex is a permutation):
+  // copies of the arrays would cost a page fault per 4 KiB on a 400k tree. Links are renumbered after.
+  std::vector<bool> placed(n, false);
+  for (std::size_t start = 0; start < n; ++start) {
+    if (placed[start]) continue;
+    BvhNode node = nodes_[start];
+    BvhSlab slab = slabs_[start];
+    NodeBook book = book_[start];
+    std::size_t from = start;  // where the carried node was
+    for (;;) {
+      const std::size_t to = std::size_t(newIndex[from]);
+      placed[to] = true;
+      if (to == start) {
+        nodes_[to] = node;
+        slabs_[to] = slab;
+        book_[to] = book;
+        break;
+      }
+      std::swap(node, nodes_[to]);
+      std::swap(slab, slabs_[to]);
+      std::swap(book, book_[to]);
+      from = to;
+    }
+  }
   auto renumbered = [&](std::int32_t i) { return i < 0 ? i : newIndex[std::size_t(i)]; };
-  for (std::size_t o = 0; o < n; ++o) {
-    const std::size_t to = std::size_t(newIndex[o]);  // every node of a fresh build is reached
-    BvhNode nd = oldNodes[o];
+  for (BvhNode& nd : nodes_) {
     nd.parent = renumbered(nd.parent);
     if (!nd.isLeaf()) {  // a leaf's `left` is its slot block
       nd.left = renumbered(nd.left);
       nd.right = renumbered(nd.right);
     }
-    nodes_[to] = nd;
-    slabs_[to] = oldSlabs[o];
-    book_[to] = oldBook[o];
   }
   for (std::int32_t& leaf : leafOf_)
     if (leaf >= 0) leaf = newIndex[std::size_t(leaf)];

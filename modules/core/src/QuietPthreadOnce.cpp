@@ -3,14 +3,15 @@
 // Why: CGAL's lazy exact kernel (Epeck) guards the exact evaluation of every lazy number and point with
 // std::call_once, which libstdc++ runs through pthread_once, and glibc's pthread_once ends every first run
 // with a futex wake whether or not any thread waits. A reaming cut evaluates ~700 lazy objects exactly, so
-// that was ~700 system calls a cut; on this virtual machine each costs microseconds (the profile showed
-// the kernel's interrupt re-enabling as the hottest symbol after the allocator), ~13 % of a cut on the
-// bundled scapula (docs/CSG.md, session 22). std::promise::set_value uses the same path.
+// that was ~700 system calls a cut; on this virtual machine each costs microseconds (the kernel's
+// interrupt re-enabling was among the hottest symbols of a cut's profile): 3-13 % of a cut on the bundled
+// scapula, depending on the machine's moment (docs/CSG.md, session 22). std::promise::set_value, which the
+// cut's background tasks use, goes the same way.
 //
-// How: the executables link with `--wrap=pthread_once` (cmake/ReamSimQuietOnce.cmake), so the calls in
-// the objects linked into them, ours and CGAL's templates instantiated there, come here; shared libraries
-// (Qt, VTK, libstdc++ itself) keep glibc's. A flag is only ever used by one of the two: a once_flag lives
-// in the code that calls it.
+// How: the executables and the GUI's plugins link with `--wrap=pthread_once` (cmake/ReamSimQuietOnce.cmake),
+// so the calls in the objects linked into them, ours and CGAL's templates instantiated there, come here;
+// other shared libraries (Qt, VTK, libstdc++ itself) keep glibc's. A flag is only ever used by one of the
+// two: a once_flag lives in the code that calls it.
 //
 // States of the int behind pthread_once_t: 0 not run (PTHREAD_ONCE_INIT), 1 running, 5 running with a
 // waiter, 2 done (glibc's "done" bit, so a glibc reader would agree). A waiter marks the flag before it

@@ -16,16 +16,23 @@ class Pool {
  public:
   bool tryStart(std::function<void()>& job) {
     std::lock_guard<std::mutex> lock(mutex_);
+    Worker* idle = nullptr;
     for (Worker& w : workers_) {
       if (w.busy) continue;
-      if (!w.thread.joinable()) w.thread = std::thread([this, &w] { loop(w); });
-      w.job = std::move(job);
-      w.busy = true;
-      w.hasJob.store(true, std::memory_order_release);
-      if (w.sleeping) w.wake.notify_one();  // a spinning worker sees hasJob: no system call
-      return true;
+      if (w.thread.joinable() && !w.sleeping) {  // awake (spinning): takes the job without a wake-up
+        idle = &w;
+        break;
+      }
+      if (!idle) idle = &w;
     }
-    return false;
+    if (!idle) return false;
+    Worker& w = *idle;
+    if (!w.thread.joinable()) w.thread = std::thread([this, &w] { loop(w); });
+    w.job = std::move(job);
+    w.busy = true;
+    w.hasJob.store(true, std::memory_order_release);
+    if (w.sleeping) w.wake.notify_one();  // a spinning worker sees hasJob: no system call
+    return true;
   }
   ~Pool() {
     {
@@ -78,6 +85,7 @@ class Pool {
     while (!w.hasJob.load(std::memory_order_acquire) && !stoppingSoon_.load(std::memory_order_relaxed)) {
       for (int i = 0; i < 64; ++i) cpuRelax();
       if (std::chrono::steady_clock::now() > until) break;
+      std::this_thread::yield();  // a thread that has work on this core (another process's) goes first
     }
     spinning_.store(false, std::memory_order_release);
   }

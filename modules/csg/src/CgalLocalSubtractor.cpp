@@ -1263,7 +1263,9 @@ BoneInvariants LocalSubtractor::checkInvariants() const {
   CGAL::Surface_mesh<IK::Point_3> roundedMesh;
   std::unordered_map<std::uint32_t, std::pair<VI, CGAL::Surface_mesh<IK::Point_3>::Vertex_index>> vmap;
   bool manifold = true;
-  m.state.forEachLiveTriangle([&](std::uint32_t, const Triangle& t) {
+  std::vector<std::uint32_t> slotOfFace;  // the meshes' faces in the order they are added
+  m.state.forEachLiveTriangle([&](std::uint32_t slot, const Triangle& t) {
+    slotOfFace.push_back(slot);
     VI ve[3];
     CGAL::Surface_mesh<IK::Point_3>::Vertex_index vr[3];
     for (int k = 0; k < 3; ++k) {
@@ -1283,6 +1285,19 @@ BoneInvariants LocalSubtractor::checkInvariants() const {
   inv.outwardOriented = inv.closed && PMP::is_outward_oriented(exactMesh);
   inv.selfIntersectsExact = !manifold || PMP::does_self_intersect(exactMesh);
   inv.selfIntersectsRounded = !manifold || PMP::does_self_intersect(roundedMesh);
+  inv.inputSelfIntersectingPairs = m.defects.selfIntersectingPairs;
+  // Pairs the bone came with are pairs of two defect faces; any other pair is new (a cut made it).
+  auto anyNewPair = [&](const auto& mesh) {
+    using Face = typename std::decay_t<decltype(mesh)>::Face_index;
+    std::vector<std::pair<Face, Face>> pairs;
+    PMP::self_intersections(mesh, std::back_inserter(pairs));
+    auto inputDefect = [&](Face f) { return (m.defect[slotOfFace[f.idx()]] & csg::kSelfIntersecting) != 0; };
+    return std::any_of(pairs.begin(), pairs.end(), [&](const auto& p) { return !(inputDefect(p.first) && inputDefect(p.second)); });
+  };
+  const bool inputHadPairs = m.defects.selfIntersectingPairs > 0;
+  inv.newSelfIntersectionsExact = !manifold || (inv.selfIntersectsExact && (!inputHadPairs || anyNewPair(exactMesh)));
+  inv.newSelfIntersectionsRounded =
+      !manifold || (inv.selfIntersectsRounded && (!inputHadPairs || anyNewPair(roundedMesh)));
   return inv;
 }
 

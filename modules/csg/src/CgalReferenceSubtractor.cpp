@@ -122,6 +122,8 @@ BoneInvariants ReferenceSubtractor::checkInvariants() const {
   inv.outwardOriented = inv.closed && PMP::is_outward_oriented(impl_->bone);
   inv.selfIntersectsExact = PMP::does_self_intersect(impl_->bone);
   inv.selfIntersectsRounded = PMP::does_self_intersect(build<RoundedMesh>(mesh()));
+  inv.newSelfIntersectionsExact = inv.selfIntersectsExact;
+  inv.newSelfIntersectionsRounded = inv.selfIntersectsRounded;
   return inv;
 }
 

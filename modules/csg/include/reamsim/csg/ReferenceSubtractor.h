@@ -24,6 +24,12 @@ struct BoneInvariants {
   bool outwardOriented = false;
   bool selfIntersectsExact = true;    // on the exact coordinates the engine keeps
   bool selfIntersectsRounded = true;  // on the double coordinates shown and exported
+  // The same, not counting the pairs the bone came with (both faces self-intersecting defects found on
+  // loading, which a cut never changes: LocalSubtractor refuses cuts that reach them): whether cutting made
+  // any. Equal to the above for a clean bone and for the reference engine, which takes clean bones only.
+  bool newSelfIntersectionsExact = true;
+  bool newSelfIntersectionsRounded = true;
+  std::size_t inputSelfIntersectingPairs = 0;  // the pairs left out of the two above
 };
 
 class ReferenceSubtractor {
