@@ -86,13 +86,8 @@ class FaceDistanceSearch {
   // Does bone triangle `slot` cross face triangle `faceSlot` (face BVH slot)? If so the result is that
   // pair at distance 0. FaceDistanceTracker's first try while the face stays in the bone.
   bool crossesAt(std::uint32_t slot, std::uint32_t faceSlot) {
-    const BvhTriangle& bt = bone_.triangle(slot);
-    const BvhTriangle l{frame_.toLocal(bt.a), frame_.toLocal(bt.b), frame_.toLocal(bt.c)};
-    const BvhTriangle& rt = face_.triangle(faceSlot);
     ++out_.trianglePairs;
-    const bool hit = trianglesIntersect(rt.a, rt.b, rt.c, l.a, l.b, l.c);
-    if (hit) record(slot, faceSlot, closestTriangleTriangle(rt.a, rt.b, rt.c, l.a, l.b, l.c), true);
-    return hit;
+    return recordIfCrossing(slot, faceSlot, face_.triangle(faceSlot), localTriangle(bone_.triangle(slot)));
   }
 
   // Writes the distance found (if any) into the result; the pair is already there.
@@ -220,9 +215,21 @@ class FaceDistanceSearch {
     return gap > 0 ? sq(rise) + sq(gap) : 0;
   }
 
+  BvhTriangle localTriangle(const BvhTriangle& bt) const {
+    return {frame_.toLocal(bt.a), frame_.toLocal(bt.b), frame_.toLocal(bt.c)};
+  }
+
+  // Bone triangle l (reamer frame) against face triangle rt: if they touch or cross, the pair is recorded at
+  // distance 0.
+  bool recordIfCrossing(std::uint32_t slot, std::uint32_t faceSlot, const BvhTriangle& rt, const BvhTriangle& l) {
+    if (!trianglesIntersect(rt.a, rt.b, rt.c, l.a, l.b, l.c)) return false;
+    record(slot, faceSlot, closestTriangleTriangle(rt.a, rt.b, rt.c, l.a, l.b, l.c), true);
+    return true;
+  }
+
   // One bone triangle against the face BVH (reamer frame).
   void measure(std::uint32_t slot, const BvhTriangle& bt) {
-    const BvhTriangle l{frame_.toLocal(bt.a), frame_.toLocal(bt.b), frame_.toLocal(bt.c)};
+    const BvhTriangle l = localTriangle(bt);
     Vec3 llo, lhi;
     TriangleBvh::paddedBox(l, llo, lhi);
     const Vec3 bn = normalized(cross(l.b - l.a, l.c - l.a));
@@ -260,9 +267,8 @@ class FaceDistanceSearch {
         if (skip(sq(planeGap(dot(n, l.a) - o, dot(n, l.b) - o, dot(n, l.c) - o)))) continue;
         ++out_.trianglePairs;
         if (crossing_) {
-          if (!trianglesIntersect(rt.a, rt.b, rt.c, l.a, l.b, l.c)) continue;
-          record(slot, rs[j], closestTriangleTriangle(rt.a, rt.b, rt.c, l.a, l.b, l.c), true);
-          return;
+          if (recordIfCrossing(slot, rs[j], rt, l)) return;
+          continue;
         }
         if (record(slot, rs[j], closestDisjointTriangles(rt.a, rt.b, rt.c, l.a, l.b, l.c), false) && best2_ == 0) return;
       }

@@ -38,7 +38,6 @@ class Pool {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stopping_ = true;
-      stoppingSoon_.store(true);
     }
     for (Worker& w : workers_) {
       w.wake.notify_one();
@@ -82,7 +81,7 @@ class Pool {
     bool expected = false;
     if (!spinning_.compare_exchange_strong(expected, true, std::memory_order_acquire)) return;
     const auto until = std::chrono::steady_clock::now() + kSpinBeforeSleeping;
-    while (!w.hasJob.load(std::memory_order_acquire) && !stoppingSoon_.load(std::memory_order_relaxed)) {
+    while (!w.hasJob.load(std::memory_order_acquire) && !stopping_.load(std::memory_order_relaxed)) {
       for (int i = 0; i < 64; ++i) cpuRelax();
       if (std::chrono::steady_clock::now() > until) break;
       std::this_thread::yield();  // a thread that has work on this core (another process's) goes first
@@ -97,8 +96,7 @@ class Pool {
   static constexpr std::chrono::microseconds kSpinBeforeSleeping{2000};
   std::mutex mutex_;
   std::array<Worker, 3> workers_;
-  bool stopping_ = false;
-  std::atomic<bool> stoppingSoon_{false};  // stopping_ for the spinner, which holds no lock
+  std::atomic<bool> stopping_{false};  // set under mutex_; atomic for the spinner, which holds no lock
   std::atomic<bool> spinning_{false};      // one worker spins at a time: two would take the main thread's core
 };
 
