@@ -166,15 +166,20 @@ class ToiSearch {
       }
       // The body and back at s = 0: a bone triangle they touch is one the ideal solid reaches there, so its
       // leaf's item comes before every later one and before any triangle pair is solved (pairs are queued
-      // no earlier than their bone triangle). A reamer starting clear of the bone tests nothing here.
-      if (untestedStart_ && it.slb <= kStartSlack && it.kind == Item::BoneOnly && bn[it.b].isLeaf()) {
-        detail::TouchPair touch;
-        if (detail::restTouchesBone(bone_, reamer_, *untestedStart_, &touch)) {
-          out_ = touchAtStart(bone_, touch);
-          sHit = 0;
-          return true;
+      // no earlier than their bone triangle). Each such leaf is tested against them as it is taken, until
+      // the first later item (session 23: rather than the whole bone at the first such leaf; ticks at 400k
+      // ~6 % faster). A reamer starting clear of the bone tests nothing here.
+      if (untestedStart_) {
+        if (it.slb > kStartSlack) {
+          untestedStart_ = nullptr;
+        } else if (it.kind == Item::BoneOnly && bn[it.b].isLeaf()) {
+          detail::TouchPair touch;
+          if (detail::restTouchesSubtree(bone_, it.b, reamer_, *untestedStart_, &touch)) {
+            out_ = touchAtStart(bone_, touch);
+            sHit = 0;
+            return true;
+          }
         }
-        untestedStart_ = nullptr;
       }
       if (it.kind == Item::BoneTriangle) {
         pairWithinWindow(static_cast<std::uint32_t>(it.b), it.slb, it.r);

@@ -15,11 +15,16 @@ bool surfacesTouch(const TriangleBvh& bone, const ReamerModel& reamer, const Rig
 
 bool restTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where) {
   if (bone.empty()) return false;
+  return restTouchesSubtree(bone, bone.root(), reamer, pose, where);
+}
+
+bool restTouchesSubtree(const TriangleBvh& bone, std::int32_t node, const ReamerModel& reamer, const RigidTransform& pose,
+                        TouchPair* where) {
   const TriangleBvh& rest = reamer.restBvh();
   if (rest.empty()) return false;
   const PoseFrame frame(pose);
   PairBoxes boxes(bone, rest, frame);
-  std::vector<std::pair<std::int32_t, std::int32_t>> stack{{bone.root(), rest.root()}};
+  std::vector<std::pair<std::int32_t, std::int32_t>> stack{{node, rest.root()}};
   const auto& bn = bone.nodes();
   const auto& rn = rest.nodes();
   while (!stack.empty()) {

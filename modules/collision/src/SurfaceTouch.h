@@ -17,9 +17,12 @@ struct TouchPair {
 };
 
 bool faceTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);
-// The body and back alone (first contact asks only when its sweep finds bone the ideal solid reaches at the
-// start, FirstContact.cpp).
+// The body and back alone.
 bool restTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);
 bool surfacesTouch(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);
+// The body and back against the bone subtree under `node` only (first contact asks it of each bone leaf its
+// sweep finds the ideal solid reaching at the start, FirstContact.cpp).
+bool restTouchesSubtree(const TriangleBvh& bone, std::int32_t node, const ReamerModel& reamer, const RigidTransform& pose,
+                        TouchPair* where);
 
 }  // namespace reamsim::detail
