@@ -132,8 +132,9 @@ TEST(TriangleGrid, QueriesAgreeWithBruteForce) {
     return nearest <= h;
   };
   std::vector<std::uint32_t> out;
-  for (int q = 0; q < 300; ++q) {
-    const Box3 query = randomBox(q % 3 == 0 ? 25.0 : q % 3 == 1 ? 3.0 : 0.2, 4);
+  for (int q = 0; q < 400; ++q) {
+    // Large, middling, small and point queries (a point's query lies in one cell: the clean-up's vertex stars).
+    const Box3 query = randomBox(q % 4 == 0 ? 25.0 : q % 4 == 1 ? 3.0 : q % 4 == 2 ? 0.2 : 0.0, 4);
     std::vector<std::uint32_t> expected, expectedFiltered;
     for (std::uint32_t s = 0; s < boxes.size(); ++s) {
       if (s % 3 == 0 || !boxes[s].overlaps(query)) continue;
