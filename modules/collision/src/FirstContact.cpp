@@ -165,10 +165,11 @@ class ToiSearch {
         continue;
       }
       // The body and back at s = 0: a bone triangle they touch is one the ideal solid reaches there, so its
-      // leaf's item comes before every later one and before any triangle pair is solved (pairs are queued
-      // no earlier than their bone triangle). Each such leaf is tested against them as it is taken, until
-      // the first later item (session 23: rather than the whole bone at the first such leaf; ticks at 400k
-      // ~6 % faster). A reamer starting clear of the bone tests nothing here.
+      // leaf and the leaf's ancestors are bounded by 0 (boneItem rounds bounds within kStartSlack down to
+      // 0), and bone nodes come before triangle pairs at equal bounds: every such leaf is taken before any
+      // item with a later bound and before any pair is solved. Each is tested against them as it is taken,
+      // until the first later item (session 23: rather than the whole bone at the first such leaf; ticks at
+      // 400k ~6 % faster). A reamer starting clear of the bone tests nothing here.
       if (untestedStart_) {
         if (it.slb > kStartSlack) {
           untestedStart_ = nullptr;
@@ -293,8 +294,9 @@ class ToiSearch {
 
   // The convex ideal solid a parametric reamer's mesh lies in, moving: a ball about the sphere's centre (or
   // the flat reamer's middle) holding all of it, the slab of its length along the axis and four slabs
-  // across the axis (an octagon about the cylinder). A bone node none of them can reach before the best
-  // contact so far is dropped whole, without pairing it with the reamer's nodes: the search visits the
+  // across the axis (an octagon about the cylinder). A bone node that one of them (hullTime uses the ball,
+  // the axial slab and the across slab facing the node) shows cannot be reached before the best contact so
+  // far is dropped whole, without pairing it with the reamer's nodes: the search visits the
   // bone only where the reamer can get to it, and a bone triangle meets the reamer tree only once it
   // comes first (pairWithinWindow).
   void initHull(const ReamerModel& reamer) {
@@ -368,7 +370,10 @@ class ToiSearch {
   // it is taken, they are read behind bound tests that return early, so their cache misses would not
   // overlap (no-contact motions at 400k ~25% faster over alternating runs).
   Item boneItem(std::int32_t b) const {
-    const Item it{hullTime(b), b, -1, Item::BoneOnly};
+    Item it{hullTime(b), b, -1, Item::BoneOnly};
+    // While the start is untested, a bound that may be a contact at s = 0 rounded up is taken as 0 (still a
+    // lower bound), so that the leaf comes before every triangle pair (see run()).
+    if (untestedStart_ && it.slb <= kStartSlack) it.slb = 0;
     const BvhNode& B = bone_.nodes()[b];
     if (promising(it.slb) && !B.isLeaf()) {
       bone_.prefetchNode(B.left, true);
