@@ -188,7 +188,7 @@ double approachRate(const SegmentMotion& m, const Vec3& n, const Vec3& q, double
 }
 
 PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const Vec3 (&q)[3], const BvhTriangle& bone,
-                             double smax, bool checkStart) {
+                             double smax, bool checkStart, double smin) {
   PairContact out;
   const Vec3 B[3] = {bone.a, bone.b, bone.c};
   // Already touching at the start of the segment.
@@ -209,23 +209,27 @@ PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const V
   const double t2 = m.tau * m.tau;
   bool degenerateVertexFace = false;
 
-  // Boxes of each reamer vertex's path over [0, smax] and of the bone triangle and its edges: a feature
-  // pair whose boxes are apart cannot meet, so its cubic is not solved. Most pairs that reach this function
-  // are of this kind where the surfaces nearly conform (a vertex crosses the plane of a bone triangle it
-  // never gets near).
+  // Boxes of each reamer vertex's path over [smin, smax] and of the bone triangle and its edges: a feature
+  // pair whose boxes are apart cannot meet there, and not before smin either, so its cubic is not solved.
+  // Most pairs that reach this function are of this kind where the surfaces nearly conform (a vertex
+  // crosses the plane of a bone triangle it never gets near). A path is the tip's travel plus the offset's
+  // arc, which lies within its chord's box grown by the arc's sag; the arc over [smin, smax] turns by at
+  // most phi(smax - smin) (phi is concave from 0), so its sag is at most sag(r, smax - smin).
   Vec3 plo[3], phi[3];
   {
+    if (!(smin > 0 && smin < smax)) smin = 0;
+    const Mat3 turn0 = m.tau == 0 || smin == 0 ? Mat3{} : m.turnAt(smin);
     const Mat3 turn = m.tau == 0 ? Mat3{} : m.turnAt(smax);
-    const Vec3 t1 = m.tipAt(smax);
-    const Vec3 tlo{std::min(m.tip0.x, t1.x), std::min(m.tip0.y, t1.y), std::min(m.tip0.z, t1.z)};
-    const Vec3 thi{std::max(m.tip0.x, t1.x), std::max(m.tip0.y, t1.y), std::max(m.tip0.z, t1.z)};
+    const Vec3 t0 = m.tipAt(smin), t1 = m.tipAt(smax);
+    const Vec3 tlo{std::min(t0.x, t1.x), std::min(t0.y, t1.y), std::min(t0.z, t1.z)};
+    const Vec3 thi{std::max(t0.x, t1.x), std::max(t0.y, t1.y), std::max(t0.z, t1.z)};
     for (int i = 0; i < 3; ++i) {
-      const Vec3 e = turn * q[i];
+      const Vec3 a = turn0 * q[i], e = turn * q[i];
       const double r = norm(q[i]);
-      const double pad = m.sag(r, smax) * (1 + 1e-9) + 1e-9 * (r + norm(m.delta)) +
+      const double pad = m.sag(r, smax - smin) * (1 + 1e-9) + 1e-9 * (r + norm(m.delta)) +
                          1e-12 * (1 + std::abs(tlo.x) + std::abs(tlo.y) + std::abs(tlo.z));
-      plo[i] = Vec3{std::min(q[i].x, e.x), std::min(q[i].y, e.y), std::min(q[i].z, e.z)} + tlo - Vec3{pad, pad, pad};
-      phi[i] = Vec3{std::max(q[i].x, e.x), std::max(q[i].y, e.y), std::max(q[i].z, e.z)} + thi + Vec3{pad, pad, pad};
+      plo[i] = Vec3{std::min(a.x, e.x), std::min(a.y, e.y), std::min(a.z, e.z)} + tlo - Vec3{pad, pad, pad};
+      phi[i] = Vec3{std::max(a.x, e.x), std::max(a.y, e.y), std::max(a.z, e.z)} + thi + Vec3{pad, pad, pad};
     }
   }
   // The features' own tolerances (barycentric and segment slack, 1e-9 of their sizes) fit well inside this.

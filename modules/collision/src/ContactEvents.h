@@ -39,9 +39,10 @@ struct PairContact {
 
 // p: the reamer triangle in local coordinates; q: the same rotated by m.R0 (offsets from the tip at s = 0).
 // Only contacts with s <= smax are reported. checkStart: test for touching at s = 0 first (callers that know
-// the surfaces are apart at the start skip it).
+// the surfaces are apart at the start skip it). smin: a lower bound the caller knows for the pair's first
+// contact (0 when none): features whose paths over [smin, smax] stay apart are not solved.
 PairContact pairFirstContact(const SegmentMotion& m, const Vec3 (&p)[3], const Vec3 (&q)[3], const BvhTriangle& bone,
-                             double smax, bool checkStart = true);
+                             double smax, bool checkStart = true, double smin = 0);
 
 // Earliest s in [0, smax] at which a box whose faces move linearly (lower faces at rateLo, upper faces at
 // rateHi per axis, from [lo0, hi0] at s = 0) can overlap [blo, bhi]; +inf when it cannot.

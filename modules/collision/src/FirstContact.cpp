@@ -161,7 +161,7 @@ class ToiSearch {
       }
       if (found_ ? it.slb >= best_ : it.slb > best_) break;  // every remaining item starts later
       if (it.kind == Item::Triangles) {
-        exact(it.b, it.r);
+        exact(it.b, it.r, it.slb);
         continue;
       }
       // The body and back at s = 0: a bone triangle they touch is one the ideal solid reaches there, so its
@@ -547,13 +547,14 @@ class ToiSearch {
     return sc_.plane[slot];
   }
 
-  void exact(std::int32_t boneSlot, std::int32_t reamerSlot) {
+  void exact(std::int32_t boneSlot, std::int32_t reamerSlot, double slb) {
     const BvhTriangle& lt = rtree_.triangle(static_cast<std::uint32_t>(reamerSlot));
     const auto& qa = rotatedTriangle(static_cast<std::uint32_t>(reamerSlot));
     const Vec3 p[3] = {lt.a, lt.b, lt.c};
     const Vec3 q[3] = {qa[0], qa[1], qa[2]};
     ++out_.trianglePairs;
-    const PairContact c = detail::pairFirstContact(m_, p, q, bone_.triangle(static_cast<std::uint32_t>(boneSlot)), best_, false);
+    const PairContact c =
+        detail::pairFirstContact(m_, p, q, bone_.triangle(static_cast<std::uint32_t>(boneSlot)), best_, false, slb);
     if (!c.hit || (found_ && c.s >= best_)) return;
     found_ = true;
     best_ = c.s;
