@@ -121,17 +121,12 @@ bool TriangleGrid::mark(std::uint32_t slot) {
 }
 
 void TriangleGrid::query(const Box3& q, std::vector<std::uint32_t>& out) {
-  const auto lo = cellOf(q.lo);
-  if (lo == cellOf(q.hi)) {  // one cell (a point's query: the clean-up's stars): each slot is in it once
-    out.clear();
-    for (std::uint32_t s : cells_[index(lo[0], lo[1], lo[2])])
-      if (boxes_[s].overlaps(q)) out.push_back(s);
-    return;
-  }
+  // Within one cell (a point's query: the clean-up's vertex stars) each slot is listed once: no stamps.
+  const bool oneCell = cellOf(q.lo) == cellOf(q.hi);
   beginQuery(out);
   forCells(q, [&](std::size_t c) {
     for (std::uint32_t s : cells_[c])
-      if (mark(s) && boxes_[s].overlaps(q)) out.push_back(s);
+      if ((oneCell || mark(s)) && boxes_[s].overlaps(q)) out.push_back(s);
   });
 }
 
