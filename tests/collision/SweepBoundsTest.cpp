@@ -123,5 +123,54 @@ TEST(collisionSweepBounds, MovingBallHoldsTheTurningPoints) {
   }
 }
 
+// A 90-degree turn about z through the tip: the vertex at -45 degrees sweeps to +45 degrees, and its arc
+// bulges out to x = r while both its ends (and so its chord's box) stay at x = r cos 45. It meets a bone
+// triangle standing at x = 0.9 r in the bulge, at the angle where r cos = 0.9 r. The exact events skip a
+// feature whose path box misses the bone's, so this contact is found only if the boxes hold the arc's sag.
+detail::SegmentMotion quarterTurnAboutZ() {
+  RigidTransform a, b;
+  const detail::Mat3 turn = detail::rotationAbout(Vec3{0, 0, 1}, 0.5 * 3.14159265358979323846);
+  for (int i = 0; i < 9; ++i) b.rotation[i] = turn.m[i];
+  const detail::MotionPlan plan = detail::MotionPlan::between(a, b);
+  EXPECT_EQ(plan.segments, 1);
+  return plan.segment(0);
+}
+
+TEST(collisionSweepBounds, PairContactFollowsTheArcBeyondItsChord) {
+  const detail::SegmentMotion m = quarterTurnAboutZ();
+  const double r = 10, c45 = std::sqrt(0.5);
+  // Reamer-local triangle (R0 = I, so q = p): one far vertex, two near the axis.
+  const Vec3 p[3] = {{r * c45, -r * c45, 0}, {0.5, -0.2, 0.3}, {0.4, 0.1, -0.3}};
+  const Vec3 q[3] = {p[0], p[1], p[2]};
+  const BvhTriangle bone{{0.9 * r, -0.6 * r, -0.2 * r}, {0.9 * r, -0.2 * r, -0.2 * r}, {0.9 * r, -0.4 * r, 0.3 * r}};
+  // The far vertex is at angle -45 + phi(s), phi(s) = 2 atan(s tau); it reaches x = 0.9 r at angle -acos(0.9).
+  const double phiHit = 0.25 * 3.14159265358979323846 - std::acos(0.9);
+  const double sHit = std::tan(0.5 * phiHit) / m.tau;
+  for (const double smin : {0.0, 0.5 * sHit}) {
+    const detail::PairContact c = detail::pairFirstContact(m, p, q, bone, 1.0, true, smin);
+    ASSERT_TRUE(c.hit) << "smin " << smin;
+    EXPECT_NEAR(c.s, sHit, 1e-9);
+    EXPECT_EQ(c.feature, ContactFeature::ReamerVertexBoneFace);
+    EXPECT_NEAR(c.point.x, 0.9 * r, 1e-9);
+    EXPECT_NEAR(c.point.y, -r * std::sqrt(1 - 0.81), 1e-9);
+  }
+}
+
+TEST(collisionSweepBounds, SweptTriangleBoxHoldsTheArcBeyondItsChord) {
+  const detail::SegmentMotion m = quarterTurnAboutZ();
+  const double r = 10, c45 = std::sqrt(0.5);
+  const Vec3 q[3] = {{r * c45, -r * c45, 0}, {0.5, -0.2, 0.3}, {0.4, 0.1, -0.3}};
+  Vec3 lo, hi;
+  detail::sweptTriangleBox(m, m.turnAt(1.0), q, 1.0, lo, hi);
+  for (int k = 0; k <= 200; ++k) {
+    const double s = k / 200.0;
+    for (const Vec3& v : q) {
+      const Vec3 x = m.tipAt(s) + m.turnAt(s) * v;
+      ASSERT_TRUE(x.x >= lo.x && x.y >= lo.y && x.z >= lo.z && x.x <= hi.x && x.y <= hi.y && x.z <= hi.z) << "s " << s;
+    }
+  }
+  EXPECT_GE(hi.x, r);  // the bulge: beyond both ends' r cos 45
+}
+
 }  // namespace
 }  // namespace reamsim
