@@ -11,12 +11,14 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include "CliArgs.h"
 #include "Commands.h"
 #include "NodePeers.h"
+#include "ReamedSurfaceJson.h"
 #include "reamsim/core/Document.h"
 #include "reamsim/csg/LocalSubtractor.h"
 #include "reamsim/csg/ReferenceSubtractor.h"
@@ -315,7 +317,8 @@ nlohmann::json appLoop(const TriangleMesh& bone, const ReamerSpec& spec, const T
 int runBenchCut(const std::vector<std::string>& args) {
   CliArgs a(args,
             {"bone", "units", "subdivide", "steps", "depth", "tilt", "reamer", "check-every", "export-sequence",
-             "peers-dir", "peers-budget-ms", "path", "cut-site", "cleanup-deviation-mm", "cleanup-min-edge-mm", "cleanup-min-angle-deg"},
+             "peers-dir", "peers-budget-ms", "path", "cut-site", "cleanup-deviation-mm", "cleanup-min-edge-mm", "cleanup-min-angle-deg",
+             "segments", "rings"},
             {"json", "peers", "table-5-1", "no-cleanup", "avoid-defects", "loop"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string boneArg = a.value("bone", "default");
@@ -336,7 +339,18 @@ int runBenchCut(const std::vector<std::string>& args) {
   for (int i = 0; i < subdivisions; ++i) bone = subdivide(bone);
   const std::string pathKind = a.value("path", "jitter");
   if (pathKind != "jitter" && pathKind != "soak") throw UsageError("--path jitter|soak");
-  const ReamerSpec spec = loadPreset(a.value("reamer", "glenoid-36-R30"), reamerPresetsPath());
+  // --segments / --rings: the preset at another resolution (how the reamed surface converges with it).
+  const ReamerSpec spec = [&] {
+    ReamerSpec s = loadPreset(a.value("reamer", "glenoid-36-R30"), reamerPresetsPath());
+    s.segments = int(a.number("segments", s.segments));
+    s.rings = int(a.number("rings", s.rings));
+    try {
+      validateReamerSpec(s);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--segments/--rings: ") + e.what());
+    }
+    return s;
+  }();
   const TriangleMesh localTool = buildCuttingSolid(spec);
   auto pathAt = [&](const Spot& s) {
     return pathKind == "soak" ? soakPath(s, steps, a.number("depth", 1.0))
@@ -433,6 +447,7 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"allocator", allocatorName()},
       {"subdivisions", subdivisions},
       {"reamer", spec.name},
+      {"reamer_resolution", {{"segments", spec.segments}, {"rings", spec.rings}, {"faces", localTool.triangles.size()}}},
       {"faces_start", bone.triangles.size()},
       {"faces_end", finalMesh.triangles.size()},
       {"faces_ratio", double(finalMesh.triangles.size()) / double(bone.triangles.size())},
@@ -485,6 +500,10 @@ int runBenchCut(const std::vector<std::string>& args) {
                    {"non_manifold_faces", engine.defects().nonManifoldFaces},
                    {"degenerate_faces", engine.defects().degenerateFaces},
                    {"border_edges", engine.defects().borderEdges}}}};
+  if (spec.meshFile.empty() && !poses.empty()) {
+    constexpr double kBandMm = 0.05;
+    out["reamed_surface"] = reamedSurfaceJson(measureReamedSurface(finalMesh, spec, poses.back(), kBandMm), kBandMm);
+  }
 
   if (a.has("peers")) {
     nlohmann::json peers;

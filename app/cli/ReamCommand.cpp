@@ -7,6 +7,7 @@
 
 #include "CliArgs.h"
 #include "Commands.h"
+#include "ReamedSurfaceJson.h"
 #include "reamsim/core/Document.h"
 #include "reamsim/core/PlanNode.h"
 #include "reamsim/mesh/MeshError.h"
@@ -171,6 +172,16 @@ int runReam(const std::vector<std::string>& args) {
                             {"collision", collisionName == "bvh" ? "bvh-exact (modules/collision BoneCollider)"
                                                                  : "thesis rays (reference)"}};
 
+  // What a surgeon asks of the result: how much of the face is seated and how close the bone is to the
+  // ideal face (parametric reamers: the ideal face is what the spec describes).
+  std::string reamedLine;
+  if (spec.meshFile.empty() && !planNode.poses().empty()) {
+    constexpr double kBandMm = 0.05;
+    const ReamedSurfaceReport rs = measureReamedSurface(finalMesh, spec, planNode.poses().back(), kBandMm);
+    summary["reamed_surface"] = reamedSurfaceJson(rs, kBandMm);
+    reamedLine = reamedSurfaceLine(rs);
+  }
+
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);
   try {
@@ -188,6 +199,7 @@ int runReam(const std::vector<std::string>& args) {
                 "V_after)| / removed = %.2e\n",
                 summary["removed_total_mm3"].get<double>(), log.size(), medianMs, bone.mesh.triangles.size(),
                 finalMesh.triangles.size(), worstBookkeeping);
+    if (!reamedLine.empty()) std::printf("%s\n", reamedLine.c_str());
     std::printf("written: %s/log.csv, %s/log.json, %s/bone_final.ply\n", outDir.c_str(), outDir.c_str(), outDir.c_str());
   }
   return invariantsHeld ? kOk : kFailed;

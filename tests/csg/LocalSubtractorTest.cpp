@@ -10,6 +10,8 @@
 #include "reamsim/csg/SweptVolume.h"
 #include "reamsim/mesh/Validation.h"
 #include "reamsim/ream/DefaultCase.h"
+#include "reamsim/tools/ReamedSurface.h"
+#include "reamsim/tools/ReamerGeometry.h"
 
 namespace reamsim {
 namespace {
@@ -153,6 +155,14 @@ TEST(LocalSubtractor, SphericalReamerIntoABlockMatchesTheClosedForm) {
   // as the reference's does, so only the exact state is required to be free of self-intersections.
   const BoneInvariants inv = e.checkInvariants();
   EXPECT_TRUE(inv.closed && inv.outwardOriented && !inv.selfIntersectsExact);
+  // The cavity is the reamer's faceted cap: seated over the zone 3 mm deep (half the 6 mm cap's area, less
+  // the facets' shortfall), standing off the ideal sphere by at most the facets' sag and the clean-up's
+  // 1 um moves.
+  const ReamedSurfaceReport rs = measureReamedSurface(e.mesh(), spec, Pose{{0, 0, -depth}, kDown, 0});
+  EXPECT_NEAR(rs.seatedFraction, depth / capHeight(spec), 0.01);
+  EXPECT_GE(rs.standoffMinMm, -1e-3);
+  EXPECT_LE(rs.standoffMaxMm, rs.facetSagMm + 1e-3);
+  EXPECT_GT(rs.standoffMaxMm, 0.2 * rs.facetSagMm) << "the facets' own sag shows";
 }
 
 TEST(LocalSubtractor, FlatReamerIntoASphereMatchesTheClosedForm) {
