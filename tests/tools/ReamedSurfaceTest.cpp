@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "TestSpecs.h"
 #include "reamsim/tools/ReamedSurface.h"
 #include "reamsim/tools/ReamerGeometry.h"
 
@@ -16,15 +17,7 @@ using namespace reamsim;
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-ReamerSpec cap(double d, double r, int segments = 96, int rings = 12) {
-  ReamerSpec s;
-  s.name = "test";
-  s.diameterMm = d;
-  s.sphereRadiusMm = r;
-  s.segments = segments;
-  s.rings = rings;
-  return s;
-}
+ReamerSpec cap(double d, double r, int segments = 96, int rings = 12) { return test::spherical(d, r, 12, segments, rings); }
 
 // The zone of the sphere of radius r about c within polar angle maxPolar of its lowest point c - (0, 0, r),
 // a fine UV grid, its faces turned towards c (a cavity's surface: the bone's outward normal looks into the
@@ -97,8 +90,7 @@ TEST(toolsReamedSurface, ABallIsNotACavity) {
 }
 
 TEST(toolsReamedSurface, AFlatFloorUnderAFlatReamer) {
-  ReamerSpec s;
-  s.diameterMm = 20;  // flat: sphereRadiusMm stays infinite
+  const ReamerSpec s = test::flat(20);
   // A 40 mm square floor at z = -2 facing +Z (the reamer comes from above, fed along -Z).
   TriangleMesh grid;
   const int n = 80;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "MeshChecks.h"
+#include "TestSpecs.h"
 #include "reamsim/tools/MeshClosure.h"
 #include "reamsim/tools/ReamerGeometry.h"
 
@@ -13,19 +14,8 @@ using namespace reamsim;
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-ReamerSpec spherical(double d, double r, double body = 12, int segments = 96, int rings = 12) {
-  ReamerSpec s;
-  s.name = "test";
-  s.diameterMm = d;
-  s.sphereRadiusMm = r;
-  s.bodyLengthMm = body;
-  s.segments = segments;
-  s.rings = rings;
-  return s;
-}
-ReamerSpec flat(double d, double body = 10, int segments = 96, int rings = 12) {
-  return spherical(d, std::numeric_limits<double>::infinity(), body, segments, rings);
-}
+using test::flat;
+using test::spherical;
 double relativeVolumeError(const ReamerSpec& s) {
   const double ideal = idealCuttingVolume(s);
   return std::abs(signedVolume(buildCuttingSolid(s)) - ideal) / ideal;
