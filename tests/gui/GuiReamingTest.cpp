@@ -1,6 +1,9 @@
 // Reaming actions through the real window: "Ream to depth" measures from the first contact; a move by hand
 // during a queued feed starts where the reamer is shown (it interrupts the feed, it does not jump to its end).
 #include <QAction>
+#include <QDockWidget>
+#include <QLabel>
+#include <QPushButton>
 #include <algorithm>
 #include <cmath>
 #include <QProgressBar>
@@ -10,6 +13,7 @@
 
 #include "GuiEnvironment.h"
 #include "reamsim/ream/Approach.h"
+#include "reamsim/tools/ReamedSurface.h"
 
 namespace reamsim::ui::test {
 namespace {
@@ -62,6 +66,33 @@ TEST(GuiReaming, ReamToDepthStartsAtTheFirstContact) {
   EXPECT_GT(w.view()->maxDepthMm(), 0.8);
   EXPECT_LT(w.view()->maxDepthMm(), 1.05);
   EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+}
+
+// The log panel's "Measure seat": the reamed surface at the reamer's pose, as modules/tools measures it;
+// cleared by the next cut (it was measured on the bone before it).
+TEST(GuiReaming, MeasureSeatReportsTheReamedSurfaceAtThePose) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const Pose start = placeInTheBone(s, 1.0);
+  auto* panel = w.findChild<QDockWidget*>("LogPanel");
+  ASSERT_NE(panel, nullptr);
+  auto* button = panel->findChild<QPushButton*>("MeasureSeat");
+  auto* label = panel->findChild<QLabel*>("SeatReport");
+  ASSERT_NE(button, nullptr);
+  ASSERT_NE(label, nullptr);
+  QTest::mouseClick(button, Qt::LeftButton);
+  const ReamedSurfaceReport expected =
+      measureReamedSurface(s.bone()->current().toMesh(), s.reamer()->spec(), s.reamer()->pose());
+  ASSERT_GT(expected.seatedFraction, 0.05);  // 1 mm past the first contact: part of the face sits on bone
+  const QString percent = QString::number(100 * expected.seatedFraction, 'f', 1) + " % of the cutting face on bone";
+  EXPECT_TRUE(label->text().contains(percent)) << label->text().toStdString() << " / " << percent.toStdString();
+  EXPECT_TRUE(label->text().contains(QString::number(expected.facetSagMm, 'f', 4))) << label->text().toStdString();
+  // The next cut leaves the measurement behind: the label is cleared.
+  s.moveReamer(advancedAlongAxis(start, 0.25));
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_TRUE(label->text().isEmpty()) << label->text().toStdString();
 }
 
 TEST(GuiReaming, ReamToDepthWithNoBoneAheadSaysSo) {

@@ -2,7 +2,9 @@
 
 #include <QDateTime>
 #include <QFileDialog>
+#include <QHBoxLayout>
 #include <QHeaderView>
+#include <QLabel>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QSplitter>
@@ -10,9 +12,12 @@
 #include <QVBoxLayout>
 
 #include "CutPlot.h"
+#include "reamsim/core/BoneNode.h"
 #include "reamsim/core/LogNode.h"
+#include "reamsim/core/ReamerNode.h"
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/ream/CutLogIO.h"
+#include "reamsim/tools/ReamedSurface.h"
 
 namespace reamsim::ui {
 
@@ -34,10 +39,24 @@ LogPanel::LogPanel(Document& document, QWidget* parent) : QDockWidget(tr("Cut lo
   exportButton_ = new QPushButton(tr("Export CSV…"), body);
   exportButton_->setObjectName("ExportCsv");
   exportButton_->setFocusPolicy(Qt::NoFocus);
+  seatButton_ = new QPushButton(tr("Measure seat"), body);
+  seatButton_->setObjectName("MeasureSeat");
+  seatButton_->setFocusPolicy(Qt::NoFocus);
+  seatButton_->setToolTip(tr("How much of the reamer's cutting face sits on reamed bone at its pose, and how far "
+                             "the bone stands off the face's ideal sphere"));
+  seatLabel_ = new QLabel(body);
+  seatLabel_->setObjectName("SeatReport");
+  seatLabel_->setWordWrap(true);
+  seatLabel_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  auto* buttons = new QHBoxLayout;
+  buttons->addWidget(seatButton_);
+  buttons->addWidget(exportButton_);
   layout->addWidget(splitter);
-  layout->addWidget(exportButton_);
+  layout->addWidget(seatLabel_);
+  layout->addLayout(buttons);
   setWidget(body);
   connect(exportButton_, &QPushButton::clicked, this, &LogPanel::exportCsvInteractive);
+  connect(seatButton_, &QPushButton::clicked, this, [this] { measureSeat(); });
   subscription_ = document_.subscribe([this](const DocumentEvent& e) {
     if (e.id.kind() == NodeKind::Log) sync();
   });
@@ -59,6 +78,7 @@ void LogPanel::sync() {
   }
   const auto& entries = log->entries();
   if (entries.size() == shown_) return;
+  seatLabel_->clear();  // measured on an earlier bone state
   for (std::size_t i = shown_; i < entries.size(); ++i) {
     const CutLogEntry& e = entries[i];
     const int row = table_->rowCount();
@@ -101,6 +121,33 @@ QString LogPanel::exportCsv(const QString& path, bool interactive) {
     box->open();
   }
   return error;
+}
+
+QString LogPanel::measureSeat() {
+  const BoneNode* bone = document_.firstOf<BoneNode>();
+  const ReamerNode* reamer = document_.firstOf<ReamerNode>();
+  QString text;
+  if (!bone || !reamer) {
+    text = tr("No bone or reamer to measure.");
+  } else if (!reamer->spec().meshFile.empty()) {
+    text = tr("The reamer is read from a mesh: it has no ideal face to measure the bone against.");
+  } else {
+    try {
+      const ReamedSurfaceReport r = measureReamedSurface(bone->current().toMesh(), reamer->spec(), reamer->pose());
+      text = tr("Seat at the reamer's pose: %1 % of the cutting face on bone (%2 faces); standoff from the ideal "
+                "face %3 to %4 mm, rms %5 mm (the reamer mesh's facets sag %6 mm).")
+                 .arg(100 * r.seatedFraction, 0, 'f', 1)
+                 .arg(r.faces)
+                 .arg(r.standoffMinMm, 0, 'f', 4)
+                 .arg(r.standoffMaxMm, 0, 'f', 4)
+                 .arg(r.standoffRmsMm, 0, 'f', 4)
+                 .arg(r.facetSagMm, 0, 'f', 4);
+    } catch (const std::exception& e) {
+      text = tr("Cannot measure the seat: %1").arg(QString::fromStdString(e.what()));
+    }
+  }
+  seatLabel_->setText(text);
+  return text;
 }
 
 void LogPanel::exportCsvInteractive() {

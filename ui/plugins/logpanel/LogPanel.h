@@ -1,13 +1,16 @@
 #pragma once
 // The cut log dock: one row per cut (time, removed and cumulative mm³, cut ms, faces, contact point),
-// live plots of cumulative removed volume and cut time per step, CSV export. Follows the document's
-// first LogNode, whichever it is (a new bone brings a new log).
+// live plots of cumulative removed volume and cut time per step, CSV export, and on request the reamed
+// surface at the reamer's pose (how much of the cutting face is seated on bone, how far the bone stands off
+// the face's ideal sphere: modules/tools ReamedSurface.h). Follows the document's first LogNode, whichever
+// it is (a new bone brings a new log).
 #include <QDockWidget>
 #include <QTime>
 #include <vector>
 
 #include "reamsim/core/Document.h"
 
+class QLabel;
 class QTableWidget;
 class QPushButton;
 
@@ -27,6 +30,9 @@ class LogPanel : public QDockWidget {
   // `interactive`).
   QString exportCsv(const QString& path, bool interactive = false);
   void exportCsvInteractive();
+  // Measures the first bone's surface against the first reamer's ideal face at its pose and shows the
+  // result (or why there is none); returns the text shown. O(bone faces), on request only.
+  QString measureSeat();
 
  private:
   void sync();
@@ -38,6 +44,8 @@ class LogPanel : public QDockWidget {
   QTableWidget* table_ = nullptr;
   CutPlot* plot_ = nullptr;
   QPushButton* exportButton_ = nullptr;
+  QPushButton* seatButton_ = nullptr;
+  QLabel* seatLabel_ = nullptr;
 };
 
 }  // namespace reamsim::ui
