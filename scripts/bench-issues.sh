@@ -41,6 +41,10 @@ if "median_ms" in d:  # bench cut
     for k, v in (d.get("peers") or {}).items():
         line += f"; {k}: " + (f"{v['median_ms']:.1f} ms ({v['ratio_to_reamsim']:.1f}x)" if "median_ms" in v else
                               str(v.get("refused") or v.get("stopped") or v.get("not_run") or v.get("error")))
+    rs = d.get("reamed_surface")
+    if rs:
+        line += (f"; reamed surface seated {100 * rs['seated_fraction']:.1f} %, standoff {rs['standoff_min_mm']:.4f}.."
+                 f"{rs['standoff_max_mm']:.4f} mm (facet sag {rs['reamer_facet_sag_mm']:.4f})")
     if "loop" in d:
         line += f"; loop step median {d['loop']['step']['median_ms']:.2f} p99 {d['loop']['step']['p99_ms']:.2f} ms"
     print(line)
@@ -68,6 +72,9 @@ if [ "$what" = cut ] || [ "$what" = all ]; then
   [ -f "$skull" ] && run cut_skull bench cut --bone "$skull" --units mm --steps 50 --avoid-defects "${peerArgs[@]}" --peers-budget-ms 60000
   run cut_bundled_1000 bench cut --steps 1000 --depth 0.1 --tilt 3 --check-every 250
   run cut_soak_10000 bench cut --steps 10000 --path soak --check-every 100
+  # The reamed surface against the ideal sphere as the reamer's mesh is refined (docs/CSG.md).
+  run cut_bundled_reamer_192x24 bench cut --steps 200 --segments 192 --rings 24
+  run cut_bundled_reamer_384x48 bench cut --steps 200 --segments 384 --rings 48
 fi
 if [ "$what" = collision ] || [ "$what" = all ]; then
   run collision_bundled_shipped bench collision --bone "$root/resources/bones/scapula_R_opensim.vtp" --cut-site glenoid
