@@ -12,17 +12,22 @@ namespace reamsim {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kCosMaxTilt = 0.8660254037844386;  // cos 30 degrees
 
 // The ideal cutting face in the reamer's frame: where a point stands against it.
 struct IdealFace {
   bool flat = false;
   double radius = 0;   // R (sphere)
   double rim = 0;      // D / 2
+  double height = 0;   // h: the cap spans z in [-h, 0]
   Vec3 centre;         // (0, 0, -R)
   double standoff(const Vec3& p) const { return flat ? -p.z : radius - norm(p - centre); }
-  // The direction from p in which the reamer lies (the reamed bone's outward normal points that way).
+  // The ideal face's normal at (or nearest) p, pointing into the bone it cut: the reamed bone's outward
+  // normal points the other way, at the reamer.
   Vec3 towardsReamer(const Vec3& p) const { return flat ? Vec3{0, 0, -1} : normalized(centre - p); }
-  bool insideRim(const Vec3& p) const { return std::hypot(p.x, p.y) <= rim; }
+  // Over the face: inside the rim and not behind the cap's base, where the body's wall begins (a wall
+  // face just behind the rim lies as close to the sphere as the face does).
+  bool overFace(const Vec3& p) const { return std::hypot(p.x, p.y) <= rim && p.z >= -height; }
 };
 
 // Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
@@ -70,6 +75,7 @@ ReamedSurfaceReport measureReamedSurface(const TriangleMesh& bone, const ReamerS
   IdealFace face;
   face.flat = spec.isFlat();
   face.rim = 0.5 * spec.diameterMm;
+  face.height = capHeight(spec);
   if (!face.flat) {
     face.radius = spec.sphereRadiusMm;
     face.centre = {0, 0, -spec.sphereRadiusMm};
@@ -93,10 +99,12 @@ ReamedSurfaceReport measureReamedSurface(const TriangleMesh& bone, const ReamerS
     const double sg = face.standoff(g);
     const bool onFace = std::abs(sg) <= bandMm && std::abs(face.standoff(a)) <= bandMm &&
                         std::abs(face.standoff(b)) <= bandMm && std::abs(face.standoff(c)) <= bandMm;
-    if (!onFace || !face.insideRim(g)) continue;
+    if (!onFace || !face.overFace(g)) continue;
     const Vec3 n = cross(b - a, c - a);
     const double twiceArea = norm(n);
-    if (!(twiceArea > 0) || dot(n, face.towardsReamer(g)) <= 0) continue;
+    // Facing the reamer, within kMaxTiltDeg of the ideal face's normal (the reamed faces follow the
+    // reamer's facets and the path's tilt; the cavity's wall stands at the cap's rim angle or steeper).
+    if (!(twiceArea > 0) || dot(n, face.towardsReamer(g)) < kCosMaxTilt * twiceArea) continue;
     const double area = 0.5 * twiceArea;
     ++out.faces;
     out.seatedAreaMm2 += area;

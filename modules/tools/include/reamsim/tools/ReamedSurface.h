@@ -5,11 +5,12 @@
 // reamed bone stand off the surface a perfect, spinning reamer would leave?
 //
 // A bone face counts as reamed surface when its corners and centroid lie within `bandMm` of the ideal face,
-// its centroid inside the rim, and its outward normal looks at the reamer (towards the sphere's centre, or along -Z for a flat
-// face). The standoff of a point is how far it lies inside the ideal cutting solid: R - |p - c| on a
-// sphere, -z on a flat face. Positive: bone left where a perfect reamer would have cut (under the facets
-// of the reamer's mesh, at most its facet sag); negative: bone cut beyond the ideal face (by earlier,
-// tilted or deeper poses).
+// its centroid over the face (inside the rim, not behind the cap's base where the body's wall begins) and
+// its outward normal within 30 degrees of the face's normal there, looking at the reamer (towards the
+// sphere's centre, or along -Z for a flat face). The standoff of a point is how far it lies inside the
+// ideal cutting solid: R - |p - c| on a sphere, -z on a flat face. Positive: bone left where a perfect
+// reamer would have cut (under the facets of the reamer's mesh, at most its facet sag); negative: bone cut
+// beyond the ideal face (by earlier, tilted or deeper poses).
 #include <cstddef>
 
 #include "reamsim/core/Pose.h"
