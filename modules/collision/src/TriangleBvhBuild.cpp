@@ -60,8 +60,10 @@ TriangleBvh TriangleBvh::fromTriangles(const std::vector<std::uint32_t>& slots,
   // (reserved before the first write: the arrays are mapped and faulted once).
   bvh.tris_.reserve(count + count / 4 + 64);
   bvh.leafOf_.reserve(bvh.tris_.capacity());
+  bvh.slotMark_.reserve(bvh.tris_.capacity());  // update()'s duplicate checks: sized here, not by the first cuts
   bvh.tris_.resize(count);
   bvh.leafOf_.assign(count, -1);
+  bvh.slotMark_.assign(count, 0);
   for (std::size_t i = 0; i < slots.size(); ++i) {
     const BvhTriangle& t = triangles[i];
     if (!isFinite(t.a) || !isFinite(t.b) || !isFinite(t.c))

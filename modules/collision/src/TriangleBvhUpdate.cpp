@@ -265,7 +265,11 @@ BvhUpdateStats TriangleBvh::update(const std::vector<std::uint32_t>& removedSlot
   for (std::uint32_t s : removedSlots) largest = std::max(largest, s);
   for (std::uint32_t s : addedSlots) largestAdded = std::max(largestAdded, s);
   largest = std::max(largest, largestAdded);
-  if (slotMark_.size() <= largest) slotMark_.resize(std::size_t(largest) + 1, 0);
+  if (slotMark_.size() <= largest) {
+    const std::size_t need = std::size_t(largest) + 1;
+    if (need > slotMark_.capacity()) slotMark_.reserve(need + need / 4);  // as tris_ grows below
+    slotMark_.resize(need, 0);
+  }
   if (markStamp_ >= 0xFFFFFFF0u) {
     std::fill(slotMark_.begin(), slotMark_.end(), 0);
     markStamp_ = 0;
