@@ -501,8 +501,8 @@ int runBenchCut(const std::vector<std::string>& args) {
                    {"degenerate_faces", engine.defects().degenerateFaces},
                    {"border_edges", engine.defects().borderEdges}}}};
   if (spec.meshFile.empty() && !poses.empty()) {
-    constexpr double kBandMm = 0.05;
-    out["reamed_surface"] = reamedSurfaceJson(measureReamedSurface(finalMesh, spec, poses.back(), kBandMm), kBandMm);
+    out["reamed_surface"] =
+        reamedSurfaceJson(measureReamedSurface(finalMesh, spec, poses.back(), kReamedSurfaceBandMm), kReamedSurfaceBandMm);
   }
 
   if (a.has("peers")) {

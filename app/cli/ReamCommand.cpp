@@ -176,9 +176,8 @@ int runReam(const std::vector<std::string>& args) {
   // ideal face (parametric reamers: the ideal face is what the spec describes).
   std::string reamedLine;
   if (spec.meshFile.empty() && !planNode.poses().empty()) {
-    constexpr double kBandMm = 0.05;
-    const ReamedSurfaceReport rs = measureReamedSurface(finalMesh, spec, planNode.poses().back(), kBandMm);
-    summary["reamed_surface"] = reamedSurfaceJson(rs, kBandMm);
+    const ReamedSurfaceReport rs = measureReamedSurface(finalMesh, spec, planNode.poses().back(), kReamedSurfaceBandMm);
+    summary["reamed_surface"] = reamedSurfaceJson(rs, kReamedSurfaceBandMm);
     reamedLine = reamedSurfaceLine(rs);
   }
 

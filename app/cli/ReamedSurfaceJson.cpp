@@ -5,7 +5,8 @@
 namespace reamsim::cli {
 
 nlohmann::json reamedSurfaceJson(const ReamedSurfaceReport& r, double bandMm) {
-  return {{"what", "bone faces within band_mm of the reamer's ideal face at the last pose, inside its rim and facing it; "
+  return {{"what", "bone faces within band_mm of the reamer's ideal face at the last pose, over the face (inside the rim, "
+                   "not behind the cap's base) with their normal within 30 degrees of the face's; "
                    "standoff = how far bone stands inside the ideal cutting solid (> 0: left by the facets, < 0: cut beyond)"},
           {"band_mm", bandMm},
           {"face_area_mm2", r.faceAreaMm2},

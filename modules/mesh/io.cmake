@@ -4,6 +4,7 @@ find_package(VTK REQUIRED COMPONENTS IOXML CommonCore CommonDataModel FiltersCor
 reamsim_add_module(mesh
   SOURCES
     src/TriangleMesh.cpp
+    src/ClosestPoints.cpp
     src/io/FileBytes.cpp
     src/io/TextScanner.cpp
     src/io/MeshBuilder.cpp

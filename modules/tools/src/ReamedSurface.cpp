@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "reamsim/mesh/ClosestPoints.h"
 #include "reamsim/tools/ReamerGeometry.h"
 
 namespace reamsim {
@@ -30,27 +31,6 @@ struct IdealFace {
   bool overFace(const Vec3& p) const { return std::hypot(p.x, p.y) <= rim && p.z >= -height; }
 };
 
-// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
-Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-  const Vec3 cp = p - c;
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const double denom = 1 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
 // The deepest point of the reamer mesh's cutting-face facets below the ideal face: for a cap, R minus the
 // least distance from the centre to a facet (its corners lie on the sphere, its inside below it).
 double facetSag(const ReamerSpec& spec, const IdealFace& face) {
@@ -61,7 +41,7 @@ double facetSag(const ReamerSpec& spec, const IdealFace& face) {
   for (const Triangle& t : solid.triangles) {
     const Vec3 &a = solid.vertices[t[0]], &b = solid.vertices[t[1]], &c = solid.vertices[t[2]];
     const bool onFace = std::abs(face.standoff(a)) < tol && std::abs(face.standoff(b)) < tol && std::abs(face.standoff(c)) < tol;
-    if (onFace) sag = std::max(sag, face.standoff(closestOnTriangle(face.centre, a, b, c)));
+    if (onFace) sag = std::max(sag, face.standoff(closestPointOnTriangle(face.centre, a, b, c)));
   }
   return sag;
 }
@@ -81,7 +61,7 @@ ReamedSurfaceReport measureReamedSurface(const TriangleMesh& bone, const ReamerS
     face.centre = {0, 0, -spec.sphereRadiusMm};
   }
   ReamedSurfaceReport out;
-  out.faceAreaMm2 = face.flat ? kPi * face.rim * face.rim : 2 * kPi * face.radius * capHeight(spec);
+  out.faceAreaMm2 = face.flat ? kPi * face.rim * face.rim : 2 * kPi * face.radius * face.height;
   out.facetSagMm = facetSag(spec, face);
 
   // Bone coordinates into the reamer's frame: p = R^T (x - t).

@@ -5,6 +5,7 @@
 // only separates when the gap exceeds kTouchEpsilon x |axis| x (coordinate magnitude after moving the
 // origin to the first triangle), so two triangles closer than about 1e-12 of their size/offset are
 // reported as touching. Tests compare against CGAL's exact predicates with that tolerance.
+#include "reamsim/mesh/ClosestPoints.h"  // closestPointOnTriangle, closestSegmentSegment
 #include "reamsim/mesh/Vec3.h"
 
 namespace reamsim {
@@ -15,18 +16,6 @@ inline constexpr double kTouchEpsilon = 1e-12;
 // coplanar and degenerate (zero-area) triangles are handled too.
 bool trianglesIntersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1,
                         const Vec3& b2);
-
-// Which feature of triangle abc a closest point lies on.
-enum class TriangleRegion { Face, VertexA, VertexB, VertexC, EdgeAB, EdgeBC, EdgeCA };
-
-// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection 5.1.5), and optionally its
-// feature (for pseudo-normal inside tests).
-Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
-                            TriangleRegion* region = nullptr);
-
-// Closest points c1 = p1 + s (q1 - p1), c2 = p2 + t (q2 - p2) of two segments; returns |c1 - c2|^2.
-double closestSegmentSegment(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2, double& s, double& t,
-                             Vec3& c1, Vec3& c2);
 
 struct ClosestPair {
   double squaredDistance = 0;

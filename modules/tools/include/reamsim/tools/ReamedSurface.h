@@ -31,8 +31,12 @@ struct ReamedSurfaceReport {
   double facetSagMm = 0;       // the reamer mesh's own deepest facet below its ideal face (buildCuttingSolid)
 };
 
+// The band the CLI and the GUI measure with: wider than the facet sag of any preset, narrow enough to leave
+// out bone the reamer never reached.
+inline constexpr double kReamedSurfaceBandMm = 0.05;
+
 // Throws std::invalid_argument for an invalid spec (validateReamerSpec) or a band that is not positive.
 ReamedSurfaceReport measureReamedSurface(const TriangleMesh& bone, const ReamerSpec& spec, const Pose& pose,
-                                         double bandMm = 0.05);
+                                         double bandMm = kReamedSurfaceBandMm);
 
 }  // namespace reamsim
