@@ -79,8 +79,9 @@ BoneView::BoneView(ReamSession& session, QWidget* parent) : QVTKOpenGLNativeWidg
   depthLut_->Build();
   scalarBar_ = vtkSmartPointer<vtkScalarBarActor>::New();
   scalarBar_->SetLookupTable(depthLut_);
-  scalarBar_->SetTitle("removed depth (mm)");
+  scalarBar_->SetTitle("removed\ndepth (mm)");  // two lines: one overran the view's right edge
   scalarBar_->SetNumberOfLabels(5);
+  scalarBar_->SetVerticalTitleSeparation(6);  // the title clear of the top label
   scalarBar_->SetMaximumWidthInPixels(70);
   scalarBar_->SetPosition(0.9, 0.15);
   scalarBar_->SetHeight(0.6);

@@ -382,7 +382,7 @@ int runBenchCut(const std::vector<std::string>& args) {
   std::size_t failures = 0, cuts = 0, checks = 0, exactSI = 0, roundedSI = 0, notClosed = 0, inputSIPairs = 0;
   std::map<std::string, std::size_t> failureKinds;
   double worstBookkeeping = 0, worstPiece = 0, removedTotal = 0, cleanupVolume = 0;
-  std::size_t collapses = 0, flips = 0, roundingFailures = 0, cleanupReplanned = 0, redoneCuts = 0;
+  std::size_t collapses = 0, flips = 0, roundingFailures = 0, cleanupReplanned = 0, redoneCuts = 0, movedOffSurface = 0;
   std::vector<double> cleanupTimes;
   std::map<std::string, std::vector<double>> phaseTimes;  // of the steps that cut
   std::map<std::string, std::vector<double>> sizes;       // of the steps that cut: faces handled
@@ -417,6 +417,7 @@ int runBenchCut(const std::vector<std::string>& args) {
         cleanupReplanned += c.cleanupReplanned ? 1 : 0;
         roundingFailures += c.roundingFailed ? 1 : 0;
         redoneCuts += c.redoneWithOffsetMm > 0 ? 1 : 0;
+        movedOffSurface += c.toolMovedOffBoneSurface ? 1 : 0;
         cleanupTimes.push_back(c.cleanupMilliseconds);
         phaseTimes["setup"].push_back(c.phaseMilliseconds.setup);
         phaseTimes["corefine"].push_back(c.phaseMilliseconds.corefine);
@@ -486,6 +487,7 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"exact_vertices_end", engine.exactVertexCount()},
       {"rounding_failures", roundingFailures},
       {"redone_with_offset", redoneCuts},
+      {"moved_off_bone_surface", movedOffSurface},
       {"band_cleanup", {{"enabled", engine.bandCleanup().enabled},
                         {"max_deviation_mm", engine.bandCleanup().maxDeviationMm},
                         {"collapses", collapses},

@@ -48,6 +48,9 @@ constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 constexpr std::size_t kToolBoundPlanes = 32;
 // Candidate faces per thread from which the near test is split over two threads.
 constexpr std::size_t kParallelNearTestFaces = 400;
+// A bone face this close to a tool face's plane (all three corners), where the two meet, lies on the tool's
+// surface to rounding (see liesOnToolFace): a thousandth of the nudge that moves the tool off it.
+constexpr double kOnToolFaceMm = 1e-9;
 
 // Intersection points are built once by the corefinement and shared by both meshes, so their interval
 // approximations are identical: looking them up by those intervals avoids exact evaluation (GMP) for
@@ -331,9 +334,14 @@ struct LocalSubtractor::Impl {
   double removedVolume6(const MeshDelta& delta, const Vec3& origin) const;
   template <class Placed>
   void commit(const MeshDelta& delta, Placed&& placed);
-  // One attempt; a cut whose rounding check fails is rolled back and made again once with the tool moved by
-  // a nanometre-scale offset when `mayRedo` (see subtract below).
+  // One attempt; when `mayRedo`, a tool found lying on the bone's surface is moved by a nanometre-scale
+  // offset before the corefinement, and a cut whose rounding check fails is rolled back and made again
+  // once with the tool so moved.
   LocalCut subtractOnce(const TriangleMesh& toolMesh, bool mayRedo);
+  // The cut made with the tool moved by nudge(): after a failed rounding check (rolled back first) or when
+  // the tool lies on the bone's surface where it meets it. Its time counts from `firstStart`.
+  LocalCut redoWithMovedTool(const TriangleMesh& toolMesh, bool onBoneSurface,
+                             std::chrono::steady_clock::time_point firstStart);
   LocalCut subtract(const TriangleMesh& toolMesh) { return subtractOnce(toolMesh, true); }
   std::uint64_t redoneCuts = 0;  // cuts made again with a moved tool (each gets its own offset)
 };
@@ -449,6 +457,18 @@ void LocalSubtractor::Impl::commit(const MeshDelta& delta, Placed&& placed) {
     defect[s] = 0;
     grid.insert(s, boxOf(state.triangle(s)));
   }
+}
+
+LocalCut LocalSubtractor::Impl::redoWithMovedTool(const TriangleMesh& toolMesh, bool onBoneSurface,
+                                                  std::chrono::steady_clock::time_point firstStart) {
+  const Vec3 offset = nudge(++redoneCuts);
+  TriangleMesh moved = toolMesh;
+  for (Vec3& p : moved.vertices) p += offset;
+  LocalCut again = subtractOnce(moved, false);
+  again.redoneWithOffsetMm = norm(offset);
+  again.toolMovedOffBoneSurface = onBoneSurface;
+  again.milliseconds = elapsedMs(firstStart);  // the first attempt's time too
+  return again;
 }
 
 LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool mayRedo) {
@@ -580,10 +600,32 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   std::vector<char> nearBone(patchSlots.size(), 0), nearTool(toolMesh.triangles.size(), 0);
   std::vector<char> closeBone(patchSlots.size(), 0);
   toolFaces.get();
+  // A bone face that meets a tool face lying all but in its plane (all three corners within kOnToolFaceMm
+  // of the tool face's plane, not all exactly on it): the tool lies on the bone's surface to rounding, as
+  // the walls of consecutive cuts do on a feed along a tilted axis (the same wall, moved along the axis,
+  // off its old plane by the rounding of the new coordinates). The two faces cross at a grazing angle in
+  // needles whose corners the corefinement evaluates slowly (~20 ms instead of ~4 at the bundled glenoid)
+  // and that rounding would fold, so the cut is made with the tool moved by a nanometre (below) before it
+  // is corefined. Faces exactly in one plane are left to the corefinement's coplanar case.
+  auto liesOnToolFace = [&](const IK::Triangle_3& bone, std::uint32_t toolFace) {
+    const Triangle& t = toolMesh.triangles[toolFace];
+    const Vec3 &a = toolMesh.vertices[t[0]], &b = toolMesh.vertices[t[1]], &c = toolMesh.vertices[t[2]];
+    const Vec3 n = normalized(cross(b - a, c - a));
+    if (!isFinite(n)) return false;
+    bool offPlane = false;
+    const IK::Triangle_3& ft = toolTriangles[toolFace];
+    for (int k = 0; k < 3; ++k) {
+      const IK::Point_3& q = bone[k];
+      if (!(std::abs(dot(n, Vec3{q.x(), q.y(), q.z()} - a)) <= kOnToolFaceMm)) return false;
+      offPlane = offPlane || CGAL::orientation(ft[0], ft[1], ft[2], q) != CGAL::COPLANAR;
+    }
+    return offPlane;
+  };
+  bool toolOnBone = false;
   {
     // Each bone face against the tool faces whose boxes meet its box; the faces are split between this
     // thread and a second one (the tests are independent and read-only), each with its own tool flags.
-    auto testRange = [&](std::size_t begin, std::size_t end, std::vector<char>& toolFlags) {
+    auto testRange = [&](std::size_t begin, std::size_t end, std::vector<char>& toolFlags, char& onTool) {
       std::vector<std::uint32_t> hits;
       for (std::size_t i = begin; i < end; ++i) {
         toolGrid.queryShared(grid.box(patchSlots[i]), hits);
@@ -594,16 +636,20 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
         const bool testable =
             !knownExactly(t[0]) && !knownExactly(t[1]) && !knownExactly(t[2]) && !degenerate(bt);
         for (std::uint32_t h : hits)
-          if (!testable || toolDegenerate[h] || CGAL::do_intersect(bt, toolTriangles[h]))
+          if (!testable || toolDegenerate[h] || CGAL::do_intersect(bt, toolTriangles[h])) {
             nearBone[i] = toolFlags[h] = 1;
+            if (testable && !onTool && liesOnToolFace(bt, h)) onTool = 1;
+          }
         closeBone[i] = !nearBone[i];
       }
     };
     std::vector<char> secondNearTool;
+    char onTool[2] = {0, 0};
     csg::splitOverTwoThreads(patchSlots.size(), kParallelNearTestFaces, [&](std::size_t b, std::size_t e, int part) {
       if (part == 1) secondNearTool.assign(nearTool.size(), 0);
-      testRange(b, e, part == 0 ? nearTool : secondNearTool);
+      testRange(b, e, part == 0 ? nearTool : secondNearTool, onTool[part]);
     });
+    toolOnBone = onTool[0] || onTool[1];
     for (std::size_t h = 0; h < secondNearTool.size(); ++h) nearTool[h] |= secondNearTool[h];
     // Faces at vertices known exactly are near even when no tool box meets theirs: the rounding check must
     // see them, since new faces at such a vertex are tested in its rounded position.
@@ -613,6 +659,8 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
         closeBone[i] &= !nearBone[i];
       }
   }
+
+  if (toolOnBone && mayRedo) return redoWithMovedTool(toolMesh, true, start);
 
   // The patch (near bone faces, with the exact coordinates of earlier cuts) and the near tool faces.
   SM patch, tool;
@@ -1051,6 +1099,64 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
     }
   }
 
+  // The new faces in a canonical order, so that the same cut gives the same slots, vertex order and (through
+  // the clean-up, which follows that order) the same surface in every run. CGAL's corefinement makes its
+  // vertices and faces in an order that follows the addresses of its boxes where box coordinates tie
+  // (Box_intersection_d's ID_FROM_BOX_ADDRESS), as they do on axis-aligned and coplanar faces: a flat
+  // reamer moved sideways cut different surfaces in the first and later runs of one process (session 25).
+  // Vertices rank by their old slot, else by their rounded coordinates (then exactly); each face starts at
+  // its lowest-ranked vertex (orientation kept), and faces sort by their ranks.
+  std::vector<Vec3> roundedOf(nP + nT);  // the new points' rounded coordinates, by unified id
+  {
+    std::vector<std::uint32_t> uids;
+    uids.reserve(3 * added.size());
+    for (const auto& t : added) uids.insert(uids.end(), t.begin(), t.end());
+    std::sort(uids.begin(), uids.end());
+    uids.erase(std::unique(uids.begin(), uids.end()), uids.end());
+    struct Rank {
+      std::uint32_t slot;  // kNone for a vertex that is not an old one
+      Vec3 at;
+      std::uint32_t uid;
+    };
+    std::vector<Rank> ranks;
+    ranks.reserve(uids.size());
+    for (std::uint32_t uid : uids) {
+      const std::uint32_t slot = uid < nP ? slotOfV[VI(uid)] : kNone;
+      if (slot == kNone && uid < nP + nT) roundedOf[uid] = rounded(uid < nP ? patch.point(VI(uid)) : tool.point(VI(uid - nP)));
+      ranks.push_back({slot, slot != kNone ? Vec3{} : uid >= nP + nT ? toolMesh.vertices[uid - nP - nT] : roundedOf[uid], uid});
+    }
+    std::sort(ranks.begin(), ranks.end(), [&](const Rank& a, const Rank& b) {
+      if (a.slot != b.slot) return a.slot < b.slot;  // old vertices first (kNone is the largest)
+      if (a.slot != kNone) return false;
+      if (a.at.x != b.at.x) return a.at.x < b.at.x;
+      if (a.at.y != b.at.y) return a.at.y < b.at.y;
+      if (a.at.z != b.at.z) return a.at.z < b.at.z;
+      return CGAL::compare_xyz(uidPoint(a.uid), uidPoint(b.uid)) == CGAL::SMALLER;
+    });
+    std::vector<std::uint32_t> rankOf(uidCount, 0);
+    for (std::uint32_t r = 0; r < ranks.size(); ++r) rankOf[ranks[r].uid] = r;
+    std::vector<std::array<std::uint32_t, 4>> order;  // the face's ranks from its lowest, and its index
+    order.reserve(added.size());
+    for (std::uint32_t i = 0; i < added.size(); ++i) {
+      auto& t = added[i];
+      const std::uint32_t r0 = rankOf[t[0]], r1 = rankOf[t[1]], r2 = rankOf[t[2]];
+      const int first = r0 <= r1 && r0 <= r2 ? 0 : r1 <= r2 ? 1 : 2;
+      std::rotate(t.begin(), t.begin() + first, t.end());
+      order.push_back({rankOf[t[0]], rankOf[t[1]], rankOf[t[2]], i});
+    }
+    std::sort(order.begin(), order.end());
+    std::vector<std::array<std::uint32_t, 3>> sortedAdded;
+    std::vector<std::uint32_t> sortedKept;
+    sortedAdded.reserve(added.size());
+    sortedKept.reserve(added.size());
+    for (const auto& o : order) {
+      sortedAdded.push_back(added[o[3]]);
+      sortedKept.push_back(addedKept[o[3]]);
+    }
+    added.swap(sortedAdded);
+    addedKept.swap(sortedKept);
+  }
+
   // The delta: original slots for old vertices, new vertices in first-use order.
   MeshDelta delta;
   delta.removedTriangles = removed;
@@ -1063,9 +1169,8 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
       newPoints.emplace_back();
       delta.addedVertices.push_back(toolMesh.vertices[uid - nP - nT]);
     } else {
-      const P p = uidPoint(uid);
-      newPoints.push_back(p);  // exact values are only computed if they have to be kept (below)
-      delta.addedVertices.push_back(rounded(p));
+      newPoints.push_back(uidPoint(uid));  // exact values are only computed if they have to be kept (below)
+      delta.addedVertices.push_back(roundedOf[uid]);
     }
     return ref[uid] = MeshDelta::newVertex(std::uint32_t(newPoints.size() - 1));
   };
@@ -1163,13 +1268,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
     state = before;
     exact = exactBefore;
     for (std::uint32_t s : delta.removedTriangles) grid.insert(s, boxOf(state.triangle(s)));
-    const Vec3 offset = nudge(++redoneCuts);
-    TriangleMesh moved = toolMesh;
-    for (Vec3& p : moved.vertices) p += offset;
-    LocalCut again = subtractOnce(moved, false);
-    again.redoneWithOffsetMm = norm(offset);
-    again.milliseconds += elapsedMs(start);  // this attempt's time too
-    return again;
+    return redoWithMovedTool(toolMesh, false, start);
   }
   if (keepExact) {
     // The side table gets the exact points that rounding would have moved, and the new faces their boxes

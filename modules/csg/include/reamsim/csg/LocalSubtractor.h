@@ -56,9 +56,12 @@ struct LocalCut {
   std::size_t removedFaces = 0;  // triangle slots removed from the bone
   std::size_t addedFaces = 0;
   bool roundingFailed = false;  // rounding the new vertices was not safe: their exact values were kept
-  // Rounding failed on the first attempt, where the tool lay exactly on the bone's surface: the cut was
-  // made again with the tool moved by this much (1 to 2 nanometres, a different offset every time).
+  // The cut was made with the tool moved by this much (1 to 2 nanometres, a different offset every time):
+  // the tool lay on the bone's surface where they meet, to rounding (a bone face within 1e-9 mm of a tool
+  // face's plane; toolMovedOffBoneSurface, found before the corefinement), or rounding failed on the first
+  // attempt, where the tool lay exactly on the bone's surface (the first attempt rolled back).
   double redoneWithOffsetMm = 0;
+  bool toolMovedOffBoneSurface = false;
   // The band clean-up after the cut (see BandCleanup): its volume change is part of removedMm3 (so
   // removedMm3 = V_before − V_after still holds), not of removedPieceMm3.
   double cleanupVolumeMm3 = 0;
