@@ -638,7 +638,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
         for (std::uint32_t h : hits)
           if (!testable || toolDegenerate[h] || CGAL::do_intersect(bt, toolTriangles[h])) {
             nearBone[i] = toolFlags[h] = 1;
-            if (testable && !onTool && liesOnToolFace(bt, h)) onTool = 1;
+            if (mayRedo && testable && !onTool && liesOnToolFace(bt, h)) onTool = 1;  // only a first attempt acts on it
           }
         closeBone[i] = !nearBone[i];
       }
