@@ -1,5 +1,6 @@
 # Mesh type and file I/O. (Owned by the mesh I/O work; extend the source list here.)
 find_package(VTK REQUIRED COMPONENTS IOXML CommonCore CommonDataModel FiltersCore)
+find_package(ZLIB REQUIRED)  # the VTP reader's compressed blocks
 
 reamsim_add_module(mesh
   SOURCES
@@ -13,8 +14,10 @@ reamsim_add_module(mesh
     src/io/PlyIO.cpp
     src/io/OffIO.cpp
     src/io/VtpIO.cpp
+    src/io/VtpReader.cpp
+    src/io/VtpScanner.cpp
     src/io/MeshIO.cpp
   PRIVATE_DEPS
-    VTK::IOXML VTK::CommonCore VTK::CommonDataModel VTK::FiltersCore
+    VTK::IOXML VTK::CommonCore VTK::CommonDataModel VTK::FiltersCore ZLIB::ZLIB
 )
 vtk_module_autoinit(TARGETS reamsim_mesh MODULES VTK::IOXML VTK::CommonCore VTK::CommonDataModel VTK::FiltersCore)

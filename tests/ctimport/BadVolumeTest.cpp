@@ -7,7 +7,10 @@
 #include <vtkDICOMValue.h>
 #include <vtkSmartPointer.h>
 
+#include <sys/resource.h>
+
 #include <algorithm>
+#include <random>
 #include <cstring>
 #include <fstream>
 
@@ -107,6 +110,45 @@ TEST(BadVolumes, NrrdTruncatedWrongHeaderAndMissingSliceFiles) {
   phantom::writeNrrdSlices(nhdr, s.grid, s.hu);
   truncate((d / "slice002.raw").string(), 10);
   expectInputError(nhdr, "slice002.raw", "file truncated");
+}
+
+// Found by fuzzing (session 26): numbered file patterns whose min, max or step overflowed the arithmetic
+// (SIGFPE on LONG_MIN / -1), and compressed data that was allocated for at its declared size before a byte of
+// it was inflated.
+TEST(BadVolumes, NumberedFilePatternsOutOfRange) {
+  const path d = cttest::scratch("bad_pattern");
+  const std::string nrrd = (d / "seq.nhdr").string();
+  phantom::writeBytes(nrrd, "NRRD0004\ntype: short\ndimension: 3\nsizes: 4 4 4\nspacings: 1 1 1\nencoding: raw\n"
+                            "endian: little\ndata file: x%d 0 -9223372036854775808 -1\n");
+  expectInputError(nrrd, "seq.nhdr:8:", "data file: min, max and step must lie within");
+  const std::string mhd = (d / "seq.mhd").string();
+  phantom::writeBytes(mhd, "ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\nElementType = MET_SHORT\n"
+                           "ElementDataFile = x%d -9223372036854775808 9223372036854775807 1\n");
+  expectInputError(mhd, "seq.mhd:5:", "ElementDataFile: min, max and step must lie within");
+}
+
+long peakRssKb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+TEST(BadVolumes, GarbageCompressedDataAllocatesNothingForItsDeclaredSize) {
+  const path d = cttest::scratch("bad_gzip");
+  std::string garbage(500000, '\0');
+  std::mt19937 rng(7);
+  for (char& c : garbage) c = char(rng());
+  // 256 M voxels declared (1 GiB of floats; within what zlib could expand 0.5 MB to), 0.5 MB of random bytes given.
+  const std::string nrrd = (d / "garbage.nrrd").string();
+  phantom::writeBytes(nrrd, "NRRD0004\ntype: short\ndimension: 3\nsizes: 1024 1024 256\nspacings: 1 1 1\n"
+                            "encoding: gzip\nendian: little\n\n" + garbage);
+  const std::string mha = (d / "garbage.mha").string();
+  phantom::writeBytes(mha, "ObjectType = Image\nNDims = 3\nDimSize = 1024 1024 256\nElementType = MET_SHORT\n"
+                           "CompressedData = True\nElementDataFile = LOCAL\n" + garbage);
+  const long before = peakRssKb();
+  expectInputError(nrrd, "garbage.nrrd", "corrupt compressed data");
+  expectInputError(mha, "garbage.mha", "corrupt compressed data");
+  EXPECT_LT(peakRssKb() - before, 100 * 1024) << "kB of peak memory more after reading two 0.5 MB files";
 }
 
 TEST(BadVolumes, MetaImageTruncatedWrongHeaderAndCorruptCompression) {

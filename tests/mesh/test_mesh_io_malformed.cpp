@@ -95,4 +95,18 @@ TEST(io_MalformedCorpusIndex, CoversEveryFileAndEveryFormat) {
   }
 }
 
+// Metres scaled to millimetres must stay finite (fuzzing, session 26: 1e306 m became inf mm, unchecked).
+TEST(io_Units, MetresThatOverflowWhenScaledAreAnInputError) {
+  const fs::path file = fs::temp_directory_path() / ("reamsim_units_" + std::to_string(::getpid()) + ".obj");
+  std::ofstream(file) << "v 0 0 0\nv 1e306 0 0\nv 0 1 0\nf 1 2 3\n";
+  EXPECT_NO_THROW(readMesh(file.string(), ReadOptions{Units::Millimetres}));
+  try {
+    (void)readMesh(file.string(), ReadOptions{Units::Metres});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 1 overflows when its metres are scaled"), std::string::npos) << e.what();
+  }
+  fs::remove(file);
+}
+
 }  // namespace

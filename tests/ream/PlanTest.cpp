@@ -49,6 +49,11 @@ TEST(Plan, BadPlansAreRejectedClearly) {
   expectRejected(R"({"feed": {"start": {"tip": [0, 0, 0], "axis": [0, 0, 1]}, "step_mm": -1, "count": 3}})", "step_mm");
   expectRejected(R"({"feed": {"start": {"tip": [0, 0, 0], "axis": [0, 0, 1]}, "step_mm": 0.1, "count": 0}})", "count");
   expectRejected(R"({"feed": {"start": {"tip": [0, 0, 0], "axis": [0, 0, 1]}, "count": 3}})", "step_mm");
+  // Values whose derived poses would not be finite (fuzzing, session 26).
+  expectRejected(R"({"poses": [{"tip": [0, 0, 0], "axis": [1e200, 0, 0]}]})", "beyond");
+  expectRejected(R"({"poses": [{"tip": [0, 0, 1e300], "axis": [0, 0, 1]}]})", "beyond");
+  expectRejected(R"({"feed": {"start": {"tip": [0, 0, 0], "axis": [0, 0, 1]}, "step_mm": 1e308, "count": 3}})",
+                 "step_mm × feed.count");
   EXPECT_THROW(loadPlan("/nonexistent/plan.json"), InputError);
 }
 

@@ -8,6 +8,8 @@
 
 namespace reamsim {
 namespace {
+
+constexpr double kMaxCoordinateMm = 1e6;
 using nlohmann::json;
 
 Vec3 readVec3(const json& j, const std::string& where, const std::string& source) {
@@ -17,6 +19,9 @@ Vec3 readVec3(const json& j, const std::string& where, const std::string& source
     if (!j[i].is_number()) throw InputError(source, where + " must be an array of 3 numbers");
     v[i] = j[i].get<double>();
     if (!std::isfinite(v[i])) throw InputError(source, where + " has a non-finite value");
+    // Millimetres: a kilometre is beyond any bone and keeps every derived value (poses along a feed, axes) finite.
+    if (std::abs(v[i]) > kMaxCoordinateMm)
+      throw InputError(source, where + " has a value beyond ±" + std::to_string(int(kMaxCoordinateMm)));
   }
   return v;
 }
@@ -28,11 +33,12 @@ Pose readPose(const json& j, const std::string& where, const std::string& source
   Pose p;
   p.tip = readVec3(j["tip"], where + ".tip", source);
   const Vec3 axis = readVec3(j["axis"], where + ".axis", source);
-  if (norm(axis) < 1e-9) throw InputError(source, where + ".axis must not be zero");
+  if (!(norm(axis) >= 1e-9)) throw InputError(source, where + ".axis must not be zero");
   p.axis = normalized(axis);
   if (j.contains("roll_deg")) {
     if (!j["roll_deg"].is_number()) throw InputError(source, where + ".roll_deg must be a number");
     p.rollDeg = j["roll_deg"].get<double>();
+    if (!std::isfinite(p.rollDeg)) throw InputError(source, where + ".roll_deg must be finite");
   }
   return p;
 }
@@ -88,6 +94,8 @@ ReamPlan parsePlan(const std::string& text, const std::string& source) {
     if (!f["count"].is_number_integer() || f["count"].get<long>() < 1 || f["count"].get<long>() > 1000000)
       throw InputError(source, "feed.count must be an integer from 1 to 1000000");
     feed.count = f["count"].get<int>();
+    if (feed.stepMm * feed.count > kMaxCoordinateMm)
+      throw InputError(source, "feed.step_mm × feed.count must not exceed " + std::to_string(int(kMaxCoordinateMm)) + " mm");
     plan.feed = feed;
   }
   if (j.contains("poses")) {

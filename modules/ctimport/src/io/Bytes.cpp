@@ -64,7 +64,9 @@ std::string readWholeFile(const std::string& path) {
 }
 
 std::string inflateExactly(const std::string& path, std::string_view compressed, std::size_t expectedBytes) {
-  std::string out(expectedBytes, '\0');
+  // The output grows as the stream really expands (doubling), so a header that lies about the size of
+  // garbage data costs a few bytes, not the gigabytes it declares.
+  std::string out(std::min<std::size_t>(expectedBytes, std::size_t{1} << 20), '\0');
   z_stream z{};
   if (inflateInit2(&z, 15 + 32) != Z_OK) throw InputError(path, "cannot initialise zlib");
   z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data()));
@@ -78,9 +80,10 @@ std::string inflateExactly(const std::string& path, std::string_view compressed,
       inLeft -= z.avail_in;
     }
     char extra[1];
+    if (produced == out.size() && out.size() < expectedBytes) out.resize(std::min(expectedBytes, 2 * out.size()));
     const bool full = produced == expectedBytes;
     z.next_out = reinterpret_cast<Bytef*>(full ? extra : out.data() + produced);
-    z.avail_out = static_cast<uInt>(full ? 1 : std::min(expectedBytes - produced, chunk));
+    z.avail_out = static_cast<uInt>(full ? 1 : std::min(out.size() - produced, chunk));
     const uInt before = z.avail_out;
     rc = inflate(&z, Z_NO_FLUSH);
     const std::size_t got = before - z.avail_out;

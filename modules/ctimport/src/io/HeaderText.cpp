@@ -58,6 +58,24 @@ long parseInteger(const std::string& path, long line, const std::string& token, 
   return v;
 }
 
+std::vector<long> numberedFileSequence(const std::string& path, long line, const std::string& minToken,
+                                       const std::string& maxToken, const std::string& stepToken, const std::string& label) {
+  constexpr long kLimit = 1000000000;  // file numbers beyond ±1e9 are not a volume's slices
+  const long first = parseInteger(path, line, minToken, label + " min");
+  const long last = parseInteger(path, line, maxToken, label + " max");
+  const long step = parseInteger(path, line, stepToken, label + " step");
+  auto outside = [&](long v) { return v < -kLimit || v > kLimit; };  // not std::abs: it overflows on LONG_MIN
+  if (outside(first) || outside(last) || outside(step))
+    throw InputError(path, line, label + ": min, max and step must lie within ±" + std::to_string(kLimit));
+  if (step == 0 || (last - first) / step < 0)
+    throw InputError(path, line, label + ": min, max and step do not describe a sequence");
+  const long count = (last - first) / step + 1;
+  if (count > 100000) throw InputError(path, line, label + ": more than 100000 files");
+  std::vector<long> numbers;
+  for (long i = 0; i < count; ++i) numbers.push_back(first + i * step);
+  return numbers;
+}
+
 std::vector<double> parseNumbers(const std::string& path, long line, const std::string& value, std::size_t count,
                                  const std::string& what) {
   const std::vector<std::string> words = splitWords(value);

@@ -17,10 +17,7 @@
 namespace reamsim::ct::io {
 namespace {
 
-struct Field {
-  std::string value;
-  long line = 0;
-};
+using Field = HeaderField;
 
 SampleType parseElementType(const std::string& path, const Field& f) {
   static const std::map<std::string, SampleType> types = {
@@ -184,14 +181,8 @@ CtVolume readMetaImage(const std::string& path, const ReadTick& tick) {
       for (const auto& [name, line] : listed) files.push_back(besideHeader(path, name));
       if (files.empty()) throw InputError(path, df.line, "ElementDataFile = LIST is followed by no file names");
     } else if (w.size() >= 4 && w[0].find('%') != std::string::npos) {
-      const long first = parseInteger(path, df.line, w[1], "ElementDataFile min");
-      const long last = parseInteger(path, df.line, w[2], "ElementDataFile max");
-      const long step = parseInteger(path, df.line, w[3], "ElementDataFile step");
-      if (step == 0 || (last - first) / step < 0)
-        throw InputError(path, df.line, "ElementDataFile: min, max and step do not describe a sequence");
-      const long count = (last - first) / step + 1;
-      if (count > 100000) throw InputError(path, df.line, "ElementDataFile: more than 100000 files");
-      for (long i = 0; i < count; ++i) files.push_back(besideHeader(path, formatNumbered(path, w[0], first + i * step)));
+      for (long number : numberedFileSequence(path, df.line, w[1], w[2], w[3], "ElementDataFile"))
+        files.push_back(besideHeader(path, formatNumbered(path, w[0], number)));
     } else {
       files.push_back(besideHeader(path, df.value));
     }
@@ -209,8 +200,7 @@ CtVolume readMetaImage(const std::string& path, const ReadTick& tick) {
     }
   }
   checkPayloadSizes(spec);
-  v.values.resize(std::size_t(total));
-  readPayload(spec, v.values.data(), v.notes, tick);
+  readPayload(spec, v.values, v.notes, tick);  // sizes v.values once the data are read
   v.integerValued = isIntegerSample(spec.type);
   return v;
 }

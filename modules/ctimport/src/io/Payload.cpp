@@ -16,7 +16,9 @@ std::size_t skipLines(const std::string& path, std::string_view bytes, long line
   return pos;
 }
 
-void readPart(const PayloadSpec& spec, const PayloadPart& part, float* out, std::vector<std::string>& notes) {
+// `out()`: where the part's samples go, called once its data are read and checked.
+void readPart(const PayloadSpec& spec, const PayloadPart& part, const std::function<float*()>& out,
+              std::vector<std::string>& notes) {
   std::string owned;
   std::string_view bytes = part.inMemory;
   if (bytes.empty()) {
@@ -48,13 +50,13 @@ void readPart(const PayloadSpec& spec, const PayloadPart& part, float* out, std:
     if (bytes.size() - skip > needed && !part.dataAtEnd)
       notes.push_back(part.path + ": " + std::to_string(bytes.size() - skip - needed) +
                       " bytes after the voxel data were ignored");
-    decodeSamples(bytes.data() + skip, part.samples, spec.type, spec.bigEndian, out);
+    decodeSamples(bytes.data() + skip, part.samples, spec.type, spec.bigEndian, out());
     return;
   }
   if (spec.encoding == Encoding::Ascii) {
     if (part.byteSkip > bytes.size()) throw InputError(part.path, "byte skip beyond the end of the file");
     bytes.remove_prefix(static_cast<std::size_t>(part.byteSkip));
-    decodeAsciiSamples(part.path, bytes, part.samples, out);
+    decodeAsciiSamples(part.path, bytes, part.samples, out());
     return;
   }
   // Deflate.
@@ -72,7 +74,7 @@ void readPart(const PayloadSpec& spec, const PayloadPart& part, float* out, std:
                                     std::to_string(compressed.size()) +
                                     " compressed bytes are present (file truncated or wrong sizes?)");
   const std::string raw = inflateExactly(part.path, compressed, static_cast<std::size_t>(needed + part.byteSkip));
-  decodeSamples(raw.data() + part.byteSkip, part.samples, spec.type, spec.bigEndian, out);
+  decodeSamples(raw.data() + part.byteSkip, part.samples, spec.type, spec.bigEndian, out());
 }
 
 }  // namespace
@@ -100,11 +102,16 @@ void checkPayloadSizes(const PayloadSpec& spec) {
   }
 }
 
-void readPayload(const PayloadSpec& spec, float* out, std::vector<std::string>& notes,
+void readPayload(const PayloadSpec& spec, std::vector<float>& out, std::vector<std::string>& notes,
                  const std::function<bool(double)>& tick) {
+  std::size_t total = 0;
+  for (const PayloadPart& part : spec.parts) total += part.samples;
   std::size_t offset = 0;
   for (std::size_t i = 0; i < spec.parts.size(); ++i) {
-    readPart(spec, spec.parts[i], out + offset, notes);
+    readPart(spec, spec.parts[i], [&]() -> float* {
+      if (out.size() != total) out.assign(total, 0.0f);
+      return out.data() + offset;
+    }, notes);
     offset += spec.parts[i].samples;
     if (tick && !tick(0.95 * double(i + 1) / double(spec.parts.size()))) throw ImportCancelled("reading");
   }

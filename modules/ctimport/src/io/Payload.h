@@ -37,10 +37,11 @@ struct PayloadSpec {
 // allocated from the header's sizes. Throws InputError naming the part's file.
 void checkPayloadSizes(const PayloadSpec& spec);
 
-// Decodes all parts in order into `out` (sum of part samples floats). Notes (extra bytes ignored) are
-// appended to `notes`.
+// Decodes all parts in order into `out`, sized here to the sum of the parts' samples only once the first
+// part's data has been read (a compressed part inflated and checked), so that a lying header over garbage
+// data allocates nothing. Notes (extra bytes ignored) are appended to `notes`.
 // `tick(fraction)` is called after each part; returning false throws ImportCancelled.
-void readPayload(const PayloadSpec& spec, float* out, std::vector<std::string>& notes,
+void readPayload(const PayloadSpec& spec, std::vector<float>& out, std::vector<std::string>& notes,
                  const std::function<bool(double)>& tick = {});
 
 }  // namespace reamsim::ct::io

@@ -67,4 +67,13 @@ void appendTriple(std::string& out, double a, double b, double c) {
   appendDouble(out, c);
 }
 
+void appendVertexAndTriangleLines(std::string& out, const TriangleMesh& mesh) {
+  for (const Vec3& p : mesh.vertices) {
+    appendTriple(out, p.x, p.y, p.z);
+    out += '\n';
+  }
+  for (const Triangle& t : mesh.triangles)
+    out += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
+}
+
 }  // namespace reamsim::io

@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <string>
 
+#include "reamsim/mesh/TriangleMesh.h"
+
 namespace reamsim::io {
 
 // Files above this size are refused before anything is read.
@@ -18,5 +20,7 @@ void writeFileBytes(const std::string& path, const std::string& bytes);
 void appendDouble(std::string& out, double value);
 // Appends "a b c" with %.17g each.
 void appendTriple(std::string& out, double a, double b, double c);
+// Appends one "x y z" line per vertex, then one "3 a b c" line per triangle: the body of ASCII OFF and PLY.
+void appendVertexAndTriangleLines(std::string& out, const TriangleMesh& mesh);
 
 }  // namespace reamsim::io

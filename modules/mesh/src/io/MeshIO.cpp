@@ -75,7 +75,13 @@ LoadedMesh readMesh(const std::string& path, const ReadOptions& options) {
                           " m); scaled \u00d71000 to mm; pass --units mm to keep them");
     }
   }
-  if (scale != 1.0) scaleInPlace(out.mesh, scale);
+  if (scale != 1.0) {
+    scaleInPlace(out.mesh, scale);
+    for (std::size_t i = 0; i < out.mesh.vertices.size(); ++i)
+      if (!isFinite(out.mesh.vertices[i]))
+        throw InputError(path, "vertex " + std::to_string(i) + " overflows when its metres are scaled ×1000 to mm "
+                               "(coordinates beyond ±1.8e305)");
+  }
   out.scaleToMillimetres = scale;
   return out;
 }

@@ -108,12 +108,7 @@ RawMesh readOff(const std::string& path, std::string_view data) {
 std::string writeOff(const TriangleMesh& mesh) {
   std::string out = "OFF\n# written by ReamSim\n" + std::to_string(mesh.vertices.size()) + ' ' +
                     std::to_string(mesh.triangles.size()) + " 0\n";
-  for (const Vec3& p : mesh.vertices) {
-    appendTriple(out, p.x, p.y, p.z);
-    out += '\n';
-  }
-  for (const Triangle& t : mesh.triangles)
-    out += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
+  appendVertexAndTriangleLines(out, mesh);
   return out;
 }
 

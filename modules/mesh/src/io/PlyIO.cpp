@@ -382,12 +382,7 @@ std::string writePly(const TriangleMesh& mesh, const std::string& path, bool bin
     return out;
   }
   appendHeader(out, mesh, "ascii", comments);
-  for (const Vec3& p : mesh.vertices) {
-    appendTriple(out, p.x, p.y, p.z);
-    out += '\n';
-  }
-  for (const Triangle& t : mesh.triangles)
-    out += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
+  appendVertexAndTriangleLines(out, mesh);
   return out;
 }
 
