@@ -10,6 +10,8 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <random>
 #include <cstring>
 #include <fstream>
@@ -110,6 +112,11 @@ TEST(BadVolumes, NrrdTruncatedWrongHeaderAndMissingSliceFiles) {
   phantom::writeNrrdSlices(nhdr, s.grid, s.hu);
   truncate((d / "slice002.raw").string(), 10);
   expectInputError(nhdr, "slice002.raw", "file truncated");
+  expectInputError(nhdr, "slice002.raw", "(data file named by slices.nhdr)");
+  phantom::writeBytes((d / "nul.nhdr").string(), replaceOnce(phantom::readBytes(nhdr), "slice%03d.raw", std::string("slice%03d\0raw", 13)));
+  expectInputError((d / "nul.nhdr").string(), "nul.nhdr", "data file name contains a control character (byte 0)");
+  phantom::writeBytes((d / "long.nhdr").string(), replaceOnce(phantom::readBytes(nhdr), "slice%03d.raw", std::string(100000, '%')));
+  expectInputError((d / "long.nhdr").string(), "long.nhdr", "data file name of 100000 bytes is too long");
 }
 
 // Found by fuzzing (session 26): numbered file patterns whose min, max or step overflowed the arithmetic
@@ -184,7 +191,7 @@ TEST(BadVolumes, MetaImageTruncatedWrongHeaderAndCorruptCompression) {
   const std::string mhd = (d / "v.mhd").string();
   phantom::writeMhdRaw(mhd, s.grid, s.hu);
   cttest::fs::remove(d / "v.raw");
-  expectInputError(mhd, "v.raw", "not found");
+  expectInputError(mhd, "v.raw", "data file named by v.mhd: file not found");  // both named
 }
 
 TEST(BadVolumes, NiftiTruncatedAndWrongHeader) {
@@ -262,6 +269,153 @@ TEST(BadVolumes, DicomMissingSliceInconsistentSpacingAndTruncatedFile) {
   EXPECT_THROW(ct::readVolume((d / "cut").string()), InputError);
   truncate((d / "cut" / "IM-0005.dcm").string(), 100);
   EXPECT_THROW(ct::readVolume((d / "cut").string()), InputError);
+}
+
+}  // namespace
+
+namespace {
+
+// Overwrites the bytes at `offset` after the first occurrence of `needle` in a file.
+void patch(const std::string& file, const std::string& needle, std::size_t offset, const std::string& bytes) {
+  std::string b = phantom::readBytes(file);
+  const std::size_t at = b.find(needle);
+  ASSERT_NE(at, std::string::npos) << file;
+  b.replace(at + offset, bytes.size(), bytes);
+  phantom::writeBytes(file, b);
+}
+
+template <typename T>
+void poke(std::string& bytes, std::size_t offset, T value) {
+  std::memcpy(&bytes[offset], &value, sizeof value);
+}
+
+// Found by fuzzing the NIfTI reader (session 27): vtkNIFTIImageReader crashed (SIGBUS) on an unknown
+// datatype, so the header is checked before VTK reads it; an origin of 1e23 mm was accepted and put every
+// voxel on the same coordinates.
+TEST(BadVolumes, NiftiHeaderIsCheckedBeforeVtkReadsIt) {
+  const Small s;
+  const path d = cttest::scratch("bad_nifti_fuzz");
+  const std::string bytes = [&] {
+    const std::string p = (d / "good.nii").string();
+    phantom::writeNifti(p, s.grid, s.hu);
+    return phantom::readBytes(p);
+  }();
+  const auto variant = [&](const std::string& name, auto edit) {
+    std::string b = bytes;
+    edit(b);
+    const std::string p = (d / name).string();
+    phantom::writeBytes(p, b);
+    return p;
+  };
+  expectInputError(variant("type.nii", [](std::string& b) { poke(b, 70, std::int16_t(26990)); }), "type.nii",
+                   "unsupported NIfTI datatype 26990");
+  expectInputError(variant("offset.nii", [](std::string& b) { poke(b, 108, std::numeric_limits<float>::quiet_NaN()); }),
+                   "offset.nii", "vox_offset nan is not a byte offset");
+  expectInputError(variant("far.nii", [](std::string& b) { poke(b, 280 + 2 * 16 + 12, 1.2e23f); }), "far.nii",
+                   "beyond ±1e7 mm");
+  expectInputError(variant("tiny.nii", [](std::string& b) {  // the sform's first column scaled to 1 pm
+                     for (std::size_t row = 0; row < 3; ++row) {
+                       float x;
+                       std::memcpy(&x, &b[280 + 16 * row], 4);
+                       poke(b, 280 + 16 * row, x * 1e-9f);
+                     }
+                   }),
+                   "tiny.nii", "outside 1e-6 .. 1e6 mm");
+}
+
+// NIfTI-2 (written by hand: 540-byte header, int16 4×4×4): read, and its magic checked as VTK checks it.
+TEST(BadVolumes, Nifti2HeaderAndDamagedMagic) {
+  std::string b(544 + 4 * 4 * 4 * 2, '\0');
+  poke(b, 0, std::int32_t(540));
+  std::memcpy(&b[4], "n+2\0\r\n\032\n", 8);
+  poke(b, 12, std::int16_t(4));  // datatype int16
+  poke(b, 14, std::int16_t(16));
+  const std::int64_t dim[8] = {3, 4, 4, 4, 1, 1, 1, 1};
+  for (int a = 0; a < 8; ++a) poke(b, 16 + 8 * std::size_t(a), dim[a]);
+  for (int a = 0; a < 4; ++a) poke(b, 104 + 8 * std::size_t(a), 1.0);  // qfac, pixdim
+  poke(b, 168, std::int64_t(544));  // vox_offset
+  poke(b, 176, 1.0);                // scl_slope
+  poke(b, 500, std::int32_t(2));    // mm
+  const path d = cttest::scratch("nifti2");
+  const std::string good = (d / "v2.nii").string();
+  phantom::writeBytes(good, b);
+  const ct::CtVolume v = ct::readVolume(good);
+  EXPECT_EQ(v.dims, (std::array<int, 3>{4, 4, 4}));
+  b[8] = '\n';  // "\r\n" became "\n\n", as a text-mode transfer does
+  const std::string bad = (d / "text.nii").string();
+  phantom::writeBytes(bad, b);
+  expectInputError(bad, "text.nii", "text-mode transfer");
+}
+
+// Found by fuzzing the DICOM reader: vtk-dicom trusts a file's element structure. An element out of tag order
+// or of group 0000 or 0001 in any slice but the first crashed vtkDICOMParser::ReadMetaData (null pointer); a corrupt VR
+// made it read a length from the next bytes and allocate 770 MB for a 1.5 kB file. The structure is now
+// walked first (DicomCheck.cpp) and the slice named.
+TEST(BadVolumes, DicomCorruptElementStructureIsNamedBeforeVtkDicomParsesIt) {
+  const Small s;
+  const path d = cttest::scratch("bad_dicom_fuzz");
+  phantom::writeDicomSeries((d / "group0").string(), s.grid, s.hu);
+  patch((d / "group0" / "IM-0002.dcm").string(), std::string("\x08\x00\x3e\x10", 4), 0, std::string("\x00\x00\x80\x00", 4));
+  expectInputError((d / "group0").string(), "IM-0002.dcm", "command-group element (0000,0080)");
+  phantom::writeDicomSeries((d / "group1").string(), s.grid, s.hu);  // SliceThickness moved to (0001,0050)
+  patch((d / "group1" / "IM-0007.dcm").string(), std::string("\x18\x00\x50\x00", 4), 0, std::string("\x01\x00\x50\x00", 4));
+  expectInputError((d / "group1").string(), "IM-0007.dcm", "element (0001,0050) in the reserved group 0001");
+  phantom::writeDicomSeries((d / "order").string(), s.grid, s.hu);  // PatientID (0010,0020) becomes (0010,0000)
+  patch((d / "order" / "IM-0006.dcm").string(), std::string("\x10\x00\x20\x00LO", 6), 2, std::string("\x00\x00", 2));
+  expectInputError((d / "order").string(), "IM-0006.dcm", "element (0010,0000) follows (0010,0010)");
+  phantom::writeDicomSeries((d / "meta").string(), s.grid, s.hu);  // MediaStorageSOPInstanceUID (0002,0003) -> (0002,0000)
+  patch((d / "meta" / "IM-0003.dcm").string(), std::string("\x02\x00\x03\x00UI", 6), 2, std::string("\x00\x00", 2));
+  expectInputError((d / "meta").string(), "IM-0003.dcm", "element (0002,0000) follows (0002,0002)");
+  phantom::writeDicomSeries((d / "grouplength").string(), s.grid, s.hu);  // PatientName (0010,0010) -> (0010,0000)
+  patch((d / "grouplength" / "IM-0006.dcm").string(), std::string("\x10\x00\x10\x00PN", 6), 2, std::string("\x00\x00", 2));
+  expectInputError((d / "grouplength").string(), "IM-0006.dcm", "group length (0010,0000) has");
+
+  phantom::writeDicomSeries((d / "vr").string(), s.grid, s.hu);
+  patch((d / "vr" / "IM-0006.dcm").string(), std::string("\x02\x00\x02\x00UI", 6), 4, "\xff\xff\xff\xff");
+  const long before = peakRssKb();
+  expectInputError((d / "vr" / "IM-0003.dcm").string(), "IM-0006.dcm", "(0002,0002) has an invalid value representation");
+  EXPECT_LT(peakRssKb() - before, 100 * 1024) << "kB of peak memory more after reading a 12 kB series";
+
+  phantom::writeDicomSeries((d / "length").string(), s.grid, s.hu);
+  patch((d / "length" / "IM-0005.dcm").string(), std::string("\xe0\x7f\x10\x00OW", 6), 8, "\xf0\xff\xff\xff");
+  expectInputError((d / "length").string(), "IM-0005.dcm", "element (7FE0,0010) claims 4294967280 bytes");
+}
+
+// Found by fuzzing and by editing every slice: sizes the headers declare are checked before vtk-dicom
+// sorts frames or allocates the volume (NumberOfFrames 99999999 kept vtkDICOMSliceSorter busy for minutes;
+// Rows × Columns of 65535 in every slice asked for 64 GB).
+TEST(BadVolumes, DicomDeclaredSizesAreCheckedBeforeVtkDicomAllocates) {
+  const Small s;
+  const path d = cttest::scratch("bad_dicom_sizes");
+  const std::string frames = (d / "mf" / "frames.dcm").string();
+  phantom::writeDicomMultiFrame(frames, s.grid, s.hu);
+  ASSERT_NO_THROW(ct::readVolume(frames));
+  const std::string count = std::to_string(s.grid.dims[2]);
+  const std::string numberOfFrames = std::string("\x28\x00\x08\x00IS", 6);
+  std::string b = phantom::readBytes(frames);
+  const std::size_t at = b.find(numberOfFrames);
+  ASSERT_NE(at, std::string::npos);
+  b.replace(at + 6, 2 + std::size_t(b[at + 6]), std::string("\x08\x00", 2) + "99999999");  // length 8, value
+  phantom::writeBytes(frames, b);
+  expectInputError(frames, "frames.dcm", "NumberOfFrames 99999999 is more than a file of");
+
+  phantom::writeDicomSeries((d / "rows").string(), s.grid, s.hu);
+  for (int i = 1; i <= s.grid.dims[2]; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "IM-%04d.dcm", i);
+    patch((d / "rows" / name).string(), std::string("\x28\x00\x10\x00US\x02\x00", 8), 8, std::string("\xa0\x0f", 2));  // 4000
+    patch((d / "rows" / name).string(), std::string("\x28\x00\x11\x00US\x02\x00", 8), 8, std::string("\xa0\x0f", 2));
+  }
+  expectInputError((d / "rows").string(), "rows", "declares 4000×4000×" + std::to_string(s.grid.dims[2]) + " voxels (");
+}
+
+// A slice file that is not readable DICOM is skipped by the series scan; the gap it leaves names it.
+TEST(BadVolumes, DicomGapNamesTheFileLeftOutOfTheSeries) {
+  const Small s;
+  const path d = cttest::scratch("bad_dicom_outsider");
+  phantom::writeDicomSeries((d / "s").string(), s.grid, s.hu);
+  phantom::writeBytes((d / "s" / "IM-0004.dcm").string(), "this is not DICOM");
+  expectInputError((d / "s").string(), "s", "(1 slice missing); IM-0004.dcm in the directory is not part of the series");
 }
 
 }  // namespace

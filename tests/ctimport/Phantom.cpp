@@ -1,14 +1,17 @@
 #include "Phantom.h"
 
 #include <vtkDICOMCTGenerator.h>
+#include <vtkDICOMSCGenerator.h>
 #include <vtkDICOMWriter.h>
 #include <vtkImageData.h>
 #include <vtkMatrix4x4.h>
 #include <vtkShortArray.h>
+#include <vtkUnsignedShortArray.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -277,6 +280,26 @@ void writeDicomSeries(const std::string& directory, const Grid& g, const std::ve
   if (!transferSyntax.empty()) writer->SetTransferSyntaxUID(transferSyntax.c_str());
   writer->Write();
   if (writer->GetErrorCode() != 0) throw std::runtime_error("vtkDICOMWriter failed in " + directory);
+}
+
+void writeDicomMultiFrame(const std::string& path, const Grid& g, const std::vector<float>& hu) {
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(g.dims[0], g.dims[1], g.dims[2]);
+  image->SetSpacing(g.spacing[0], g.spacing[1], g.spacing[2]);
+  auto values = vtkSmartPointer<vtkUnsignedShortArray>::New();
+  values->SetNumberOfValues(vtkIdType(hu.size()));
+  for (std::size_t i = 0; i < hu.size(); ++i) values->SetValue(vtkIdType(i), std::uint16_t(std::clamp(std::lround(hu[i]) + 1024, 0L, 65535L)));
+  image->GetPointData()->SetScalars(values);
+  auto generator = vtkSmartPointer<vtkDICOMSCGenerator>::New();
+  generator->MultiFrameOn();
+  auto writer = vtkSmartPointer<vtkDICOMWriter>::New();
+  writer->SetInputData(image);
+  writer->SetGenerator(generator);
+  writer->SetFileDimensionality(3);
+  writer->SetFileName(path.c_str());
+  writer->Write();
+  if (writer->GetErrorCode() != 0 || !std::filesystem::exists(path)) throw std::runtime_error("vtkDICOMWriter failed on " + path);
 }
 
 }  // namespace phantom

@@ -70,6 +70,9 @@ void writeNifti(const std::string& path, const Grid& g, const std::vector<float>
 void writeDicomSeries(const std::string& directory, const Grid& g, const std::vector<float>& hu,
                       const std::string& transferSyntax = "");
 
+// One multi-frame DICOM file (vtk-dicom's secondary capture: it has no enhanced CT writer), uint16 = HU + 1024.
+void writeDicomMultiFrame(const std::string& path, const Grid& g, const std::vector<float>& hu);
+
 void writeBytes(const std::string& path, const std::string& bytes);
 std::string readBytes(const std::string& path);
 

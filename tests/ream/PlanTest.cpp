@@ -54,6 +54,8 @@ TEST(Plan, BadPlansAreRejectedClearly) {
   expectRejected(R"({"poses": [{"tip": [0, 0, 1e300], "axis": [0, 0, 1]}]})", "beyond");
   expectRejected(R"({"feed": {"start": {"tip": [0, 0, 0], "axis": [0, 0, 1]}, "step_mm": 1e308, "count": 3}})",
                  "step_mm × feed.count");
+  // A number beyond double: nlohmann-json's out_of_range escaped without the file's name (fuzzing, session 27).
+  expectRejected(R"({"poses": [{"tip": [0, 0, 1)" + std::string(400, '1') + R"(], "axis": [0, 0, 1]}]})", "number overflow");
   EXPECT_THROW(loadPlan("/nonexistent/plan.json"), InputError);
 }
 

@@ -99,6 +99,18 @@ TEST(toolsReamerPresets, MalformedJsonReportsTheLine) {
   }
 }
 
+// Found by fuzzing (session 27): nlohmann-json's out_of_range for a number beyond double escaped without
+// the file's name.
+TEST(toolsReamerPresets, NumberBeyondDoubleNamesTheFile) {
+  try {
+    parsePresets("[{\"name\": \"a\", \"diameterMm\": 1" + std::string(400, '1') + "}]", "huge.json");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "huge.json");
+    EXPECT_TRUE(contains(e.what(), "number overflow")) << e.what();
+  }
+}
+
 TEST(toolsReamerPresets, StructuralProblemsNameThePresetAndField) {
   EXPECT_TRUE(contains(errorOf([] { parsePresets("{\"reamers\": []}"); }), "\"presets\""));
   EXPECT_TRUE(contains(errorOf([] { parsePresets("{\"presets\": {}}"); }), "must be an array"));

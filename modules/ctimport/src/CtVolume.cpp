@@ -1,11 +1,25 @@
 #include "reamsim/ctimport/CtVolume.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim::ct {
+namespace {
+
+constexpr double kMinSpacingMm = 1e-6, kMaxSpacingMm = 1e6, kMaxWorldMm = 1e7;
+
+std::string num(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", x);
+  return b;
+}
+
+std::string point(const Vec3& p) { return "(" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) + ")"; }
+
+}  // namespace
 
 const char* toString(PatientSpace space) {
   switch (space) {
@@ -40,6 +54,15 @@ void checkVolume(const CtVolume& v) {
                               " mm; it must be a positive number");
   }
   if (!isFinite(v.origin)) throw InputError(f, "the origin is not finite");
+  // Beyond these, world coordinates lose the precision of a voxel (an origin of 1e23 mm, found by fuzzing,
+  // put every vertex of the mesh on the same double): a corrupt header rather than a scan.
+  for (int a = 0; a < 3; ++a)
+    if (v.spacing[a] < kMinSpacingMm || v.spacing[a] > kMaxSpacingMm)
+      throw InputError(f, "spacing along axis " + std::to_string(a) + " is " + num(v.spacing[a]) +
+                              " mm, outside 1e-6 .. 1e6 mm (corrupt header?)");
+  for (const Vec3& corner : {v.origin, v.indexToWorld(v.dims[0] - 1, v.dims[1] - 1, v.dims[2] - 1)})
+    if (!(std::abs(corner.x) <= kMaxWorldMm && std::abs(corner.y) <= kMaxWorldMm && std::abs(corner.z) <= kMaxWorldMm))
+      throw InputError(f, "the volume reaches " + point(corner) + " mm, beyond ±1e7 mm (10 km) of the patient origin (corrupt origin or spacing?)");
   for (int a = 0; a < 3; ++a) {
     if (std::abs(norm(v.axis(a)) - 1) > 1e-4)
       throw InputError(f, "direction of axis " + std::to_string(a) + " is not a unit vector");

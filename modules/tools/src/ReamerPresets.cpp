@@ -107,6 +107,8 @@ json parseText(const std::string& text, const std::string& sourceName) {
     // e.byte is 1-based and points just past the offending character.
     throw InputError(sourceName, lineOfByte(text, e.byte > 0 ? e.byte - 1 : 0),
                      std::string("malformed JSON: ") + e.what());
+  } catch (const json::exception& e) {  // out_of_range: a number beyond double (found by fuzzing)
+    throw InputError(sourceName, std::string("malformed JSON: ") + e.what());
   }
 }
 

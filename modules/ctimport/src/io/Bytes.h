@@ -32,7 +32,8 @@ void decodeAsciiSamples(const std::string& path, std::string_view text, std::siz
 // "data file: fmt min max step".
 std::string formatNumbered(const std::string& path, const std::string& pattern, long value);
 
-// Joins a data file name with the directory of the header file (absolute names are kept).
+// Joins a data file name with the directory of the header file (absolute names are kept); a name with a
+// control character or longer than 4096 bytes is an InputError naming the header.
 std::string besideHeader(const std::string& headerPath, const std::string& name);
 
 }  // namespace reamsim::ct::io

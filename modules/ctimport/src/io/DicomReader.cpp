@@ -7,13 +7,16 @@
 #include <vtkDICOMMetaData.h>
 #include <vtkDICOMReader.h>
 #include <vtkDICOMTag.h>
+#include <vtkDICOMUtilities.h>
 #include <vtkDICOMValue.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkIntArray.h>
 #include <vtkMatrix4x4.h>
 #include <vtkPointData.h>
+#include <vtkInformation.h>
 #include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 
 #include <algorithm>
@@ -22,10 +25,13 @@
 #include <filesystem>
 #include <new>
 
+#include "Bytes.h"
+#include "DicomCheck.h"
 #include "Geometry.h"
 #include "Readers.h"
 #include "VtkMessages.h"
 #include "reamsim/ctimport/Progress.h"
+#include "reamsim/ctimport/VolumeIO.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim::ct::io {
@@ -39,12 +45,25 @@ std::string mm(double x) {
   return b;
 }
 
+// Every file vtk-dicom would take for DICOM in `dir` must have a sound element structure (DicomCheck.h)
+// before vtkDICOMDirectory or vtkDICOMReader parses it.
+void checkStructure(const std::string& dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string file = e.path().string();
+    if (!e.is_regular_file(ec) || !vtkDICOMUtilities::IsDICOMFile(file.c_str())) continue;
+    const std::string problem = dicomStructureProblem(readWholeFile(file));
+    if (!problem.empty()) throw InputError(file, problem);
+  }
+}
+
 // The files of the series to read: all of a directory's largest series, or the series holding `path`.
 std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::string>& notes) {
   std::error_code ec;
   const bool isDir = fs::is_directory(path, ec);
   if (!isDir && !fs::is_regular_file(path, ec)) throw InputError(path, "file or directory not found");
   const std::string dir = isDir ? path : fs::path(path).parent_path().string();
+  checkStructure(dir.empty() ? "." : dir);
   VtkMessageCapture capture;
   auto finder = vtkSmartPointer<vtkDICOMDirectory>::New();
   capture.observe(finder);
@@ -84,10 +103,32 @@ std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::s
 
 Vec3 crossOf(const double* r, const double* c) { return cross(Vec3{r[0], r[1], r[2]}, Vec3{c[0], c[1], c[2]}); }
 
+// Files beside the series that are not part of it, e.g. "; IM-0004.dcm in the directory is not part of the
+// series (unreadable, not an image, or another series)": a corrupt slice file is skipped by vtkDICOMDirectory
+// and would otherwise show up only as a gap.
+std::string outsiders(const std::vector<std::string>& files) {
+  if (files.empty()) return "";
+  std::error_code ec;
+  std::vector<std::string> inSeries;
+  for (const std::string& f : files) inSeries.push_back(fs::path(f).filename().string());
+  std::vector<std::string> others;
+  for (const auto& e : fs::directory_iterator(fs::path(files[0]).parent_path(), ec)) {
+    const std::string name = e.path().filename().string();
+    if (e.is_regular_file(ec) && std::find(inSeries.begin(), inSeries.end(), name) == inSeries.end()) others.push_back(name);
+  }
+  if (others.empty()) return "";
+  std::sort(others.begin(), others.end());
+  std::string list;
+  for (std::size_t i = 0; i < others.size() && i < 3; ++i) list += (i ? ", " : "") + others[i];
+  if (others.size() > 3) list += " and " + std::to_string(others.size() - 3) + " more";
+  return "; " + list + (others.size() > 1 ? " in the directory are" : " in the directory is") +
+         " not part of the series (unreadable, not an image, or another series)";
+}
+
 // Orientation, size and spacing of single-frame slices must agree before they are stacked.
 void checkSlices(const std::string& path, vtkDICOMMetaData* meta, const std::vector<std::string>& files) {
   const int n = meta->GetNumberOfInstances();
-  if (n < 2) throw InputError(path, "the series has a single image; a CT volume needs at least 2 slices");
+  if (n < 2) throw InputError(path, "the series has a single image; a CT volume needs at least 2 slices" + outsiders(files));
   double iop0[6];
   const vtkDICOMValue& o0 = meta->Get(0, DC::ImageOrientationPatient);
   if (!o0.IsValid() || o0.GetNumberOfValues() != 6)
@@ -130,10 +171,41 @@ void checkSlices(const std::string& path, vtkDICOMMetaData* meta, const std::vec
       throw InputError(path, "missing slice" + std::string(whole > 2 ? "s" : "") + ": gap of " + mm(gaps[i]) +
                                  " mm between " + fileOf(i) + " and " + fileOf(i + 1) + " where the spacing is " +
                                  mm(spacing) + " mm (" + std::to_string(whole - 1) + " slice" +
-                                 (whole > 2 ? "s" : "") + " missing)");
+                                 (whole > 2 ? "s" : "") + " missing)" + outsiders(files));
     throw InputError(path, "inconsistent slice spacing: " + mm(gaps[i]) + " mm between " + fileOf(i) + " and " +
-                               fileOf(i + 1) + ", " + mm(spacing) + " mm elsewhere");
+                               fileOf(i + 1) + ", " + mm(spacing) + " mm elsewhere" + outsiders(files));
   }
+}
+
+// The volume the headers declare, checked before vtk-dicom allocates it: Rows × Columns of 65535 in every
+// slice asked for 64 GB (found while fuzzing, by editing every slice); uncompressed pixel data must also fit
+// in the files.
+void checkDeclaredSize(const std::string& path, vtkDICOMReader* reader, vtkDICOMMetaData* meta,
+                       const std::vector<std::string>& files) {
+  int ext[6] = {0, -1, 0, -1, 0, -1};
+  reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), ext);
+  std::uint64_t voxels = 1;
+  std::string dims;
+  for (int a = 0; a < 3; ++a) {
+    const std::int64_t n = std::int64_t(ext[2 * a + 1]) - ext[2 * a] + 1;
+    if (n < 1) throw InputError(path, "the series declares an empty image");
+    voxels *= std::uint64_t(n);
+    dims += (a ? "×" : "") + std::to_string(n);
+  }
+  if (voxels > kMaxVoxels)
+    throw InputError(path, "the series declares " + dims + " voxels, more than the limit of 2^31 (wrong Rows, Columns or NumberOfFrames?)");
+  const std::string syntax = meta->Get(0, DC::TransferSyntaxUID).AsString();
+  const bool native = syntax == "1.2.840.10008.1.2" || syntax == "1.2.840.10008.1.2.1" || syntax == "1.2.840.10008.1.2.2";
+  if (!native) return;  // compressed: the codec reports short data
+  const std::uint64_t bytes = voxels * std::uint64_t(std::max(1, meta->Get(0, DC::BitsAllocated).AsInt() / 8)) *
+                              std::uint64_t(std::max(1, meta->Get(0, DC::SamplesPerPixel).AsInt()));
+  std::uint64_t held = 0;
+  std::error_code ec;
+  for (const std::string& f : files) held += fs::file_size(f, ec);
+  if (bytes > held)
+    throw InputError(path, "the series declares " + dims + " voxels (" + std::to_string(bytes) + " bytes of pixel data) but its " +
+                               std::to_string(files.size()) + " file(s) hold " + std::to_string(held) +
+                               " bytes (wrong Rows, Columns or NumberOfFrames?)");
 }
 
 }  // namespace
@@ -160,6 +232,7 @@ CtVolume readDicom(const std::string& path, const ReadTick& tick) {
   const bool singleFrames = int(files.size()) == meta->GetNumberOfInstances() &&
                             meta->Get(0, DC::NumberOfFrames).AsInt() <= 1;
   if (singleFrames) checkSlices(path, meta, files);
+  checkDeclaredSize(path, reader, meta, files);
   if (meta->Get(0, DC::Modality).AsString() == "CT") v.valueUnit = "HU";
 
   if (tick) capture.observeProgress(reader, tick);

@@ -108,6 +108,7 @@ CtVolume readMetaImage(const std::string& path, const ReadTick& tick) {
       throw InputError(path, bd->line, "ASCII MetaImage data (BinaryData = False) is not supported");
 
   PayloadSpec spec;
+  spec.header = path;
   spec.type = parseElementType(path, require("elementtype", "ElementType"));
   const Field* msb = find("binarydatabyteordermsb");
   if (!msb) msb = find("elementbyteordermsb");

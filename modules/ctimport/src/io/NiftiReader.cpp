@@ -11,6 +11,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <new>
@@ -41,31 +42,80 @@ int bytesPerVoxel(int datatype) {
   }
 }
 
-// VTK's reader trusts sizeof_hdr and the magic too readily; check them (through zlib, which reads plain
-// and gzip files alike) before VTK sees the file.
-void checkHeader(const std::string& path, bool gz, std::uint64_t size) {
+// The header fields that decide how the voxels are read, in host byte order, NIfTI-1 or -2.
+struct Header {
+  std::int64_t dim[8] = {};
+  int datatype = 0, bitpix = 0;
+  double voxOffset = 0;
+};
+
+template <typename T>
+T field(const unsigned char* h, std::size_t offset, bool swap) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, h + offset, sizeof(T));
+  if (swap) std::reverse(b, b + sizeof(T));
+  T v;
+  std::memcpy(&v, b, sizeof(T));
+  return v;
+}
+
+// VTK's reader trusts the header: an unknown datatype crashed it (SIGBUS in vtkNIFTIImageReader::
+// RequestInformation, found by fuzzing). So magic, sizes, datatype and vox_offset are read here (through
+// zlib, which reads plain and gzip files alike) and checked before VTK sees the file.
+Header checkHeader(const std::string& path, bool gz, std::uint64_t size) {
   if (!gz && size < 348) throw InputError(path, "file of " + std::to_string(size) + " bytes is too small for a NIfTI header");
   gzFile f = gzopen(path.c_str(), "rb");
   if (!f) throw InputError(path, "cannot open");
-  unsigned char h[348] = {};
+  unsigned char h[540] = {};
   const int n = gzread(f, h, sizeof h);
   gzclose(f);
   if (n < 4) throw InputError(path, gz ? "no NIfTI header in the compressed data (file truncated or not gzip?)"
                                         : "too small for a NIfTI header");
-  std::int32_t le = 0;
-  std::memcpy(&le, h, 4);
-  const std::int32_t be = std::int32_t((std::uint32_t(h[0]) << 24) | (std::uint32_t(h[1]) << 16) |
-                                       (std::uint32_t(h[2]) << 8) | std::uint32_t(h[3]));
-  if (le == 540 || be == 540) {
-    if (n < 8 || std::memcmp(h + 4, "n+2", 4) != 0) throw InputError(path, "not a NIfTI-2 file (bad magic)");
-    return;
-  }
-  if (le != 348 && be != 348)
+  const std::int32_t le = field<std::int32_t>(h, 0, false), be = field<std::int32_t>(h, 0, true);
+  const bool v2 = le == 540 || be == 540;
+  const bool swap = v2 ? be == 540 : be == 348;
+  const int headerBytes = v2 ? 540 : 348;
+  if (!v2 && le != 348 && be != 348)
     throw InputError(path, "not a NIfTI file (sizeof_hdr is " + std::to_string(le) + ", expected 348 or 540)");
-  if (n < 348) throw InputError(path, "the NIfTI header ends after " + std::to_string(n) + " of 348 bytes (file truncated?)");
-  if (std::memcmp(h + 344, "ni1", 4) == 0)
-    throw InputError(path, "a .hdr/.img pair header: only single-file NIfTI (.nii, .nii.gz) is supported");
-  if (std::memcmp(h + 344, "n+1", 4) != 0) throw InputError(path, "not a NIfTI-1 file (bad magic at byte 344)");
+  if (n < headerBytes)
+    throw InputError(path, "the NIfTI header ends after " + std::to_string(n) + " of " + std::to_string(headerBytes) +
+                               " bytes (file truncated?)");
+  Header r;
+  if (v2) {
+    if (std::memcmp(h + 4, "n+2", 4) != 0) throw InputError(path, "not a NIfTI-2 file (bad magic)");
+    if (std::memcmp(h + 8, "\r\n\032\n", 4) != 0)  // as VTK checks: catches a text-mode transfer
+      throw InputError(path, "bytes 8-11 of the NIfTI-2 magic are not \\r\\n\\032\\n (file damaged by a text-mode transfer?)");
+    r.datatype = field<std::int16_t>(h, 12, swap);
+    r.bitpix = field<std::int16_t>(h, 14, swap);
+    for (int a = 0; a < 8; ++a) r.dim[a] = field<std::int64_t>(h, 16 + 8 * std::size_t(a), swap);
+    r.voxOffset = double(field<std::int64_t>(h, 168, swap));
+  } else {
+    if (std::memcmp(h + 344, "ni1", 4) == 0)
+      throw InputError(path, "a .hdr/.img pair header: only single-file NIfTI (.nii, .nii.gz) is supported");
+    if (std::memcmp(h + 344, "n+1", 4) != 0) throw InputError(path, "not a NIfTI-1 file (bad magic at byte 344)");
+    for (int a = 0; a < 8; ++a) r.dim[a] = field<std::int16_t>(h, 40 + 2 * std::size_t(a), swap);
+    r.datatype = field<std::int16_t>(h, 70, swap);
+    r.bitpix = field<std::int16_t>(h, 72, swap);
+    r.voxOffset = field<float>(h, 108, swap);
+  }
+
+  const std::int64_t nd = r.dim[0];
+  if (nd < 3 || nd > 7) throw InputError(path, "dim[0] is " + std::to_string(nd) + "; a CT volume has 3 dimensions");
+  for (int a = 1; a <= 3; ++a)
+    if (r.dim[a] < 1 || r.dim[a] > 1000000)
+      throw InputError(path, "dim[" + std::to_string(a) + "] = " + std::to_string(r.dim[a]) + " is invalid");
+  for (int a = 4; a <= nd; ++a)
+    if (r.dim[a] > 1 || r.dim[a] < 0)
+      throw InputError(path, "dimension " + std::to_string(a) + " has " + std::to_string(r.dim[a]) +
+                                 " samples (time series or vector image); a single 3-D volume is required");
+  const int bpv = bytesPerVoxel(r.datatype);
+  if (bpv == 0) throw InputError(path, "unsupported NIfTI datatype " + std::to_string(r.datatype));
+  if (r.bitpix != 8 * bpv)
+    throw InputError(path, "bitpix " + std::to_string(r.bitpix) + " does not match datatype " + std::to_string(r.datatype));
+  if (!(r.voxOffset >= headerBytes && r.voxOffset <= double(std::uint64_t{1} << 40)) || r.voxOffset != std::floor(r.voxOffset))
+    throw InputError(path, "vox_offset " + std::to_string(r.voxOffset) + " is not a byte offset after the " +
+                               std::to_string(headerBytes) + "-byte header");
+  return r;
 }
 
 }  // namespace
@@ -73,7 +123,20 @@ void checkHeader(const std::string& path, bool gz, std::uint64_t size) {
 CtVolume readNifti(const std::string& path, const ReadTick& tick) {
   const std::uint64_t size = fileSize(path);
   const bool gz = endsWith(path, ".gz");
-  checkHeader(path, gz, size);
+  const Header header = checkHeader(path, gz, size);
+  std::uint64_t voxels = 1;
+  for (int a = 1; a <= 3; ++a) voxels *= std::uint64_t(header.dim[a]);
+  if (voxels > kMaxVoxels) throw InputError(path, "volume of " + std::to_string(voxels) + " voxels is too large");
+  const int bpv = bytesPerVoxel(header.datatype);
+  const std::uint64_t dataBytes = voxels * std::uint64_t(bpv);
+  const std::uint64_t offset = std::uint64_t(header.voxOffset);
+  if (!gz && size < offset + dataBytes)
+    throw InputError(path, "holds " + std::to_string(size) + " bytes but the header needs " +
+                               std::to_string(offset + dataBytes) + " (vox_offset " + std::to_string(offset) + " + " +
+                               std::to_string(dataBytes) + " bytes of voxels): file truncated?");
+  if (gz && dataBytes > size * 1100 + 4096)
+    throw InputError(path, "header declares " + std::to_string(dataBytes) + " bytes of voxels but the compressed file has only " +
+                               std::to_string(size) + " bytes (file truncated or wrong sizes?)");
 
   VtkMessageCapture capture;
   auto reader = vtkSmartPointer<vtkNIFTIImageReader>::New();
@@ -85,35 +148,6 @@ CtVolume readNifti(const std::string& path, const ReadTick& tick) {
   if (capture.anyError()) throw InputError(path, "VTK could not read the NIfTI header: " + capture.firstMessage());
   vtkNIFTIImageHeader* h = reader->GetNIFTIHeader();
   if (!h) throw InputError(path, "VTK could not read the NIfTI header");
-
-  const int nd = static_cast<int>(h->GetDim(0));
-  if (nd < 3 || nd > 7) throw InputError(path, "dim[0] is " + std::to_string(nd) + "; a CT volume has 3 dimensions");
-  for (int a = 4; a <= nd; ++a)
-    if (h->GetDim(a) > 1)
-      throw InputError(path, "dimension " + std::to_string(a) + " has " + std::to_string(h->GetDim(a)) +
-                                 " samples (time series or vector image); a single 3-D volume is required");
-  std::uint64_t voxels = 1;
-  for (int a = 1; a <= 3; ++a) {
-    const auto d = h->GetDim(a);
-    if (d < 1 || d > 1000000) throw InputError(path, "dim[" + std::to_string(a) + "] = " + std::to_string(d) + " is invalid");
-    voxels *= std::uint64_t(d);
-  }
-  if (voxels > kMaxVoxels) throw InputError(path, "volume of " + std::to_string(voxels) + " voxels is too large");
-  const int bpv = bytesPerVoxel(h->GetDataType());
-  if (bpv == 0) throw InputError(path, "unsupported NIfTI datatype " + std::to_string(h->GetDataType()));
-  if (h->GetBitPix() != 8 * bpv)
-    throw InputError(path, "bitpix " + std::to_string(h->GetBitPix()) + " does not match datatype " +
-                               std::to_string(h->GetDataType()));
-  const std::uint64_t dataBytes = voxels * std::uint64_t(bpv);
-  const std::uint64_t offset = std::uint64_t(std::max<vtkTypeInt64>(h->GetVoxOffset(), 0));
-  if (!gz && size < offset + dataBytes)
-    throw InputError(path, "holds " + std::to_string(size) + " bytes but the header needs " +
-                               std::to_string(offset + dataBytes) + " (vox_offset " + std::to_string(offset) + " + " +
-                               std::to_string(dataBytes) + " bytes of voxels): file truncated?");
-  if (gz && dataBytes > size * 1100 + 4096)
-    throw InputError(path, "header declares " + std::to_string(dataBytes) + " bytes of voxels but the compressed file has only " +
-                               std::to_string(size) + " bytes (file truncated or wrong sizes?)");
-
   if (tick) capture.observeProgress(reader, tick);
   try {
     reader->Update();

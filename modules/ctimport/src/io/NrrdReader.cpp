@@ -166,6 +166,7 @@ CtVolume readNrrd(const std::string& path, const ReadTick& tick) {
 
   // Encoding and byte order.
   PayloadSpec spec;
+  spec.header = path;
   spec.type = type;
   const Field& encF = require("encoding");
   const std::string enc = lower(encF.value);

@@ -1,5 +1,7 @@
 #include "Payload.h"
 
+#include <filesystem>
+
 #include "reamsim/ctimport/Progress.h"
 #include "reamsim/mesh/MeshError.h"
 
@@ -16,6 +18,27 @@ std::size_t skipLines(const std::string& path, std::string_view bytes, long line
   return pos;
 }
 
+// "data file named by v.mhd: file not found (missing slice file?)": the header is named too, since a typo in it
+// is the likelier cause.
+std::string dataFileProblem(const PayloadSpec& spec, const PayloadPart& part, const std::string& problem) {
+  const std::string by = spec.header.empty() ? "" : " named by " + std::filesystem::path(spec.header).filename().string();
+  return "data file" + by + ": " + problem + (part.oneOfMany ? " (missing slice file?)" : "");
+}
+
+// Runs `step` on a part; a problem with a detached data file also names the header that named it.
+template <typename Step>
+void namingHeader(const PayloadSpec& spec, const PayloadPart& part, Step step) {
+  try {
+    step();
+  } catch (const InputError& e) {
+    if (spec.header.empty() || part.path == spec.header || e.file() != part.path ||
+        e.problem().find(" named by ") != std::string::npos)
+      throw;
+    throw InputError(e.file(), e.line(), e.problem() + " (data file named by " +
+                                             std::filesystem::path(spec.header).filename().string() + ")");
+  }
+}
+
 // `out()`: where the part's samples go, called once its data are read and checked.
 void readPart(const PayloadSpec& spec, const PayloadPart& part, const std::function<float*()>& out,
               std::vector<std::string>& notes) {
@@ -25,7 +48,7 @@ void readPart(const PayloadSpec& spec, const PayloadPart& part, const std::funct
     try {
       owned = readWholeFile(part.path);
     } catch (const InputError& e) {
-      throw InputError(part.path, "data file: " + e.problem() + (part.oneOfMany ? " (missing slice file?)" : ""));
+      throw InputError(part.path, dataFileProblem(spec, part, e.problem()));
     }
     bytes = owned;
   }
@@ -80,13 +103,13 @@ void readPart(const PayloadSpec& spec, const PayloadPart& part, const std::funct
 }  // namespace
 
 void checkPayloadSizes(const PayloadSpec& spec) {
-  for (const PayloadPart& part : spec.parts) {
+  for (const PayloadPart& part : spec.parts) namingHeader(spec, part, [&] {
     std::uint64_t available = part.inMemory.size();
     if (part.inMemory.empty()) {
       try {
         available = fileSize(part.path);
       } catch (const InputError& e) {
-        throw InputError(part.path, "data file: " + e.problem() + (part.oneOfMany ? " (missing slice file?)" : ""));
+        throw InputError(part.path, dataFileProblem(spec, part, e.problem()));
       }
     }
     const std::uint64_t needed = std::uint64_t(part.samples) * sampleSize(spec.type);
@@ -99,7 +122,7 @@ void checkPayloadSizes(const PayloadSpec& spec) {
       throw InputError(part.path, "holds " + std::to_string(available) + " bytes, too few for the " +
                                       std::to_string(part.samples) + " " + toString(spec.type) +
                                       " samples expected for it (file truncated or wrong sizes in the header?)");
-  }
+  });
 }
 
 void readPayload(const PayloadSpec& spec, std::vector<float>& out, std::vector<std::string>& notes,
@@ -108,10 +131,12 @@ void readPayload(const PayloadSpec& spec, std::vector<float>& out, std::vector<s
   for (const PayloadPart& part : spec.parts) total += part.samples;
   std::size_t offset = 0;
   for (std::size_t i = 0; i < spec.parts.size(); ++i) {
-    readPart(spec, spec.parts[i], [&]() -> float* {
-      if (out.size() != total) out.assign(total, 0.0f);
-      return out.data() + offset;
-    }, notes);
+    namingHeader(spec, spec.parts[i], [&] {
+      readPart(spec, spec.parts[i], [&]() -> float* {
+        if (out.size() != total) out.assign(total, 0.0f);
+        return out.data() + offset;
+      }, notes);
+    });
     offset += spec.parts[i].samples;
     if (tick && !tick(0.95 * double(i + 1) / double(spec.parts.size()))) throw ImportCancelled("reading");
   }

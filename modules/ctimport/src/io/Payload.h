@@ -26,6 +26,7 @@ struct PayloadPart {
 };
 
 struct PayloadSpec {
+  std::string header;  // the header file that names the data files (for messages about them)
   SampleType type = SampleType::Int16;
   bool bigEndian = false;
   Encoding encoding = Encoding::Raw;

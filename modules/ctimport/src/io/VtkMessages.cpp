@@ -39,6 +39,8 @@ std::string condense(std::string m) {
   for (char& c : m)
     if (c == '\n' || c == '\r') c = ' ';
   while (!m.empty() && std::isspace(static_cast<unsigned char>(m.back()))) m.pop_back();
+  // vtk-dicom writes some messages as "... in/path/file.dcm".
+  for (std::size_t at = m.find(" in/"); at != std::string::npos; at = m.find(" in/", at)) m.insert(at + 3, " ");
   return m.size() > 300 ? m.substr(0, 300) + "..." : m;
 }
 

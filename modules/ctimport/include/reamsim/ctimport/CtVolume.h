@@ -40,8 +40,9 @@ struct CtVolume {
   Vec3 worldToIndex(const Vec3& world) const;  // continuous index (inverse of indexToWorld)
 };
 
-// Checks the invariants above (dims ≥ 2, finite positive spacing, orthonormal direction, value count, finite
-// values); throws InputError naming `volume.sourcePath` otherwise. Readers call it before returning.
+// Checks the invariants above (dims ≥ 2, spacing within 1e-6 .. 1e6 mm, every voxel within ±1e7 mm of the
+// origin of patient space, orthonormal direction, value count, finite values); throws InputError naming
+// `volume.sourcePath` otherwise. Readers call it before returning.
 void checkVolume(const CtVolume& volume);
 
 // Maps a point or a whole mesh between LPS and RAS (x and y negated). Identity when either is Unspecified.

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Fuzzes the file readers under ASan + UBSan (docs/CT_IMPORT.md, "Fuzzing"): configures build-asan with the
+# fuzz driver, builds it, writes small seeds, and runs scripts/fuzz-readers.py for each mode.
+#   scripts/fuzz-readers.sh [MUTATIONS_PER_SEED] [MODE...]      modes: volume dicom mesh plan presets
+#   e.g. scripts/fuzz-readers.sh 1000 volume dicom
+# Findings (inputs that crash, hang, trip a sanitizer, give a FINDING or an error not naming the file) go to
+# $FUZZ_OUT (default /tmp/reamsim-fuzz/findings); the exit status is 1 if there are any.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mutations=${1:-200}
+shift || true
+modes=("$@")
+[ ${#modes[@]} -gt 0 ] || modes=(volume dicom mesh plan presets)
+out=${FUZZ_OUT:-/tmp/reamsim-fuzz}
+jobs=${FUZZ_JOBS:-2}
+
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DREAMSIM_IO_ONLY=ON -DREAMSIM_SANITIZE=ON \
+  -DREAMSIM_FUZZ_DRIVER=ON > /dev/null
+cmake --build build-asan -j"$jobs" --target reader_fuzz_driver
+driver=build-asan/tests/fuzz/reader_fuzz_driver
+
+rm -rf "$out/seeds"
+ASAN_OPTIONS=detect_leaks=0 "$driver" seeds "$out/seeds"
+shared=../shared/data  # real volumes, where present (not on every machine)
+
+status=0
+for mode in "${modes[@]}"; do
+  seeds=()
+  case $mode in
+    volume)
+      seeds=(--seeds "$out/seeds/volume")
+      [ -d "$shared/ct_headsq" ] && seeds+=(--seeds "$shared/ct_headsq")
+      [ -f "$shared/ct_cranium_invesalius_256x256x108.mha" ] && seeds+=(--seeds "$shared")
+      ;;
+    dicom) seeds=(--seeds "$out/seeds/dicom") ;;
+    mesh) seeds=(--seeds tests/data/good) ;;
+    plan) seeds=(--seeds resources/plans) ;;
+    presets) seeds=(--seeds resources) ;;
+    *) echo "unknown mode $mode" >&2; exit 2 ;;
+  esac
+  scripts/fuzz-readers.py --driver "$driver" --mode "$mode" "${seeds[@]}" --out "$out/findings" \
+    --mutations "$mutations" || status=1
+done
+exit $status
