@@ -109,9 +109,9 @@ TEST(BandCleanup, StaysWithinItsDeviationOfTheExactBoolean) {
     worst = std::max(worst, distanceToMesh(p, cleaned));
   }
   std::printf("dropped %zu vertices, farthest %.2e mm from the cleaned surface (deviation %.0e mm per operation)\n",
-              dropped, worst, on.bandCleanup().maxDeviationMm);
+              dropped, worst, c.cleanupDeviationMm);
   EXPECT_GT(dropped, 0u);
-  EXPECT_LT(worst, 5 * on.bandCleanup().maxDeviationMm);
+  EXPECT_LT(worst, 5 * c.cleanupDeviationMm);
   // The clean-up's volume changes over the three cuts: a few deviations times the band's area (~1000 mm²).
   std::printf("volume with / without the clean-up: %.6f / %.6f mm3\n", on.volumeMm3(), off.volumeMm3());
   EXPECT_NEAR(on.volumeMm3(), off.volumeMm3(), 0.1);

@@ -47,7 +47,9 @@ TEST_P(SweptCutEngines, SidewaysMoveRemovesTheSweptSlot) {
   EXPECT_TRUE(across.swept);
   // The slot between the two discs: travel x width x depth (the end disc overlaps nothing cut before... it
   // does not: 30 mm > the 20 mm diameter, so the slot and the second disc are all new).
-  EXPECT_NEAR(across.cut.removedMm3, 30.0 * widthAcrossX(solid) * 1.0, 1e-6 * across.cut.removedMm3);
+  // The local engine's clean-up may move the surface by a quarter of the reamer's facet sag (3 um at its
+  // wall): 1.2e-3 mm3 (2e-6) measured; the reference is the exact Boolean.
+  EXPECT_NEAR(across.cut.removedMm3, 30.0 * widthAcrossX(solid) * 1.0, (GetParam() ? 1e-5 : 1e-6) * across.cut.removedMm3);
   EXPECT_NEAR(s.log->cumulativeMm3(), disc + across.cut.removedMm3, 1e-6);
   EXPECT_FALSE(s.controller->checkBone().selfIntersectsExact);
 }
@@ -177,6 +179,7 @@ class StopAfterCuts : public CutBackend {
     if (++cuts_ == n_) control_.stop = true;
     return c;
   }
+  void setCuttingSolid(const TriangleMesh& solid) override { inner_->setCuttingSolid(solid); }
   TriangleMesh mesh() const override { return inner_->mesh(); }
   const BoneState* state() const override { return inner_->state(); }
   BoneInvariants checkInvariants() const override { return inner_->checkInvariants(); }
@@ -217,9 +220,11 @@ TEST(SweptCut, StoppedSwingLeavesTheBoneWholeAndTheNextStepCutsItAll) {
   const ReamComputation whole = fresh.compute(before, revision, tiltedAt(10.0, 8.0), 8.0, &start);
   EXPECT_EQ(resumed.sweepCuts, 26);
   EXPECT_GT(whole.cut.removedMm3, 100.0);
-  // Not bit for bit: where the flat face lies exactly on the floor it cut, the result may differ by ~1e-6
-  // from run to run (docs/CSG.md, "Reproducibility").
-  EXPECT_NEAR(resumed.cut.removedMm3, whole.cut.removedMm3, 1e-5 * whole.cut.removedMm3);
+  // Not bit for bit: where the flat face lies exactly on the floor it cut, the Boolean may differ by ~1e-6
+  // from run to run (docs/CSG.md, "Reproducibility"), and the clean-up then settles slivers differently,
+  // each within its bound (a quarter of the reamer's facet sag, 3 um): up to 9e-4 (0.27 mm3) measured over
+  // five runs.
+  EXPECT_NEAR(resumed.cut.removedMm3, whole.cut.removedMm3, 2e-3 * whole.cut.removedMm3);
   EXPECT_LT(resumed.volumeBookkeepingError, 1e-6 * resumed.cut.removedMm3);
   ASSERT_TRUE(resumed.next && whole.next);
   EXPECT_NEAR(double(resumed.next->liveTriangleCount()), double(whole.next->liveTriangleCount()),

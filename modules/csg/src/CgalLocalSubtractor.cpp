@@ -23,6 +23,7 @@
 #include "SplitOverTwoThreads.h"
 #include "TrianglePair.h"
 #include "ToolBound.h"
+#include "reamsim/csg/ToolFacetSag.h"
 #include "TriangleGrid.h"
 #include "reamsim/csg/LocalSubtractor.h"
 
@@ -212,6 +213,7 @@ struct ToolTopology {
   std::vector<Triangle> triangles;
   std::vector<std::array<std::uint32_t, 3>> across;
   std::vector<std::uint32_t> boundFaces;  // faces whose planes bound the placed tool (csg::ToolBound)
+  double facetSagMm = 0;                  // toolFacetSagMm: sets the clean-up's default deviation bound
 };
 
 const ToolTopology& checkTool(const TriangleMesh& tool, ToolTopology& cache) {
@@ -246,6 +248,7 @@ const ToolTopology& checkTool(const TriangleMesh& tool, ToolTopology& cache) {
   cache.triangles = tool.triangles;
   cache.across = std::move(across);
   cache.boundFaces = csg::ToolBound::spreadFaces(tool, kToolBoundPlanes);
+  cache.facetSagMm = toolFacetSagMm(tool);  // a rigid placement keeps it: once per tool
   return cache;
 }
 
@@ -301,6 +304,7 @@ struct LocalSubtractor::Impl {
   BandCleanup cleanup;
   bool failRoundingChecks = false;  // tests only
   ToolTopology toolTopology;  // of the last tool checked
+  std::optional<double> referenceToolSagMm;  // setReferenceTool
 
   // Whether vertex v's exact coordinates are not its doubles (kept in `exact`).
   bool knownExactly(std::uint32_t v) const { return !exact.empty() && exact.count(v) != 0; }
@@ -329,7 +333,7 @@ struct LocalSubtractor::Impl {
 
   bool touchesTool(std::uint32_t slot, const SM& tool, CGAL::Side_of_triangle_mesh<SM, EK>& side) const;
   Side insideBone(const P& q);
-  csg::CleanupPlan planCleanup(const std::vector<std::uint32_t>& seeds);
+  csg::CleanupPlan planCleanup(const std::vector<std::uint32_t>& seeds, double deviationMm);
   double commitCleanup(const csg::CleanupPlan& plan, const Vec3& origin, LocalCut& cut);
   double removedVolume6(const MeshDelta& delta, const Vec3& origin) const;
   template <class Placed>
@@ -402,13 +406,15 @@ Side LocalSubtractor::Impl::insideBone(const P& q) {
 }
 
 // The band clean-up around the faces a cut made (live slots of the current state).
-csg::CleanupPlan LocalSubtractor::Impl::planCleanup(const std::vector<std::uint32_t>& seeds) {
+csg::CleanupPlan LocalSubtractor::Impl::planCleanup(const std::vector<std::uint32_t>& seeds, double deviationMm) {
+  BandCleanup options = cleanup;
+  options.maxDeviationMm = deviationMm;
   std::vector<std::uint32_t> live;
   for (std::uint32_t s : seeds)
     if (s != kNone && state.isTriangleLive(s)) live.push_back(s);
   return csg::planCutBandCleanup(
       state, grid, live, [&](std::uint32_t v) { return knownExactly(v); },
-      [&](std::uint32_t s) { return s < defect.size() && defect[s] != 0; }, cleanup);
+      [&](std::uint32_t s) { return s < defect.size() && defect[s] != 0; }, options);
 }
 
 // Commits a clean-up as its own delta; returns its 6 × volume change (removed − added, same origin as the
@@ -490,6 +496,11 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
     toolBox.add(p);
   }
   const ToolTopology& topology = checkTool(toolMesh, toolTopology);
+  const double toolSag = referenceToolSagMm.value_or(topology.facetSagMm);
+  cut.cleanupDeviationMm = cleanup.maxDeviationMm > 0
+                               ? cleanup.maxDeviationMm
+                               : std::clamp(cleanup.deviationPerToolSag * toolSag, BandCleanup::kMinAutoDeviationMm,
+                                            BandCleanup::kMaxAutoDeviationMm);
   // A margin so that faces within rounding distance of the new ones are in the patch too (see below).
   Vec3 margin;
   for (int i = 0; i < 3; ++i) {
@@ -1250,7 +1261,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
   cut.phaseMilliseconds.commit = lap();
   const auto cleanupStart = std::chrono::steady_clock::now();
   std::optional<csg::CleanupPlan> plan;
-  if (cleanup.enabled) plan = planCleanup(newFaceSlots);
+  if (cleanup.enabled) plan = planCleanup(newFaceSlots, cut.cleanupDeviationMm);
   double cleanupMs = elapsedMs(cleanupStart);
   lap();
   const bool keepExact = !roundingSafe.get() || failRoundingChecks;
@@ -1281,7 +1292,7 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
       exact[slot] = *newPoints[i];
     }
     for (std::uint32_t s : newFaceSlots) grid.insert(s, boxOf(state.triangle(s)));
-    if (plan) plan = planCleanup(newFaceSlots);
+    if (plan) plan = planCleanup(newFaceSlots, cut.cleanupDeviationMm);
     cut.phaseMilliseconds.rounding += lap();
   }
   if (plan) {
@@ -1346,6 +1357,8 @@ LocalSubtractor& LocalSubtractor::operator=(LocalSubtractor&&) noexcept = defaul
 
 LocalCut LocalSubtractor::subtract(const TriangleMesh& tool) { return impl_->subtract(tool); }
 void LocalSubtractor::setBandCleanup(const BandCleanup& cleanup) { impl_->cleanup = cleanup; }
+
+void LocalSubtractor::setReferenceTool(const TriangleMesh& solid) { impl_->referenceToolSagMm = toolFacetSagMm(solid); }
 void LocalSubtractor::failRoundingChecksForTesting(bool fail) { impl_->failRoundingChecks = fail; }
 const BandCleanup& LocalSubtractor::bandCleanup() const { return impl_->cleanup; }
 const BoneState& LocalSubtractor::state() const { return impl_->state; }

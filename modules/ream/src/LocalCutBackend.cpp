@@ -23,6 +23,7 @@ class LocalCutBackend final : public CutBackend {
     r.milliseconds = c.milliseconds;
     return r;
   }
+  void setCuttingSolid(const TriangleMesh& solidLocal) override { engine_.setReferenceTool(solidLocal); }
   TriangleMesh mesh() const override { return engine_.mesh(); }
   const BoneState* state() const override { return &engine_.state(); }
   BoneInvariants checkInvariants() const override { return engine_.checkInvariants(); }

@@ -59,6 +59,7 @@ void ReamEngine::sync(const BoneState& bone, std::uint64_t revision) {
     cutter_.reset();
     cutterRevision_ = 0;
     cutter_ = cutFactory_(bone);
+    cutter_->setCuttingSolid(*cuttingVolume_);
     cutterRevision_ = revision;
   }
   if (pendingAdopt_) meshAwaitsAdopt_ = false;  // that computation was dropped: boneMesh_ is not the bone

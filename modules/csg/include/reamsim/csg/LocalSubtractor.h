@@ -66,6 +66,7 @@ struct LocalCut {
   // removedMm3 = V_before − V_after still holds), not of removedPieceMm3.
   double cleanupVolumeMm3 = 0;
   std::size_t cleanupCollapses = 0, cleanupFlips = 0;
+  double cleanupDeviationMm = 0;  // the deviation bound it used (BandCleanup::maxDeviationMm or the tool's)
   bool cleanupReplanned = false;  // its optimistic plan failed the self-intersection test: planned op by op
   double cleanupMilliseconds = 0;
   // Where the time went (ms), for the benchmark: tool and patch set-up (grid query, defect test, exact
@@ -80,10 +81,17 @@ struct LocalCut {
 
 // Clean-up of the cut band after each cut: short edges collapsed and caps flipped around the new faces, so
 // that faces do not accumulate and slivers do not pile up over many cuts. Each operation moves the surface
-// by at most maxDeviationMm; the result is checked exactly for self-intersections (src/CutBandCleanup.h).
+// by at most the deviation bound; the result is checked exactly for self-intersections (src/CutBandCleanup.h).
 struct BandCleanup {
   bool enabled = true;
-  double maxDeviationMm = 0.001;
+  // The deviation bound in mm; 0 (the default): a quarter of the tool's own facet sag, as its mesh shows it
+  // (toolFacetSagMm), within [kMinAutoDeviationMm, kMaxAutoDeviationMm]. The cut surface is the tool's
+  // facets, which stand off the ideal reamer by their sag; moves well inside that keep the reamed surface's
+  // error the reamer mesh's own, and a finer reamer gets a finer bound (docs/CSG.md, session 27: 16.8 um
+  // sag, 4.2 um bound for the default reamers; the fixed 1 um before left more, thinner faces for no accuracy).
+  double maxDeviationMm = 0;
+  double deviationPerToolSag = 0.25;
+  static constexpr double kMinAutoDeviationMm = 0.0005, kMaxAutoDeviationMm = 0.01;
   double minEdgeMm = 0.05;
   double minAngleDeg = 15;
   // Test every operation for self-intersections before taking it, instead of the plan's outcome once (with
@@ -118,6 +126,11 @@ class LocalSubtractor {
   // The clean-up after each cut (on by default). Off, the result is the exact Boolean alone.
   void setBandCleanup(const BandCleanup& cleanup);
   const BandCleanup& bandCleanup() const;
+  // The solid the tools are made from (a reamer's cutting solid, placed or swept into a hull), in any
+  // placement: the clean-up's automatic deviation bound then follows its facet sag instead of each tool's
+  // (a swept hull's faces span the sweep and say nothing of the reamer's faceting, and every cut of a
+  // session gets the same bound).
+  void setReferenceTool(const TriangleMesh& solid);
   // Tests only: treat every rounding check as failed, so that new vertices keep their exact values (the
   // rare path, which real cuts seldom take).
   void failRoundingChecksForTesting(bool fail);

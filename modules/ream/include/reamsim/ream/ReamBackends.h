@@ -50,6 +50,9 @@ class CutBackend {
   // (the loop then diffs it against the previous state, O(bone)).
   virtual const BoneState* state() const { return nullptr; }
   virtual BoneInvariants checkInvariants() const = 0;
+  // The reamer's cutting solid (its own frame) that every tool of this engine is made from, placed or swept:
+  // an engine may set tolerances from it (the local engine's clean-up bound follows its facet sag).
+  virtual void setCuttingSolid(const TriangleMesh& /*solidLocal*/) {}
 };
 // Builds an engine for a bone state; throws std::invalid_argument for a bone it cannot cut.
 using CutBackendFactory = std::function<std::unique_ptr<CutBackend>(const BoneState& bone)>;
