@@ -357,6 +357,7 @@ TEST(BadVolumes, DicomCorruptElementStructureIsNamedBeforeVtkDicomParsesIt) {
   phantom::writeDicomSeries((d / "group0").string(), s.grid, s.hu);
   patch((d / "group0" / "IM-0002.dcm").string(), std::string("\x08\x00\x3e\x10", 4), 0, std::string("\x00\x00\x80\x00", 4));
   expectInputError((d / "group0").string(), "IM-0002.dcm", "command-group element (0000,0080)");
+  expectInputError((d / "group0" / "IM-0005.dcm").string(), "IM-0002.dcm", "move this one out of it to import the others");
   phantom::writeDicomSeries((d / "group1").string(), s.grid, s.hu);  // SliceThickness moved to (0001,0050)
   patch((d / "group1" / "IM-0007.dcm").string(), std::string("\x18\x00\x50\x00", 4), 0, std::string("\x01\x00\x50\x00", 4));
   expectInputError((d / "group1").string(), "IM-0007.dcm", "element (0001,0050) in the reserved group 0001");

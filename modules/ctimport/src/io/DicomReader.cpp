@@ -46,14 +46,17 @@ std::string mm(double x) {
 }
 
 // Every file vtk-dicom would take for DICOM in `dir` must have a sound element structure (DicomCheck.h)
-// before vtkDICOMDirectory or vtkDICOMReader parses it.
+// before vtkDICOMDirectory or vtkDICOMReader parses it. vtkDICOMDirectory parses every file of the folder,
+// so a bad file refuses the folder, even one of another series: the message says how to get past it.
 void checkStructure(const std::string& dir) {
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string file = e.path().string();
     if (!e.is_regular_file(ec) || !vtkDICOMUtilities::IsDICOMFile(file.c_str())) continue;
     const std::string problem = dicomStructureProblem(readWholeFile(file));
-    if (!problem.empty()) throw InputError(file, problem);
+    if (!problem.empty())
+      throw InputError(file, problem + " (every DICOM file in the folder is read to find the series: move this one "
+                                       "out of it to import the others)");
   }
 }
 
