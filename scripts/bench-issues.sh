@@ -71,7 +71,7 @@ if [ "$what" = cut ] || [ "$what" = all ]; then
   run cut_405k_top_200 bench cut --bone "$s405" --steps 200 --loop
   [ -f "$skull" ] && run cut_skull bench cut --bone "$skull" --units mm --steps 50 --avoid-defects "${peerArgs[@]}" --peers-budget-ms 60000
   run cut_bundled_1000 bench cut --steps 1000 --depth 0.1 --tilt 3 --check-every 250
-  run cut_soak_10000 bench cut --steps 40000 --path soak --check-every 100  # 10,436 of the 40,000 steps cut bone
+  run cut_soak_10000_cuts bench cut --steps 40000 --path soak --check-every 100  # 10,539 of the 40,000 steps cut bone (session 27)
   # The reamed surface against the ideal sphere as the reamer's mesh is refined (docs/CSG.md).
   run cut_bundled_reamer_192x24 bench cut --steps 200 --segments 192 --rings 24
   run cut_bundled_reamer_384x48 bench cut --steps 200 --segments 384 --rings 48

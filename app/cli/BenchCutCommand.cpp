@@ -525,7 +525,8 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"redone_with_offset", redoneCuts},
       {"moved_off_bone_surface", movedOffSurface},
       {"band_cleanup", {{"enabled", engine.bandCleanup().enabled},
-                        {"max_deviation_mm", cleanupDeviation},  // as used: set, or from the tool's facet sag
+                        {"max_deviation_mm", engine.bandCleanup().enabled ? nlohmann::json(cleanupDeviation)
+                                                                          : nlohmann::json(nullptr)},  // as used
                         {"collapses", collapses},
                         {"flips", flips},
                         {"replanned_cuts", cleanupReplanned},

@@ -29,6 +29,7 @@ TEST(LocalCutCommit, ACutIsALocalEditOfTheBoneState) {
   const ReamerSpec spec = loadPreset("glenoid-36-R30", reamerPresetsPath());
   test::ReamScene s(bone.mesh, spec, localCutBackendFactory(), makeBvhContactBackend());
   LocalSubtractor alone(bone.mesh);  // the same engine outside the loop, on the same cuts
+  alone.setReferenceTool(*s.reamer->cuttingVolume());  // as the loop's engine: the same clean-up bound
   const ReamerModel reamer = ReamerModel::fromCuttingVolume(*s.reamer->cuttingVolume(), &spec);
   const Vec3 out = bone.glenoid.outwardAxis;
   for (int step = 1; step <= 3; ++step) {

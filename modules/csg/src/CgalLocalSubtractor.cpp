@@ -213,7 +213,25 @@ struct ToolTopology {
   std::vector<Triangle> triangles;
   std::vector<std::array<std::uint32_t, 3>> across;
   std::vector<std::uint32_t> boundFaces;  // faces whose planes bound the placed tool (csg::ToolBound)
-  double facetSagMm = 0;                  // toolFacetSagMm: sets the clean-up's default deviation bound
+  // toolFacetSagMm, which sets the clean-up's default bound, for the shape whose edge lengths are kept: the
+  // same triangles may come with another shape (a reamer of another size at the same resolution, hulls
+  // of different sweeps), so a rigid placement is checked, not assumed.
+  double facetSagMm = -1;
+  std::vector<double> shapeEdges;  // squared length of each triangle's first edge
+  double sagOf(const TriangleMesh& tool) {
+    bool same = facetSagMm >= 0 && shapeEdges.size() == tool.triangles.size();
+    for (std::size_t f = 0; same && f < tool.triangles.size(); ++f) {
+      const Vec3 e = tool.vertices[tool.triangles[f][1]] - tool.vertices[tool.triangles[f][0]];
+      same = std::abs(dot(e, e) - shapeEdges[f]) <= 1e-9 * (shapeEdges[f] + 1e-12);
+    }
+    if (same) return facetSagMm;
+    shapeEdges.resize(tool.triangles.size());
+    for (std::size_t f = 0; f < tool.triangles.size(); ++f) {
+      const Vec3 e = tool.vertices[tool.triangles[f][1]] - tool.vertices[tool.triangles[f][0]];
+      shapeEdges[f] = dot(e, e);
+    }
+    return facetSagMm = toolFacetSagMm(tool);
+  }
 };
 
 const ToolTopology& checkTool(const TriangleMesh& tool, ToolTopology& cache) {
@@ -248,7 +266,6 @@ const ToolTopology& checkTool(const TriangleMesh& tool, ToolTopology& cache) {
   cache.triangles = tool.triangles;
   cache.across = std::move(across);
   cache.boundFaces = csg::ToolBound::spreadFaces(tool, kToolBoundPlanes);
-  cache.facetSagMm = toolFacetSagMm(tool);  // a rigid placement keeps it: once per tool
   return cache;
 }
 
@@ -496,11 +513,12 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
     toolBox.add(p);
   }
   const ToolTopology& topology = checkTool(toolMesh, toolTopology);
-  const double toolSag = referenceToolSagMm.value_or(topology.facetSagMm);
-  cut.cleanupDeviationMm = cleanup.maxDeviationMm > 0
-                               ? cleanup.maxDeviationMm
-                               : std::clamp(cleanup.deviationPerToolSag * toolSag, BandCleanup::kMinAutoDeviationMm,
-                                            BandCleanup::kMaxAutoDeviationMm);
+  if (cleanup.enabled)
+    cut.cleanupDeviationMm = cleanup.maxDeviationMm > 0
+                                 ? cleanup.maxDeviationMm
+                                 : std::clamp(cleanup.deviationPerToolSag *
+                                                  (referenceToolSagMm ? *referenceToolSagMm : toolTopology.sagOf(toolMesh)),
+                                              BandCleanup::kMinAutoDeviationMm, BandCleanup::kMaxAutoDeviationMm);
   // A margin so that faces within rounding distance of the new ones are in the patch too (see below).
   Vec3 margin;
   for (int i = 0; i < 3; ++i) {

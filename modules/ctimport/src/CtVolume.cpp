@@ -60,9 +60,11 @@ void checkVolume(const CtVolume& v) {
     if (v.spacing[a] < kMinSpacingMm || v.spacing[a] > kMaxSpacingMm)
       throw InputError(f, "spacing along axis " + std::to_string(a) + " is " + num(v.spacing[a]) +
                               " mm, outside 1e-6 .. 1e6 mm (corrupt header?)");
-  for (const Vec3& corner : {v.origin, v.indexToWorld(v.dims[0] - 1, v.dims[1] - 1, v.dims[2] - 1)})
+  for (int c = 0; c < 8; ++c) {  // every corner: with axes of mixed signs, any of them may be the farthest
+    const Vec3 corner = v.indexToWorld(c & 1 ? v.dims[0] - 1 : 0, c & 2 ? v.dims[1] - 1 : 0, c & 4 ? v.dims[2] - 1 : 0);
     if (!(std::abs(corner.x) <= kMaxWorldMm && std::abs(corner.y) <= kMaxWorldMm && std::abs(corner.z) <= kMaxWorldMm))
       throw InputError(f, "the volume reaches " + point(corner) + " mm, beyond ±1e7 mm (10 km) of the patient origin (corrupt origin or spacing?)");
+  }
   for (int a = 0; a < 3; ++a) {
     if (std::abs(norm(v.axis(a)) - 1) > 1e-4)
       throw InputError(f, "direction of axis " + std::to_string(a) + " is not a unit vector");

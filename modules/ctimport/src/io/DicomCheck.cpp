@@ -67,7 +67,10 @@ class Walker {
     x.group = u16(pos, bigEndian);
     x.element = u16(pos + 2, bigEndian);
     if (x.group == 0xFFFE) return x;  // item tags: the caller decides
-    if (explicitVr) {
+    // vtk-dicom reads an element whose VR bytes are not two capital letters as implicit (some writers mix
+    // them); then the 4-byte length must fit like any other (a corrupt VR read so asked for 770 MB).
+    const bool vrLetters = std::isupper(static_cast<unsigned char>(b_[pos + 4])) && std::isupper(static_cast<unsigned char>(b_[pos + 5]));
+    if (explicitVr && vrLetters) {
       std::memcpy(x.vr, b_.data() + pos + 4, 2);
       if (!knownVr(x.vr))
         throw Problem{"element " + tagText(x.group, x.element) + " has an invalid value representation " + vrText(x.vr)};
@@ -92,6 +95,7 @@ class Walker {
   // The meta group (0002,xxxx) from `pos`, always explicit VR little endian: returns where it ends and the
   // data set's transfer syntax.
   std::size_t metaGroup(std::size_t pos, std::string& syntax) const {
+    // Explicit VR little endian by the standard; some writers made it implicit, which vtk-dicom reads too.
     while (pos + 8 <= b_.size() && u16(pos, false) == 0x0002) {
       const Element x = element(pos, b_.size(), true, false);
       if (x.length == kUndefined) throw Problem{"meta element " + tagText(x.group, x.element) + " has an undefined length"};
@@ -108,13 +112,18 @@ class Walker {
     std::uint32_t previous = 0;
     bool first = true;
     while (pos < end) {
+      // Zero bytes after the last element: vtk-dicom crashes on them in every syntax (session 27,
+      // BadVolumes.DicomStructureCheckAcceptsValidLayoutsAndLetsNoCrashThrough), so they are named here.
+      if (depth == 0 && !inItem && zerosFrom(pos)) {
+        throw Problem{std::to_string(end - pos) + " zero bytes after the last element at byte " + std::to_string(pos) +
+                      " (padding that is not a DICOM element; vtk-dicom cannot read it)"};
+      }
       const Element x = element(pos, end, explicitVr, bigEndian);
       const std::uint16_t g = x.group, e = x.element;
       if (g == 0xFFFE) {
         if (inItem && e == 0xE00D) return pos + 8;
         throw Problem{"unexpected item tag " + tagText(g, e) + " at byte " + std::to_string(pos)};
       }
-      if (g == 0x0000 && e == 0x0000 && depth == 0 && zerosFrom(pos)) return b_.size();  // zero padding at the end
       if (g == 0x0000) throw Problem{"command-group element " + tagText(g, e) + " in the data set (corrupt file?)"};
       if (g == 0x0001) throw Problem{"element " + tagText(g, e) + " in the reserved group 0001 (corrupt file?)"};
       // The standard orders elements by tag; vtk-dicom relies on it when it merges the slices' elements.
@@ -128,8 +137,9 @@ class Walker {
       if (e == 0x0000 && x.length != 4)
         throw Problem{"group length " + tagText(g, e) + " has " + std::to_string(x.length) + " bytes, not 4 (corrupt file?)"};
       const bool un = std::strcmp(x.vr, "UN") == 0;
-      const bool pixels = g == 0x7FE0 && e == 0x0010;
-      const bool sequence = std::strcmp(x.vr, "SQ") == 0 || (!explicitVr && x.length == kUndefined && !pixels);
+      // Encapsulated data: the pixel data, or another OB of undefined length (vtk-dicom reads its fragments).
+      const bool pixels = (g == 0x7FE0 && e == 0x0010) || (x.length == kUndefined && std::strcmp(x.vr, "OB") == 0);
+      const bool sequence = std::strcmp(x.vr, "SQ") == 0 || (x.vr[0] == 0 && x.length == kUndefined && !pixels);
       if (x.length == kUndefined) {
         if (!sequence && !un && !pixels)
           throw Problem{"element " + tagText(g, e) + " has an undefined length, which its VR does not allow"};

@@ -45,39 +45,95 @@ std::string mm(double x) {
   return b;
 }
 
-// Every file vtk-dicom would take for DICOM in `dir` must have a sound element structure (DicomCheck.h)
-// before vtkDICOMDirectory or vtkDICOMReader parses it. vtkDICOMDirectory parses every file of the folder,
-// so a bad file refuses the folder, even one of another series: the message says how to get past it.
-void checkStructure(const std::string& dir) {
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir, ec)) {
-    const std::string file = e.path().string();
-    if (!e.is_regular_file(ec) || !vtkDICOMUtilities::IsDICOMFile(file.c_str())) continue;
-    const std::string problem = dicomStructureProblem(readWholeFile(file));
-    if (!problem.empty())
-      throw InputError(file, problem + " (every DICOM file in the folder is read to find the series: move this one "
-                                       "out of it to import the others)");
+// The DICOM files of a folder, each with a sound element structure (DicomCheck.h) or not: vtk-dicom may
+// only parse the sound ones. Hidden files are left out, as vtkDICOMDirectory leaves them.
+struct FolderFiles {
+  std::vector<std::string> sound;
+  std::vector<std::pair<std::string, std::string>> broken;  // file, problem
+  bool dicomdir = false;  // a DICOMDIR (a CD's index, which points into subfolders)
+};
+
+std::string structureProblem(const std::string& file) {
+  try {
+    return dicomStructureProblem(readWholeFile(file));
+  } catch (const InputError& e) {
+    return e.what();
   }
 }
 
+FolderFiles checkFolder(const std::string& dir, bool recursive) {
+  FolderFiles out;
+  std::error_code ec;
+  auto visit = [&](const fs::directory_entry& e) {
+    const std::string name = e.path().filename().string();
+    if (name.empty() || name[0] == '.' || !e.is_regular_file(ec)) return;
+    const std::string file = e.path().string();
+    if (!vtkDICOMUtilities::IsDICOMFile(file.c_str())) return;
+    out.dicomdir |= name == "DICOMDIR";
+    const std::string problem = structureProblem(file);
+    if (problem.empty()) out.sound.push_back(file);
+    else out.broken.emplace_back(file, problem);
+  };
+  if (recursive) {
+    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+      if (it.depth() < 8) visit(*it);
+  } else {
+    for (const auto& e : fs::directory_iterator(dir, ec)) visit(e);
+  }
+  std::sort(out.sound.begin(), out.sound.end());
+  std::sort(out.broken.begin(), out.broken.end());
+  return out;
+}
+
+// "; IM-0006.dcm was left out: <problem>" (and how many more), for messages about a series with a gap.
+std::string leftOut(const std::vector<std::pair<std::string, std::string>>& broken) {
+  if (broken.empty()) return "";
+  std::string s = "; " + fs::path(broken[0].first).filename().string() + " was left out: " + broken[0].second;
+  if (broken.size() > 1) s += " (and " + std::to_string(broken.size() - 1) + " more broken file(s))";
+  return s;
+}
+
 // The files of the series to read: all of a directory's largest series, or the series holding `path`.
-std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::string>& notes) {
+// Files with a broken structure are left out (noted, and named where a gap shows), the chosen file must not
+// be one. A folder with a DICOMDIR is read through it, as vtk-dicom does, and then every DICOM file below the
+// folder must be sound: the index may point at any of them.
+std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::string>& notes, FolderFiles& folder) {
   std::error_code ec;
   const bool isDir = fs::is_directory(path, ec);
   if (!isDir && !fs::is_regular_file(path, ec)) throw InputError(path, "file or directory not found");
   const std::string dir = isDir ? path : fs::path(path).parent_path().string();
-  checkStructure(dir.empty() ? "." : dir);
+  folder = checkFolder(dir.empty() ? "." : dir, false);
+  if (folder.dicomdir) {
+    folder = checkFolder(dir.empty() ? "." : dir, true);
+    if (!folder.broken.empty())
+      throw InputError(folder.broken[0].first, folder.broken[0].second + " (a file of the DICOMDIR's folder; move it out, "
+                                                                         "or open the folder of the series' files)");
+  }
+  if (!isDir) {
+    const std::string wanted = fs::weakly_canonical(path, ec).string();
+    for (const auto& [file, problem] : folder.broken)
+      if (fs::weakly_canonical(file, ec).string() == wanted) throw InputError(path, problem);
+  }
+  for (const auto& [file, problem] : folder.broken)
+    notes.push_back("left out " + fs::path(file).filename().string() + ": " + problem);
   VtkMessageCapture capture;
   auto finder = vtkSmartPointer<vtkDICOMDirectory>::New();
   capture.observe(finder);
-  finder->SetDirectoryName(dir.empty() ? "." : dir.c_str());
-  finder->SetScanDepth(1);
+  if (folder.dicomdir) {
+    finder->SetDirectoryName(dir.empty() ? "." : dir.c_str());
+    finder->SetScanDepth(1);
+  } else {
+    auto names = vtkSmartPointer<vtkStringArray>::New();
+    for (const std::string& f : folder.sound) names->InsertNextValue(f);
+    finder->SetInputFileNames(names);
+  }
   finder->RequirePixelDataOn();
-  finder->Update();
-  const int n = finder->GetNumberOfSeries();
+  if (!folder.sound.empty()) finder->Update();
+  const int n = folder.sound.empty() ? 0 : finder->GetNumberOfSeries();
   if (n == 0)
-    throw InputError(path, isDir ? "no DICOM image series found in the directory"
-                                 : "not a readable DICOM image file (or no image series beside it)");
+    throw InputError(path, (isDir ? "no DICOM image series found in the directory"
+                                  : "not a readable DICOM image file (or no image series beside it)") +
+                               leftOut(folder.broken));
   int chosen = -1;
   if (!isDir) {
     const std::string wanted = fs::weakly_canonical(path, ec).string();
@@ -129,9 +185,11 @@ std::string outsiders(const std::vector<std::string>& files) {
 }
 
 // Orientation, size and spacing of single-frame slices must agree before they are stacked.
-void checkSlices(const std::string& path, vtkDICOMMetaData* meta, const std::vector<std::string>& files) {
+// `why`: what the messages add about files beside the series (outsiders, leftOut).
+void checkSlices(const std::string& path, vtkDICOMMetaData* meta, const std::vector<std::string>& files,
+                 const std::string& why) {
   const int n = meta->GetNumberOfInstances();
-  if (n < 2) throw InputError(path, "the series has a single image; a CT volume needs at least 2 slices" + outsiders(files));
+  if (n < 2) throw InputError(path, "the series has a single image; a CT volume needs at least 2 slices" + why);
   double iop0[6];
   const vtkDICOMValue& o0 = meta->Get(0, DC::ImageOrientationPatient);
   if (!o0.IsValid() || o0.GetNumberOfValues() != 6)
@@ -174,9 +232,9 @@ void checkSlices(const std::string& path, vtkDICOMMetaData* meta, const std::vec
       throw InputError(path, "missing slice" + std::string(whole > 2 ? "s" : "") + ": gap of " + mm(gaps[i]) +
                                  " mm between " + fileOf(i) + " and " + fileOf(i + 1) + " where the spacing is " +
                                  mm(spacing) + " mm (" + std::to_string(whole - 1) + " slice" +
-                                 (whole > 2 ? "s" : "") + " missing)" + outsiders(files));
+                                 (whole > 2 ? "s" : "") + " missing)" + why);
     throw InputError(path, "inconsistent slice spacing: " + mm(gaps[i]) + " mm between " + fileOf(i) + " and " +
-                               fileOf(i + 1) + ", " + mm(spacing) + " mm elsewhere" + outsiders(files));
+                               fileOf(i + 1) + ", " + mm(spacing) + " mm elsewhere" + why);
   }
 }
 
@@ -200,8 +258,9 @@ void checkDeclaredSize(const std::string& path, vtkDICOMReader* reader, vtkDICOM
   const std::string syntax = meta->Get(0, DC::TransferSyntaxUID).AsString();
   const bool native = syntax == "1.2.840.10008.1.2" || syntax == "1.2.840.10008.1.2.1" || syntax == "1.2.840.10008.1.2.2";
   if (!native) return;  // compressed: the codec reports short data
-  const std::uint64_t bytes = voxels * std::uint64_t(std::max(1, meta->Get(0, DC::BitsAllocated).AsInt() / 8)) *
-                              std::uint64_t(std::max(1, meta->Get(0, DC::SamplesPerPixel).AsInt()));
+  const std::uint64_t bits = voxels * std::uint64_t(std::max(1, meta->Get(0, DC::BitsAllocated).AsInt())) *
+                             std::uint64_t(std::max(1, meta->Get(0, DC::SamplesPerPixel).AsInt()));
+  const std::uint64_t bytes = (bits + 7) / 8;  // BitsAllocated 1 (bit-packed masks) included
   std::uint64_t held = 0;
   std::error_code ec;
   for (const std::string& f : files) held += fs::file_size(f, ec);
@@ -218,7 +277,8 @@ CtVolume readDicom(const std::string& path, const ReadTick& tick) {
   v.sourcePath = path;
   v.format = "dicom";
   v.space = PatientSpace::LPS;
-  const std::vector<std::string> files = seriesFiles(path, v.notes);
+  FolderFiles folder;
+  const std::vector<std::string> files = seriesFiles(path, v.notes, folder);
 
   VtkMessageCapture capture;
   auto reader = vtkSmartPointer<vtkDICOMReader>::New();
@@ -234,7 +294,7 @@ CtVolume readDicom(const std::string& path, const ReadTick& tick) {
   if (!meta) throw InputError(path, "cannot read the DICOM series meta data");
   const bool singleFrames = int(files.size()) == meta->GetNumberOfInstances() &&
                             meta->Get(0, DC::NumberOfFrames).AsInt() <= 1;
-  if (singleFrames) checkSlices(path, meta, files);
+  if (singleFrames) checkSlices(path, meta, files, folder.broken.empty() ? outsiders(files) : leftOut(folder.broken));
   checkDeclaredSize(path, reader, meta, files);
   if (meta->Get(0, DC::Modality).AsString() == "CT") v.valueUnit = "HU";
 

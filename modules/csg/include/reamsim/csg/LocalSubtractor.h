@@ -88,7 +88,7 @@ struct BandCleanup {
   // (toolFacetSagMm), within [kMinAutoDeviationMm, kMaxAutoDeviationMm]. The cut surface is the tool's
   // facets, which stand off the ideal reamer by their sag; moves well inside that keep the reamed surface's
   // error the reamer mesh's own, and a finer reamer gets a finer bound (docs/CSG.md, session 27: 16.8 um
-  // sag, 4.2 um bound for the default reamers; the fixed 1 um before left more, thinner faces for no accuracy).
+  // sag, 4.3 um bound for the default reamers; the fixed 1 um before left more, thinner faces for no accuracy).
   double maxDeviationMm = 0;
   double deviationPerToolSag = 0.25;
   static constexpr double kMinAutoDeviationMm = 0.0005, kMaxAutoDeviationMm = 0.01;
