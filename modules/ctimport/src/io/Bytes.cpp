@@ -115,35 +115,24 @@ std::string inflateExactly(const std::string& path, std::string_view compressed,
 namespace {
 
 template <class T>
-void decodeTyped(const char* src, std::size_t count, bool swap, float* dst) {
-  for (std::size_t i = 0; i < count; ++i) {
-    unsigned char b[sizeof(T)];
-    std::memcpy(b, src + i * sizeof(T), sizeof(T));
-    if (swap)
-      for (std::size_t k = 0; k < sizeof(T) / 2; ++k) std::swap(b[k], b[sizeof(T) - 1 - k]);
-    T v;
-    std::memcpy(&v, b, sizeof(T));
-    dst[i] = static_cast<float>(v);
-  }
+void decodeTyped(const char* src, std::size_t count, bool bigEndian, float* dst) {
+  for (std::size_t i = 0; i < count; ++i) dst[i] = static_cast<float>(loadScalar<T>(src + i * sizeof(T), bigEndian));
 }
-
-constexpr bool kHostBigEndian = __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__;  // GCC/Clang macro
 
 }  // namespace
 
 void decodeSamples(const char* src, std::size_t count, SampleType type, bool bigEndian, float* dst) {
-  const bool swap = bigEndian != kHostBigEndian;
   switch (type) {
-    case SampleType::Int8: decodeTyped<std::int8_t>(src, count, false, dst); break;
-    case SampleType::UInt8: decodeTyped<std::uint8_t>(src, count, false, dst); break;
-    case SampleType::Int16: decodeTyped<std::int16_t>(src, count, swap, dst); break;
-    case SampleType::UInt16: decodeTyped<std::uint16_t>(src, count, swap, dst); break;
-    case SampleType::Int32: decodeTyped<std::int32_t>(src, count, swap, dst); break;
-    case SampleType::UInt32: decodeTyped<std::uint32_t>(src, count, swap, dst); break;
-    case SampleType::Int64: decodeTyped<std::int64_t>(src, count, swap, dst); break;
-    case SampleType::UInt64: decodeTyped<std::uint64_t>(src, count, swap, dst); break;
-    case SampleType::Float32: decodeTyped<float>(src, count, swap, dst); break;
-    case SampleType::Float64: decodeTyped<double>(src, count, swap, dst); break;
+    case SampleType::Int8: decodeTyped<std::int8_t>(src, count, bigEndian, dst); break;
+    case SampleType::UInt8: decodeTyped<std::uint8_t>(src, count, bigEndian, dst); break;
+    case SampleType::Int16: decodeTyped<std::int16_t>(src, count, bigEndian, dst); break;
+    case SampleType::UInt16: decodeTyped<std::uint16_t>(src, count, bigEndian, dst); break;
+    case SampleType::Int32: decodeTyped<std::int32_t>(src, count, bigEndian, dst); break;
+    case SampleType::UInt32: decodeTyped<std::uint32_t>(src, count, bigEndian, dst); break;
+    case SampleType::Int64: decodeTyped<std::int64_t>(src, count, bigEndian, dst); break;
+    case SampleType::UInt64: decodeTyped<std::uint64_t>(src, count, bigEndian, dst); break;
+    case SampleType::Float32: decodeTyped<float>(src, count, bigEndian, dst); break;
+    case SampleType::Float64: decodeTyped<double>(src, count, bigEndian, dst); break;
   }
 }
 

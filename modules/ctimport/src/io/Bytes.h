@@ -1,8 +1,10 @@
 #pragma once
 // File access and raw sample decoding shared by the volume readers. Every failure is an InputError naming
 // the file; nothing is allocated from a header's claims before they are checked against real sizes.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 
@@ -21,6 +23,17 @@ std::string readWholeFile(const std::string& path);
 
 // Inflates a zlib or gzip stream (auto-detected) that must expand to exactly `expectedBytes`.
 std::string inflateExactly(const std::string& path, std::string_view compressed, std::size_t expectedBytes);
+
+// One value of type T at `p`, stored in the file's byte order (`bigEndian`).
+template <class T>
+T loadScalar(const void* p, bool bigEndian) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, p, sizeof(T));
+  if (bigEndian != (__BYTE_ORDER__ == __ORDER_BIG_ENDIAN__)) std::reverse(b, b + sizeof(T));  // GCC/Clang macro
+  T v;
+  std::memcpy(&v, b, sizeof(T));
+  return v;
+}
 
 // Converts `count` samples starting at `src` (file byte order given by `bigEndian`) to float.
 void decodeSamples(const char* src, std::size_t count, SampleType type, bool bigEndian, float* dst);

@@ -1,5 +1,7 @@
 #include "DicomCheck.h"
 
+#include "Bytes.h"
+
 #include <cctype>
 #include <cstdint>
 #include <cstdio>
@@ -197,13 +199,8 @@ class Walker {
   void need(std::size_t pos, std::size_t n, std::size_t end, const char* what) const {
     if (n > end - pos) throw Problem{std::string("the file ends inside an ") + what + " (file truncated?)"};
   }
-  std::uint16_t u16(std::size_t p, bool be) const {
-    const auto* c = reinterpret_cast<const unsigned char*>(b_.data() + p);
-    return std::uint16_t(be ? (c[0] << 8) | c[1] : (c[1] << 8) | c[0]);
-  }
-  std::uint32_t u32(std::size_t p, bool be) const {
-    return be ? (std::uint32_t(u16(p, true)) << 16) | u16(p + 2, true) : (std::uint32_t(u16(p + 2, false)) << 16) | u16(p, false);
-  }
+  std::uint16_t u16(std::size_t p, bool be) const { return loadScalar<std::uint16_t>(b_.data() + p, be); }
+  std::uint32_t u32(std::size_t p, bool be) const { return loadScalar<std::uint32_t>(b_.data() + p, be); }
 
   std::string_view b_;
 };

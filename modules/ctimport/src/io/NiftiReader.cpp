@@ -49,15 +49,6 @@ struct Header {
   double voxOffset = 0;
 };
 
-template <typename T>
-T field(const unsigned char* h, std::size_t offset, bool swap) {
-  unsigned char b[sizeof(T)];
-  std::memcpy(b, h + offset, sizeof(T));
-  if (swap) std::reverse(b, b + sizeof(T));
-  T v;
-  std::memcpy(&v, b, sizeof(T));
-  return v;
-}
 
 // VTK's reader trusts the header: an unknown datatype crashed it (SIGBUS in vtkNIFTIImageReader::
 // RequestInformation, found by fuzzing). So magic, sizes, datatype and vox_offset are read here (through
@@ -71,9 +62,9 @@ Header checkHeader(const std::string& path, bool gz, std::uint64_t size) {
   gzclose(f);
   if (n < 4) throw InputError(path, gz ? "no NIfTI header in the compressed data (file truncated or not gzip?)"
                                         : "too small for a NIfTI header");
-  const std::int32_t le = field<std::int32_t>(h, 0, false), be = field<std::int32_t>(h, 0, true);
+  const std::int32_t le = loadScalar<std::int32_t>(h, false), be = loadScalar<std::int32_t>(h, true);
   const bool v2 = le == 540 || be == 540;
-  const bool swap = v2 ? be == 540 : be == 348;
+  const bool bigEndian = v2 ? be == 540 : be == 348;
   const int headerBytes = v2 ? 540 : 348;
   if (!v2 && le != 348 && be != 348)
     throw InputError(path, "not a NIfTI file (sizeof_hdr is " + std::to_string(le) + ", expected 348 or 540)");
@@ -85,18 +76,18 @@ Header checkHeader(const std::string& path, bool gz, std::uint64_t size) {
     if (std::memcmp(h + 4, "n+2", 4) != 0) throw InputError(path, "not a NIfTI-2 file (bad magic)");
     if (std::memcmp(h + 8, "\r\n\032\n", 4) != 0)  // as VTK checks: catches a text-mode transfer
       throw InputError(path, "bytes 8-11 of the NIfTI-2 magic are not \\r\\n\\032\\n (file damaged by a text-mode transfer?)");
-    r.datatype = field<std::int16_t>(h, 12, swap);
-    r.bitpix = field<std::int16_t>(h, 14, swap);
-    for (int a = 0; a < 8; ++a) r.dim[a] = field<std::int64_t>(h, 16 + 8 * std::size_t(a), swap);
-    r.voxOffset = double(field<std::int64_t>(h, 168, swap));
+    r.datatype = loadScalar<std::int16_t>(h + 12, bigEndian);
+    r.bitpix = loadScalar<std::int16_t>(h + 14, bigEndian);
+    for (int a = 0; a < 8; ++a) r.dim[a] = loadScalar<std::int64_t>(h + 16 + 8 * std::size_t(a), bigEndian);
+    r.voxOffset = double(loadScalar<std::int64_t>(h + 168, bigEndian));
   } else {
     if (std::memcmp(h + 344, "ni1", 4) == 0)
       throw InputError(path, "a .hdr/.img pair header: only single-file NIfTI (.nii, .nii.gz) is supported");
     if (std::memcmp(h + 344, "n+1", 4) != 0) throw InputError(path, "not a NIfTI-1 file (bad magic at byte 344)");
-    for (int a = 0; a < 8; ++a) r.dim[a] = field<std::int16_t>(h, 40 + 2 * std::size_t(a), swap);
-    r.datatype = field<std::int16_t>(h, 70, swap);
-    r.bitpix = field<std::int16_t>(h, 72, swap);
-    r.voxOffset = field<float>(h, 108, swap);
+    for (int a = 0; a < 8; ++a) r.dim[a] = loadScalar<std::int16_t>(h + 40 + 2 * std::size_t(a), bigEndian);
+    r.datatype = loadScalar<std::int16_t>(h + 70, bigEndian);
+    r.bitpix = loadScalar<std::int16_t>(h + 72, bigEndian);
+    r.voxOffset = loadScalar<float>(h + 108, bigEndian);
   }
 
   const std::int64_t nd = r.dim[0];
