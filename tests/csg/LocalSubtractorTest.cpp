@@ -391,6 +391,20 @@ TEST(LocalSubtractor, RejectsAnOpenTool) {
   TriangleMesh tool = toolAt(flatSpec(20), Pose{{0, 0, -1}, kDown, 0});
   tool.triangles.pop_back();
   EXPECT_THROW(e.subtract(tool), CutError);
+  try {
+    e.subtract(tool);
+  } catch (const CutError& err) {
+    EXPECT_EQ(err.kind(), CutError::Kind::BadTool);
+    EXPECT_NE(std::string(err.what()).find("closed, outward-oriented"), std::string::npos) << err.what();
+  }
+  TriangleMesh doubled = toolAt(flatSpec(20), Pose{{0, 0, -1}, kDown, 0});
+  doubled.triangles.push_back(doubled.triangles.front());  // a directed edge of two faces
+  try {
+    e.subtract(doubled);
+    ADD_FAILURE() << "a tool with a doubled face was taken";
+  } catch (const CutError& err) {
+    EXPECT_NE(std::string(err.what()).find("oriented 2-manifold"), std::string::npos) << err.what();
+  }
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include "SplitOverTwoThreads.h"
 #include "TrianglePair.h"
 #include "ToolBound.h"
+#include "FacesAcross.h"
 #include "reamsim/csg/ToolFacetSag.h"
 #include "TriangleGrid.h"
 #include "reamsim/csg/LocalSubtractor.h"
@@ -217,20 +218,20 @@ struct ToolTopology {
   // same triangles may come with another shape (a reamer of another size at the same resolution, hulls
   // of different sweeps), so a rigid placement is checked, not assumed.
   double facetSagMm = -1;
-  std::vector<double> shapeEdges;  // squared length of each triangle's first edge
+  std::vector<double> shapeEdges, edgesNow;  // squared length of each triangle's first edge: kept, current
   double sagOf(const TriangleMesh& tool) {
-    bool same = facetSagMm >= 0 && shapeEdges.size() == tool.triangles.size();
-    for (std::size_t f = 0; same && f < tool.triangles.size(); ++f) {
-      const Vec3 e = tool.vertices[tool.triangles[f][1]] - tool.vertices[tool.triangles[f][0]];
-      same = std::abs(dot(e, e) - shapeEdges[f]) <= 1e-9 * (shapeEdges[f] + 1e-12);
+    edgesNow.clear();
+    for (const Triangle& t : tool.triangles) {
+      const Vec3 e = tool.vertices[t[1]] - tool.vertices[t[0]];
+      edgesNow.push_back(dot(e, e));
     }
-    if (same) return facetSagMm;
-    shapeEdges.resize(tool.triangles.size());
-    for (std::size_t f = 0; f < tool.triangles.size(); ++f) {
-      const Vec3 e = tool.vertices[tool.triangles[f][1]] - tool.vertices[tool.triangles[f][0]];
-      shapeEdges[f] = dot(e, e);
+    const bool same = facetSagMm >= 0 && std::equal(edgesNow.begin(), edgesNow.end(), shapeEdges.begin(), shapeEdges.end(),
+                                                    [](double now, double kept) { return std::abs(now - kept) <= 1e-9 * (kept + 1e-12); });
+    if (!same) {
+      shapeEdges.swap(edgesNow);
+      facetSagMm = csg::toolFacetSagMm(tool, across);  // the faces across are this tool's (checkTool)
     }
-    return facetSagMm = toolFacetSagMm(tool);
+    return facetSagMm;
   }
 };
 
@@ -240,31 +241,18 @@ const ToolTopology& checkTool(const TriangleMesh& tool, ToolTopology& cache) {
   if (cache.vertexCount == tool.vertices.size() && cache.triangles == tool.triangles) return cache;
   cache = {};
   const std::size_t n = tool.vertices.size();
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;  // directed edge → 3 × face + i
-  edges.reserve(3 * tool.triangles.size());
-  for (std::uint32_t f = 0; f < tool.triangles.size(); ++f) {
-    const Triangle& t = tool.triangles[f];
+  for (const Triangle& t : tool.triangles)
     if (t[0] >= n || t[1] >= n || t[2] >= n || t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
       throw CutError(CutError::Kind::BadTool, "tool has a triangle with a bad or repeated vertex index");
-    for (std::uint32_t i = 0; i < 3; ++i) edges.push_back({directedKey(t[i], t[(i + 1) % 3]), 3 * f + i});
-  }
-  std::sort(edges.begin(), edges.end());
-  if (edges.empty())
+  csg::FacesAcross adjacency = csg::facesAcross(tool);
+  if (tool.triangles.empty() || adjacency.repeatedDirectedEdge)
     throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
-  for (std::size_t k = 1; k < edges.size(); ++k)
-    if (edges[k].first == edges[k - 1].first)
-      throw CutError(CutError::Kind::BadTool, "tool is not an oriented 2-manifold triangle mesh");
-  std::vector<std::array<std::uint32_t, 3>> across(tool.triangles.size());
-  for (const auto& [key, fi] : edges) {
-    const std::uint64_t twin = directedKey(std::uint32_t(key & 0xffffffffu), std::uint32_t(key >> 32));
-    const auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(twin, std::uint32_t(0)));
-    if (it == edges.end() || it->first != twin)
-      throw CutError(CutError::Kind::BadTool, "tool is not a closed, outward-oriented triangle mesh");
-    across[fi / 3][fi % 3] = it->second / 3;
-  }
+  for (const auto& faces : adjacency.face)
+    for (std::uint32_t g : faces)
+      if (g == csg::kNoFaceAcross) throw CutError(CutError::Kind::BadTool, "tool is not a closed, outward-oriented triangle mesh");
   cache.vertexCount = n;
   cache.triangles = tool.triangles;
-  cache.across = std::move(across);
+  cache.across = std::move(adjacency.face);
   cache.boundFaces = csg::ToolBound::spreadFaces(tool, kToolBoundPlanes);
   return cache;
 }
