@@ -207,12 +207,10 @@ nlohmann::json cutFacesQuality(const TriangleMesh& start, const TriangleMesh& en
       made.triangles.push_back(t);
       angles.push_back(smallestAngleDeg(end, t));
     }
-  std::sort(angles.begin(), angles.end());
-  auto at = [&](double q) { return angles.empty() ? 0.0 : angles[std::size_t(q * double(angles.size() - 1))]; };
   return {{"faces", made.triangles.size()},
-          {"min_angle_deg", angles.empty() ? 0.0 : angles.front()},
-          {"p1_angle_deg", at(0.01)},
-          {"median_angle_deg", at(0.5)},
+          {"min_angle_deg", angles.empty() ? 0.0 : *std::min_element(angles.begin(), angles.end())},
+          {"p1_angle_deg", percentile(angles, 0.01)},
+          {"median_angle_deg", percentile(angles, 0.5)},
           {"faces_by_smallest_angle", facesBelowAngle(made)},
           {"start_mesh", {{"min_angle_deg", minAngleDeg(start)}, {"faces_by_smallest_angle", facesBelowAngle(start)}}}};
 }
