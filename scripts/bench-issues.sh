@@ -13,8 +13,11 @@ cli="${REAMSIM_CLI:-$root/build/app/cli/reamsim-cli}"
 [ -x "$cli" ] || { echo "bench-issues: $cli not found: build it (scripts/build.sh) or set REAMSIM_CLI" >&2; exit 1; }
 mkdir -p "$out/bones"
 [ -f "$out/bones/scapula_405k_sqrt3x3.ply" ] || python3 "$root/scripts/make_scapula_variants.py" "$out/bones" >&2
+# The "up to a million" case of issue 3 (959,872 faces: three 1:4 steps; not a target bone, the scaling's end).
+[ -f "$out/bones/scapula_960k_split4x3.ply" ] || python3 "$root/scripts/make_scapula_variants.py" "$out/bones" --sqrt3 --loop 3 >&2
 s45="$out/bones/scapula_45k_sqrt3x1.ply"
 s405="$out/bones/scapula_405k_sqrt3x3.ply"
+s960="$out/bones/scapula_960k_split4x3.ply"
 skull="$root/../shared/data/bone_cranium_ct_isosurface_400k.ply"
 peers="$root/bench/peers"
 peerArgs=()
@@ -70,6 +73,9 @@ if [ "$what" = cut ] || [ "$what" = all ]; then
   run cut_405k_glenoid_200 bench cut --bone "$s405" --cut-site glenoid --steps 200 --loop
   run cut_405k_top_200 bench cut --bone "$s405" --steps 200 --loop
   [ -f "$skull" ] && run cut_skull bench cut --bone "$skull" --units mm --steps 50 --avoid-defects "${peerArgs[@]}" --peers-budget-ms 60000
+  # The skull's top as `ream` sees it after merging its strip seams (its open border stops the deeper cuts).
+  [ -f "$skull" ] && run cut_skull_top_merged bench cut --bone "$skull" --units mm --steps 50 --merge-coincident --check-every 25
+  run cut_960k_glenoid bench cut --bone "$s960" --cut-site glenoid --steps 100 --check-every 100 "${peerArgs[@]}" --peers-budget-ms 120000
   run cut_bundled_1000 bench cut --steps 1000 --depth 0.1 --tilt 3 --check-every 250
   run cut_soak_10000_cuts bench cut --steps 40000 --path soak --check-every 100  # 10,539 of the 40,000 steps cut bone (session 27)
   # The reamed surface against the ideal sphere as the reamer's mesh is refined (docs/CSG.md).
@@ -81,5 +87,6 @@ if [ "$what" = collision ] || [ "$what" = all ]; then
   run collision_bundled bench collision --bone default
   run collision_45k bench collision --bone "$s45" --cut-site glenoid
   run collision_405k bench collision --bone "$s405" --cut-site glenoid
+  run collision_960k bench collision --bone "$s960" --cut-site glenoid
   [ -f "$skull" ] && run collision_skull bench collision --bone "$skull"
 fi

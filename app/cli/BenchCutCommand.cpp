@@ -23,8 +23,10 @@
 #include "reamsim/core/Document.h"
 #include "reamsim/csg/LocalSubtractor.h"
 #include "reamsim/csg/ReferenceSubtractor.h"
+#include "reamsim/csg/SweptVolume.h"
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/mesh/MeshIO.h"
+#include "reamsim/mesh/TriangleMesh.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/LocalCutBackend.h"
@@ -159,6 +161,28 @@ double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, std::size_t(q * (v.size() - 1) + 0.5))];
+}
+
+// What a sideways move costs before its cut: the swept hull (SweptVolume.h) of the reamer at the path's
+// first poses and the same poses moved 0.5 mm across their axis, as a key press moves it in the GUI.
+nlohmann::json sweptHulls(const TriangleMesh& tool, const std::vector<Pose>& poses) {
+  std::vector<double> ms, faces;
+  for (std::size_t i = 0; i < std::min<std::size_t>(poses.size(), 50); ++i) {
+    const RigidTransform from = toTransform(poses[i]);
+    Vec3 across = cross(poses[i].axis, Vec3{0, 0, 1});
+    if (norm(across) < 0.1) across = cross(poses[i].axis, Vec3{1, 0, 0});
+    RigidTransform to = from;
+    to.translation = from.translation + across * (0.5 / norm(across));
+    const auto t0 = std::chrono::steady_clock::now();
+    const TriangleMesh hull = sweptByTranslation(tool, from, to);
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    faces.push_back(double(hull.triangles.size()));
+  }
+  return {{"what", "convex hull of the reamer at a path pose and 0.5 mm across its axis (a sideways key move), per hull"},
+          {"hulls", ms.size()},
+          {"median_ms", percentile(ms, 0.5)},
+          {"p95_ms", percentile(ms, 0.95)},
+          {"median_faces", percentile(faces, 0.5)}};
 }
 
 double smallestAngleDeg(const TriangleMesh& m, const Triangle& t) {
@@ -352,7 +376,7 @@ int runBenchCut(const std::vector<std::string>& args) {
             {"bone", "units", "subdivide", "steps", "depth", "tilt", "reamer", "check-every", "export-sequence",
              "peers-dir", "peers-budget-ms", "path", "cut-site", "cleanup-deviation-mm", "cleanup-min-edge-mm", "cleanup-min-angle-deg",
              "segments", "rings"},
-            {"json", "peers", "table-5-1", "no-cleanup", "avoid-defects", "loop"});
+            {"json", "peers", "table-5-1", "no-cleanup", "avoid-defects", "loop", "merge-coincident"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string boneArg = a.value("bone", "default");
   const int steps = int(a.number("steps", 200));
@@ -369,6 +393,11 @@ int runBenchCut(const std::vector<std::string>& args) {
     options.units = parseUnits(a.value("units", "auto"));
     bone = readMesh(boneArg, options).mesh;  // as is: the local engine takes dirty bones
   }
+  // --merge-coincident: the first step of `ream`'s repair alone (vertices at one position, another index,
+  // made one), so a CT mesh written strip by strip is cut as the application sees it; the peers get the
+  // merged mesh too. Nothing else is repaired: borders and self-intersections stay.
+  std::size_t mergedVertices = 0;
+  if (a.has("merge-coincident")) bone = mergeCoincidentVertices(bone, &mergedVertices);
   for (int i = 0; i < subdivisions; ++i) bone = subdivide(bone);
   const std::string pathKind = a.value("path", "jitter");
   if (pathKind != "jitter" && pathKind != "soak") throw UsageError("--path jitter|soak");
@@ -481,6 +510,7 @@ int runBenchCut(const std::vector<std::string>& args) {
       {"bone", boneArg},
       {"allocator", allocatorName()},
       {"subdivisions", subdivisions},
+      {"merged_coincident_vertices", a.has("merge-coincident") ? nlohmann::json(mergedVertices) : nlohmann::json(nullptr)},
       {"reamer", spec.name},
       {"reamer_resolution", {{"segments", spec.segments}, {"rings", spec.rings}, {"faces", localTool.triangles.size()}}},
       {"faces_start", bone.triangles.size()},
@@ -584,6 +614,7 @@ int runBenchCut(const std::vector<std::string>& args) {
         std::abs(out["loop"]["volume_end_mm3"].get<double>() - engine.volumeMm3()) / engine.volumeMm3();
   }
   if (a.has("table-5-1")) out["table_5_1"] = table51(bone, localTool, spot);
+  out["swept_hull"] = sweptHulls(localTool, poses);
 
   std::cout << out.dump(a.has("json") ? -1 : 2) << "\n";
   return failures == 0 && notClosed == 0 && exactSI == 0 ? kOk : kFailed;

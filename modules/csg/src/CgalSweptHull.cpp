@@ -1,13 +1,19 @@
 // Convex hull of two placements of a convex cutting solid (SweptVolume.h). Only predicates are needed, so
 // the inexact-constructions kernel is exact here: the output points are input points.
 #include "ExactRationalFastPaths.h"  // before any CGAL kernel: see there
+#include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Projection_traits_3.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/convex_hull_3.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
-#include <unordered_map>
+#include <vector>
 
 #include "reamsim/csg/SweptVolume.h"
 
@@ -15,6 +21,123 @@ namespace reamsim {
 namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using SM = CGAL::Surface_mesh<K::Point_3>;
+// 2D Delaunay in a hull face's own plane: predicates on the 3D points projected along a fixed normal (exact
+// for that normal; any normal gives a valid triangulation of the face).
+using InPlane = CGAL::Projection_traits_3<K>;
+using Vb2 = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, InPlane>;
+using DT2 = CGAL::Delaunay_triangulation_2<InPlane, CGAL::Triangulation_data_structure_2<Vb2>>;
+
+constexpr std::uint32_t kNoIndex = ~std::uint32_t(0);
+
+std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// The hull of `points`, the same whatever convex_hull_3's split of its planar faces, as indices into
+// `points`. Its facets are unique where no four hull points are coplanar; a planar face of several facets
+// (the floor of a flat reamer's sweep, its discs, the parallelograms between the two rims) it splits in an
+// order that follows memory addresses (a std::map keyed by handles), which differ from run to run, and the
+// Boolean breaks ties by the tool's order (docs/CSG.md, "Reproducibility"). So each planar face is
+// triangulated again: its corners only (points inside it or on its edges dropped), by their Delaunay
+// triangulation in its plane (unique: ties of cocircular corners are broken by CGAL's symbolic
+// perturbation, whatever the order of insertion).
+std::vector<Triangle> canonicalHull(const std::vector<K::Point_3>& points) {
+  SM hull;
+  CGAL::convex_hull_3(points.begin(), points.end(), hull);
+  using F = SM::Face_index;
+  using H = SM::Halfedge_index;
+  // Coplanar neighbours joined into faces (exact orientation of the vertex across their edge).
+  std::vector<std::uint32_t> parent(hull.number_of_faces());
+  std::iota(parent.begin(), parent.end(), 0u);
+  for (F f : hull.faces())
+    for (H h : CGAL::halfedges_around_face(hull.halfedge(f), hull)) {
+      const H o = hull.opposite(h);
+      const F g = hull.face(o);
+      if (g < f) continue;  // each edge once
+      const H hf = hull.halfedge(f);
+      if (CGAL::orientation(hull.point(hull.source(hf)), hull.point(hull.target(hf)),
+                            hull.point(hull.target(hull.next(hf))), hull.point(hull.target(hull.next(o)))) == CGAL::COPLANAR)
+        parent[findRoot(parent, f.idx())] = findRoot(parent, g.idx());
+    }
+  // A corner has at least three faces around it (one inside a face, two on an edge between faces).
+  std::vector<char> corner(hull.number_of_vertices(), 0);
+  for (SM::Vertex_index v : hull.vertices()) {
+    std::uint32_t seen[3];
+    int n = 0;
+    for (F f : CGAL::faces_around_target(hull.halfedge(v), hull)) {
+      const std::uint32_t r = findRoot(parent, f.idx());
+      if (std::find(seen, seen + n, r) != seen + n) continue;
+      seen[n++] = r;
+      if (n == 3) break;
+    }
+    corner[v.idx()] = n == 3;
+  }
+  // The input index of each corner: the first input point at its position (input sorted by position).
+  std::vector<std::uint32_t> byPosition(points.size());
+  std::iota(byPosition.begin(), byPosition.end(), 0u);
+  std::stable_sort(byPosition.begin(), byPosition.end(), [&](std::uint32_t i, std::uint32_t j) { return points[i] < points[j]; });
+  std::vector<std::uint32_t> input(hull.number_of_vertices(), 0);
+  for (SM::Vertex_index v : hull.vertices())
+    if (corner[v.idx()])
+      input[v.idx()] = *std::lower_bound(byPosition.begin(), byPosition.end(), hull.point(v),
+                                         [&](std::uint32_t i, const K::Point_3& p) { return points[i] < p; });
+
+  // Facets grouped by face (sorted by root: a fixed order), without a container per face.
+  std::vector<std::pair<std::uint32_t, F>> byFace;
+  byFace.reserve(hull.number_of_faces());
+  for (F f : hull.faces()) byFace.emplace_back(findRoot(parent, f.idx()), f);
+  std::sort(byFace.begin(), byFace.end());
+  std::vector<Triangle> out;
+  out.reserve(hull.number_of_faces());
+  std::vector<F> fs;
+  std::vector<SM::Vertex_index> vs;
+  for (std::size_t i = 0; i < byFace.size();) {
+    fs.clear();
+    vs.clear();
+    for (const std::uint32_t root = byFace[i].first; i < byFace.size() && byFace[i].first == root; ++i)
+      fs.push_back(byFace[i].second);
+    for (F f : fs)
+      for (SM::Vertex_index v : CGAL::vertices_around_face(hull.halfedge(f), hull))
+        if (corner[v.idx()]) vs.push_back(v);
+    if (fs.size() == 1 && vs.size() == 3) {  // a facet of three corners: the hull's own
+      out.push_back({input[vs[0].idx()], input[vs[1].idx()], input[vs[2].idx()]});
+      continue;
+    }
+    std::sort(vs.begin(), vs.end(), [&](SM::Vertex_index a, SM::Vertex_index b) { return input[a.idx()] < input[b.idx()]; });
+    vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+    // The face's normal from one of its facets (outwards): triangles counter-clockwise about it face out.
+    const H h = hull.halfedge(fs[0]);
+    const InPlane plane(CGAL::cross_product(hull.point(hull.target(h)) - hull.point(hull.source(h)),
+                                            hull.point(hull.target(hull.next(h))) - hull.point(hull.source(h))));
+    if (fs.size() == 2 && vs.size() == 4) {  // a quad (the strips between the two rims): its Delaunay diagonal
+      // The quad (p, q, r, t) with the facets' shared edge r-p: facet (p, q, r) and the vertex t across.
+      H e = h;
+      while (hull.face(hull.opposite(e)) != fs[1]) e = hull.next(e);
+      const SM::Vertex_index p = hull.target(e), q = hull.target(hull.next(e)), r = hull.source(e),
+                             t = hull.target(hull.next(hull.opposite(e)));
+      const CGAL::Oriented_side side =
+          plane.side_of_oriented_circle_2_object()(hull.point(p), hull.point(q), hull.point(r), hull.point(t));
+      // Cocircular (a rectangle): the diagonal at the corner listed first in the input.
+      const std::uint32_t first = std::min({input[p.idx()], input[q.idx()], input[r.idx()], input[t.idx()]});
+      const bool flip = side == CGAL::ON_POSITIVE_SIDE ||
+                        (side == CGAL::ON_ORIENTED_BOUNDARY && first != input[p.idx()] && first != input[r.idx()]);
+      if (flip) {
+        out.push_back({input[q.idx()], input[r.idx()], input[t.idx()]});
+        out.push_back({input[t.idx()], input[p.idx()], input[q.idx()]});
+      } else {
+        out.push_back({input[p.idx()], input[q.idx()], input[r.idx()]});
+        out.push_back({input[r.idx()], input[t.idx()], input[p.idx()]});
+      }
+      continue;
+    }
+    DT2 dt{plane};
+    for (SM::Vertex_index v : vs) dt.insert(hull.point(v))->info() = input[v.idx()];
+    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+      out.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+  }
+  return out;
+}
 }  // namespace
 
 bool isConvexSolid(const TriangleMesh& m, double relativeTolerance) {
@@ -44,24 +167,23 @@ TriangleMesh sweptByTranslation(const TriangleMesh& solid, const RigidTransform&
       const Vec3 q = t->apply(p);
       points.emplace_back(q.x, q.y, q.z);
     }
-  SM hull;
-  CGAL::convex_hull_3(points.begin(), points.end(), hull);
+  std::vector<Triangle> facets = canonicalHull(points);
+  // Listed canonically: vertices in the input's order, each triangle from its smallest vertex, sorted.
+  std::vector<std::uint32_t> outIndex(points.size(), kNoIndex);
+  for (const Triangle& t : facets)
+    for (std::uint32_t v : t) outIndex[v] = 0;
   TriangleMesh out;
-  std::unordered_map<std::uint32_t, std::uint32_t> index;
-  for (SM::Vertex_index v : hull.vertices()) {
-    index[v.idx()] = static_cast<std::uint32_t>(out.vertices.size());
-    const K::Point_3& p = hull.point(v);
-    out.vertices.push_back({p.x(), p.y(), p.z()});
-  }
-  for (SM::Face_index f : hull.faces()) {
-    Triangle t{};
-    int k = 0;
-    for (SM::Vertex_index v : CGAL::vertices_around_face(hull.halfedge(f), hull)) {
-      if (k == 3) throw std::logic_error("sweptByTranslation: the hull has a non-triangular face");
-      t[k++] = index.at(v.idx());
+  for (std::uint32_t i = 0; i < points.size(); ++i)
+    if (outIndex[i] != kNoIndex) {
+      outIndex[i] = static_cast<std::uint32_t>(out.vertices.size());
+      out.vertices.push_back({points[i].x(), points[i].y(), points[i].z()});
     }
-    out.triangles.push_back(t);
+  for (Triangle& t : facets) {
+    for (auto& v : t) v = outIndex[v];
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
   }
+  std::sort(facets.begin(), facets.end());
+  out.triangles = std::move(facets);
   return out;
 }
 

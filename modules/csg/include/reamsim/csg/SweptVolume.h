@@ -18,7 +18,10 @@ namespace reamsim {
 bool isConvexSolid(const TriangleMesh& closedMesh, double relativeTolerance = 1e-9);
 
 // Convex hull of `convexSolidLocal` placed at `from` and at `to` (CGAL convex_hull_3, exact predicates),
-// triangulated and outward. Throws std::invalid_argument when the two rotations differ.
+// triangulated and outward, the same every time for the same input: its vertices are the hull's corners
+// (points inside a planar face or on an edge are left out), in the input's order; each planar face of
+// several triangles is split by its corners' Delaunay triangulation in its plane; triangles are sorted.
+// Throws std::invalid_argument when the two rotations differ.
 TriangleMesh sweptByTranslation(const TriangleMesh& convexSolidLocal, const RigidTransform& from,
                                 const RigidTransform& to);
 
