@@ -395,6 +395,48 @@ TEST(BadVolumes, DicomCorruptElementStructureIsNamedBeforeVtkDicomParsesIt) {
   expectInputError((d / "length").string(), "IM-0005.dcm", "element (7FE0,0010) claims 4294967280 bytes");
 }
 
+// A CD's DICOMDIR decides what is read: files it does not list are noted, a broken file anywhere below it
+// (the index may point at any) is named before vtk-dicom parses anything, and so is a broken DICOMDIR.
+TEST(BadVolumes, DicomDirListsWhatIsReadAndBrokenFilesBelowItAreNamed) {
+  const Small s;
+  const path d = cttest::scratch("bad_dicomdir");
+  auto cd = [&](const std::string& name, int listed) {
+    const path root = d / name;
+    phantom::writeDicomSeries((root / "DATA" / "S1").string(), s.grid, s.hu, "", "%s/IM%04d");
+    std::vector<std::string> files;
+    for (int k = 1; k <= listed; ++k) {
+      char f[32];
+      std::snprintf(f, sizeof f, "DATA/S1/IM%04d", k);
+      files.push_back(f);
+    }
+    phantom::writeDicomDir(root.string(), files);
+    return root;
+  };
+  const int n = s.grid.dims[2];
+  ASSERT_GE(n, 4);
+  const ct::CtVolume all = ct::readVolume(cd("all", n).string());
+  EXPECT_EQ(all.dims[2], n);
+  EXPECT_TRUE(std::none_of(all.notes.begin(), all.notes.end(), [](const std::string& m) { return m.find("DICOMDIR") != std::string::npos; }));
+
+  const ct::CtVolume half = ct::readVolume(cd("half", n / 2).string());
+  EXPECT_EQ(half.dims[2], n / 2);
+  const std::string unlisted = std::to_string(n - n / 2) + " DICOM file(s) below the folder are not among the images its DICOMDIR lists";
+  EXPECT_TRUE(std::any_of(half.notes.begin(), half.notes.end(), [&](const std::string& m) { return m.find(unlisted) != std::string::npos; }))
+      << ::testing::PrintToString(half.notes);
+
+  const path broken = cd("broken", n);
+  std::string bytes = phantom::readBytes((broken / "DATA" / "S1" / "IM0002").string());
+  bytes.replace(bytes.find(std::string("\x08\x00\x3e\x10", 4)), 4, std::string("\x00\x00\x80\x00", 4));
+  std::filesystem::create_directories(broken / "DATA" / "S2");
+  phantom::writeBytes((broken / "DATA" / "S2" / "IM0001").string(), bytes);
+  expectInputError(broken.string(), "S2/IM0001", "a file of the DICOMDIR's folder");
+
+  const path cutIndex = cd("cutindex", n);
+  const std::string index = phantom::readBytes((cutIndex / "DICOMDIR").string());
+  phantom::writeBytes((cutIndex / "DICOMDIR").string(), index.substr(0, index.size() - 60));
+  expectInputError(cutIndex.string(), "DICOMDIR", "(the folder's index; open the folder of the series' files instead)");
+}
+
 // Found by fuzzing and by editing every slice: sizes the headers declare are checked before vtk-dicom
 // sorts frames or allocates the volume (NumberOfFrames 99999999 kept vtkDICOMSliceSorter busy for minutes;
 // Rows × Columns of 65535 in every slice asked for 64 GB).

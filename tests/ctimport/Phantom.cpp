@@ -1,6 +1,9 @@
 #include "Phantom.h"
 
 #include <vtkDICOMCTGenerator.h>
+#include <vtkDICOMDictHash.h>
+#include <vtkDICOMMetaData.h>
+#include <vtkDICOMParser.h>
 #include <vtkDICOMSCGenerator.h>
 #include <vtkDICOMWriter.h>
 #include <vtkImageData.h>
@@ -254,7 +257,7 @@ void writeNifti(const std::string& path, const Grid& g, const std::vector<float>
 }
 
 void writeDicomSeries(const std::string& directory, const Grid& g, const std::vector<float>& hu,
-                      const std::string& transferSyntax) {
+                      const std::string& transferSyntax, const std::string& filePattern) {
   std::filesystem::create_directories(directory);
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(g.dims[0], g.dims[1], g.dims[2]);
@@ -276,7 +279,7 @@ void writeDicomSeries(const std::string& directory, const Grid& g, const std::ve
   writer->SetMemoryRowOrderToFileNative();
   writer->SetSeriesDescription("ReamSim phantom");
   writer->SetFilePrefix(directory.c_str());
-  writer->SetFilePattern("%s/IM-%04d.dcm");
+  writer->SetFilePattern(filePattern.c_str());
   if (!transferSyntax.empty()) writer->SetTransferSyntaxUID(transferSyntax.c_str());
   writer->Write();
   if (writer->GetErrorCode() != 0) throw std::runtime_error("vtkDICOMWriter failed in " + directory);
@@ -300,6 +303,159 @@ void writeDicomMultiFrame(const std::string& path, const Grid& g, const std::vec
   writer->SetFileName(path.c_str());
   writer->Write();
   if (writer->GetErrorCode() != 0 || !std::filesystem::exists(path)) throw std::runtime_error("vtkDICOMWriter failed on " + path);
+}
+
+namespace {
+// Explicit VR little endian elements for the DICOMDIR writer.
+void putU16(std::string& b, std::uint16_t v) { b.push_back(char(v & 0xff)), b.push_back(char(v >> 8)); }
+void putU32(std::string& b, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) b.push_back(char((v >> (8 * i)) & 0xff));
+}
+void putTag(std::string& b, std::uint16_t group, std::uint16_t element) { putU16(b, group), putU16(b, element); }
+// A short-VR element; the value padded to an even length (UI with a NUL, text with a space).
+void putText(std::string& b, std::uint16_t group, std::uint16_t element, const char* vr, std::string value) {
+  if (value.size() % 2) value.push_back(std::string(vr) == "UI" ? '\0' : ' ');
+  putTag(b, group, element);
+  b.append(vr, 2);
+  putU16(b, std::uint16_t(value.size()));
+  b += value;
+}
+void putUL(std::string& b, std::uint16_t group, std::uint16_t element, std::uint32_t v) {
+  putTag(b, group, element);
+  b += "UL";
+  putU16(b, 4);
+  putU32(b, v);
+}
+void putUS(std::string& b, std::uint16_t group, std::uint16_t element, std::uint16_t v) {
+  putTag(b, group, element);
+  b += "US";
+  putU16(b, 2);
+  putU16(b, v);
+}
+
+struct DirFile {
+  std::string id;  // components joined by '\\'
+  std::string sopClass, sopInstance, syntax, study, series, patientName, patientId, instance;
+};
+}  // namespace
+
+void writeDicomDir(const std::string& root, const std::vector<std::string>& files) {
+  std::vector<DirFile> entries;
+  for (const std::string& f : files) {
+    auto meta = vtkSmartPointer<vtkDICOMMetaData>::New();
+    auto parser = vtkSmartPointer<vtkDICOMParser>::New();
+    const std::string path = (std::filesystem::path(root) / f).string();
+    parser->SetFileName(path.c_str());
+    parser->SetMetaData(meta);
+    parser->Update();
+    if (parser->GetErrorCode() != 0) throw std::runtime_error("writeDicomDir: cannot parse " + path);
+    DirFile e;
+    e.id = f;
+    std::replace(e.id.begin(), e.id.end(), '/', '\\');
+    e.sopClass = meta->Get(DC::SOPClassUID).AsString();
+    e.sopInstance = meta->Get(DC::SOPInstanceUID).AsString();
+    e.syntax = meta->Get(DC::TransferSyntaxUID).AsString();
+    e.study = meta->Get(DC::StudyInstanceUID).AsString();
+    e.series = meta->Get(DC::SeriesInstanceUID).AsString();
+    e.patientName = meta->Get(DC::PatientName).AsString();
+    e.patientId = meta->Get(DC::PatientID).AsString();
+    e.instance = meta->Get(DC::InstanceNumber).AsString();
+    entries.push_back(e);
+  }
+  // Records in order: for each series, PATIENT (only before the first), STUDY and SERIES once, then its images.
+  // Offsets (of each record's item, from the start of the file) are fixed-size, so the layout is computed with
+  // zeros first and the records are written again with the right values.
+  struct Record {
+    std::string type;
+    std::size_t file = 0;      // entries[file] for the fields
+    std::size_t lower = 0;     // index of the first record one level down (0: none)
+    std::size_t next = 0;      // index of the next record on this level (0: none)
+  };
+  std::vector<Record> records{{"PATIENT", 0, 1, 0}};
+  std::size_t lastSeriesRecord = 0, lastStudyRecord = 0;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const bool newStudy = i == 0 || entries[i].study != entries[i - 1].study;
+    const bool newSeries = newStudy || entries[i].series != entries[i - 1].series;
+    if (newStudy) {
+      if (lastStudyRecord) records[lastStudyRecord].next = records.size();
+      lastStudyRecord = records.size();
+      records.push_back({"STUDY", i, records.size() + 1, 0});
+    }
+    if (newSeries) {
+      if (lastSeriesRecord && !newStudy) records[lastSeriesRecord].next = records.size();
+      lastSeriesRecord = records.size();
+      records.push_back({"SERIES", i, records.size() + 1, 0});
+    } else {
+      records.back().next = records.size();
+    }
+    records.push_back({"IMAGE", i, 0, 0});
+  }
+  auto recordBytes = [&](const Record& r, const std::vector<std::uint32_t>& offset) {
+    const DirFile& e = entries[r.file];
+    std::string b;
+    putUL(b, 0x0004, 0x1400, r.next ? offset[r.next] : 0);
+    putUS(b, 0x0004, 0x1410, 0xFFFF);
+    putUL(b, 0x0004, 0x1420, r.lower ? offset[r.lower] : 0);
+    putText(b, 0x0004, 0x1430, "CS", r.type);
+    if (r.type == "IMAGE") {
+      putText(b, 0x0004, 0x1500, "CS", e.id);
+      putText(b, 0x0004, 0x1510, "UI", e.sopClass);
+      putText(b, 0x0004, 0x1511, "UI", e.sopInstance);
+      putText(b, 0x0004, 0x1512, "UI", e.syntax);
+      putText(b, 0x0020, 0x0013, "IS", e.instance);
+    } else if (r.type == "SERIES") {
+      putText(b, 0x0008, 0x0060, "CS", "CT");
+      putText(b, 0x0020, 0x000E, "UI", e.series);
+      putText(b, 0x0020, 0x0011, "IS", "1");
+    } else if (r.type == "STUDY") {
+      putText(b, 0x0008, 0x0020, "DA", "20260101");
+      putText(b, 0x0008, 0x0030, "TM", "120000");
+      putText(b, 0x0020, 0x000D, "UI", e.study);
+      putText(b, 0x0020, 0x0010, "SH", "1");
+    } else {
+      putText(b, 0x0010, 0x0010, "PN", e.patientName);
+      putText(b, 0x0010, 0x0020, "LO", e.patientId.empty() ? "PHANTOM" : e.patientId);
+    }
+    return b;
+  };
+  std::string meta;  // group 2 after its group length
+  putTag(meta, 0x0002, 0x0001);
+  meta += "OB";
+  putU16(meta, 0);
+  putU32(meta, 2);
+  meta += std::string("\0\1", 2);
+  putText(meta, 0x0002, 0x0002, "UI", "1.2.840.10008.1.3.10");  // Media Storage Directory Storage
+  putText(meta, 0x0002, 0x0003, "UI", "1.2.826.0.1.3680043.2.1125.1.1");
+  putText(meta, 0x0002, 0x0010, "UI", "1.2.840.10008.1.2.1");
+  putText(meta, 0x0002, 0x0012, "UI", "1.2.826.0.1.3680043.2.1125.1");
+  std::string head(128, '\0');
+  head += "DICM";
+  putUL(head, 0x0002, 0x0000, std::uint32_t(meta.size()));
+  head += meta;
+  auto layout = [&](const std::vector<std::uint32_t>& offset) {
+    std::string b = head;
+    putText(b, 0x0004, 0x1130, "CS", "REAMSIM");
+    putUL(b, 0x0004, 0x1200, offset[0]);
+    putUL(b, 0x0004, 0x1202, offset[0]);
+    putUS(b, 0x0004, 0x1212, 0);
+    putTag(b, 0x0004, 0x1220);
+    b += "SQ";
+    putU16(b, 0);
+    putU32(b, 0xFFFFFFFF);
+    std::vector<std::uint32_t> at;
+    for (const Record& r : records) {
+      at.push_back(std::uint32_t(b.size()));
+      const std::string body = recordBytes(r, offset);
+      putTag(b, 0xFFFE, 0xE000);
+      putU32(b, std::uint32_t(body.size()));
+      b += body;
+    }
+    putTag(b, 0xFFFE, 0xE0DD);
+    putU32(b, 0);
+    return std::make_pair(b, at);
+  };
+  const auto first = layout(std::vector<std::uint32_t>(records.size(), 0));
+  writeBytes((std::filesystem::path(root) / "DICOMDIR").string(), layout(first.second).first);
 }
 
 }  // namespace phantom

@@ -67,8 +67,14 @@ void writeMhdRaw(const std::string& mhd, const Grid& g, const std::vector<float>
 void writeNifti(const std::string& path, const Grid& g, const std::vector<float>& hu);
 // DICOM CT series (one file per slice) through vtk-dicom's writer and CT generator; `transferSyntax`
 // empty = explicit VR little endian (uncompressed), e.g. "1.2.840.10008.1.2.5" for RLE lossless.
+// `filePattern` (printf, with the directory and the slice number) names the files.
 void writeDicomSeries(const std::string& directory, const Grid& g, const std::vector<float>& hu,
-                      const std::string& transferSyntax = "");
+                      const std::string& transferSyntax = "", const std::string& filePattern = "%s/IM-%04d.dcm");
+
+// A DICOMDIR (the index of a DICOM CD, PS3.10 / PS3.3 F) in `root` for `files` (paths relative to `root`,
+// components of up to 8 characters A-Z 0-9 _), by hand in explicit VR little endian: one PATIENT, STUDY and
+// SERIES record per series found in the files (their UIDs read back from them) and one IMAGE record per file.
+void writeDicomDir(const std::string& root, const std::vector<std::string>& files);
 
 // One multi-frame DICOM file (vtk-dicom's secondary capture: it has no enhanced CT writer), uint16 = HU + 1024.
 void writeDicomMultiFrame(const std::string& path, const Grid& g, const std::vector<float>& hu);

@@ -3,6 +3,8 @@
 // back as one closed, clean mesh in the right place with the volume within 1 % of the analytic value.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -37,6 +39,19 @@ std::vector<Format> formats() {
       {"dicom_series", [](auto d, auto& g, auto& v) { auto p = (d / "series").string(); phantom::writeDicomSeries(p, g, v); return p; }, P::LPS},
       // RLE lossless, opened through one file of the series. (vtk-dicom cannot write the JPEG family,
       // which it reads through GDCM; no JPEG encoder is available to the tests.)
+      // A CD's layout: the files two folders down under names of up to 8 characters (deeper than a scan of
+      // the folder reaches), the folder above read through its DICOMDIR.
+      {"dicom_dicomdir", [](auto d, auto& g, auto& v) {
+         const auto root = d / "cd";
+         phantom::writeDicomSeries((root / "DATA" / "S1").string(), g, v, "", "%s/IM%04d");
+         std::vector<std::string> files;
+         for (int k = 1; k <= g.dims[2]; ++k) {
+           char name[32];
+           std::snprintf(name, sizeof name, "DATA/S1/IM%04d", k);
+           files.push_back(name);
+         }
+         phantom::writeDicomDir(root.string(), files);
+         return root.string(); }, P::LPS},
       {"dicom_rle", [](auto d, auto& g, auto& v) { auto p = (d / "series").string(); phantom::writeDicomSeries(p, g, v, "1.2.840.10008.1.2.5"); return p + "/IM-0001.dcm"; }, P::LPS},
   };
 }

@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <new>
+#include <set>
 
 #include "Bytes.h"
 #include "DicomCheck.h"
@@ -105,9 +106,13 @@ std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::s
   folder = checkFolder(dir.empty() ? "." : dir, false);
   if (folder.dicomdir) {
     folder = checkFolder(dir.empty() ? "." : dir, true);
-    if (!folder.broken.empty())
-      throw InputError(folder.broken[0].first, folder.broken[0].second + " (a file of the DICOMDIR's folder; move it out, "
-                                                                         "or open the folder of the series' files)");
+    if (!folder.broken.empty()) {
+      const bool index = fs::path(folder.broken[0].first).filename() == "DICOMDIR";
+      throw InputError(folder.broken[0].first,
+                       folder.broken[0].second + (index ? " (the folder's index; open the folder of the series' files instead)"
+                                                        : " (a file of the DICOMDIR's folder; move it out, or open the folder "
+                                                          "of the series' files)"));
+    }
   }
   if (!isDir) {
     const std::string wanted = fs::weakly_canonical(path, ec).string();
@@ -134,6 +139,23 @@ std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::s
     throw InputError(path, (isDir ? "no DICOM image series found in the directory"
                                   : "not a readable DICOM image file (or no image series beside it)") +
                                leftOut(folder.broken));
+  if (folder.dicomdir) {
+    // The index decides what is read; DICOM files below the folder that it does not list are not, so say so.
+    std::set<std::string> listed;
+    for (int s = 0; s < n; ++s) {
+      vtkStringArray* files = finder->GetFileNamesForSeries(s);
+      for (vtkIdType i = 0; i < files->GetNumberOfValues(); ++i)
+        listed.insert(fs::weakly_canonical(fs::path(std::string(files->GetValue(i))), ec).string());
+    }
+    std::size_t unlisted = 0;
+    std::string firstUnlisted;
+    for (const std::string& f : folder.sound)
+      if (fs::path(f).filename() != "DICOMDIR" && !listed.count(fs::weakly_canonical(f, ec).string()) && unlisted++ == 0)
+        firstUnlisted = fs::relative(f, dir.empty() ? "." : dir, ec).string();
+    if (unlisted > 0)
+      notes.push_back(std::to_string(unlisted) + " DICOM file(s) below the folder are not among the images its DICOMDIR lists (" +
+                      firstUnlisted + (unlisted > 1 ? ", …" : "") + ") and were not read");
+  }
   int chosen = -1;
   if (!isDir) {
     const std::string wanted = fs::weakly_canonical(path, ec).string();
