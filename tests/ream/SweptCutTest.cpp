@@ -338,5 +338,69 @@ TEST(SweptCut, HullIsTheSameEveryTimeWithCornersOnlyAndDelaunayFaces) {
   EXPECT_GT(discPairs, 50);  // the stadium-shaped floor and back
 }
 
+// A solid with integer corners moved by an integer vector with a part along its axis: every coordinate is
+// exact, so coplanarity is decided exactly here too. The hull's planar faces (the floor, the top and the
+// slanted parallelograms between the two placements' edges) are split with the Delaunay condition (the two
+// angles facing a shared edge sum to at most 180 degrees), and every vertex is a corner (three or more
+// planes around it: the midpoints on the prism's edges are left out).
+TEST(SweptCut, HullOfAnExactPrismSplitsItsPlanarFacesByDelaunay) {
+  // A prism over the triangle (0,0) (8,0) (0,6), 10 high, with the midpoints of its vertical edges and of its
+  // bottom edges as extra vertices (on edges of the solid, so never corners of the hull).
+  TriangleMesh prism;
+  prism.vertices = {{0, 0, 0}, {8, 0, 0}, {0, 6, 0}, {0, 0, 10}, {8, 0, 10}, {0, 6, 10},
+                    {0, 0, 5}, {8, 0, 5}, {0, 6, 5}, {4, 0, 0}, {4, 3, 0}, {0, 3, 0}};
+  prism.triangles = {{0, 11, 9}, {9, 10, 1}, {11, 2, 10}, {9, 11, 10},           // bottom (-z)
+                     {3, 4, 5},                                                  // top (+z)
+                     {0, 9, 6}, {9, 1, 7}, {9, 7, 6}, {6, 7, 4}, {6, 4, 3},      // y = 0
+                     {0, 6, 11}, {11, 8, 2}, {11, 6, 8}, {6, 5, 8}, {6, 3, 5},   // x = 0
+                     {1, 10, 7}, {10, 2, 8}, {10, 8, 7}, {7, 8, 5}, {7, 5, 4}};  // the slanted side
+  ASSERT_NEAR(signedVolume(prism), 240.0, 1e-9);
+  RigidTransform from, to;
+  to.translation = Vec3{5, 3, 4};
+  const TriangleMesh hull = sweptByTranslation(prism, from, to);
+  EXPECT_TRUE(isConvexSolid(hull));
+  // The hull of two placements of a convex solid is its Minkowski sum with the move: its volume plus the
+  // area of its shadow across the move times the move's length, i.e. half the sum of |area vector . move|.
+  double shadow = 0;
+  for (const Triangle& t : prism.triangles)
+    shadow += 0.5 * std::abs(dot(cross(prism.vertices[t[1]] - prism.vertices[t[0]], prism.vertices[t[2]] - prism.vertices[t[0]]) * 0.5,
+                                 to.translation));
+  EXPECT_NEAR(signedVolume(hull), 240.0 + shadow, 1e-9);
+  auto normal = [&](const Triangle& t) {
+    return cross(hull.vertices[t[1]] - hull.vertices[t[0]], hull.vertices[t[2]] - hull.vertices[t[0]]);
+  };
+  auto sameDirection = [](const Vec3& a, const Vec3& b) { return norm(cross(a, b)) == 0 && dot(a, b) > 0; };  // exact: integers
+  std::vector<std::vector<Vec3>> planes(hull.vertices.size());
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> faceOfEdge;
+  for (std::size_t f = 0; f < hull.triangles.size(); ++f) {
+    const Triangle& t = hull.triangles[f];
+    for (int k = 0; k < 3; ++k) {
+      auto& ps = planes[t[k]];
+      if (std::none_of(ps.begin(), ps.end(), [&](const Vec3& m) { return sameDirection(m, normal(t)); })) ps.push_back(normal(t));
+      faceOfEdge[{t[k], t[(k + 1) % 3]}] = f;
+    }
+  }
+  for (std::size_t v = 0; v < planes.size(); ++v) EXPECT_GE(planes[v].size(), 3u) << "vertex " << v;
+  auto angleAt = [&](std::uint32_t apex, std::uint32_t a, std::uint32_t b) {
+    const Vec3 u = hull.vertices[a] - hull.vertices[apex], w = hull.vertices[b] - hull.vertices[apex];
+    return std::atan2(norm(cross(u, w)), dot(u, w));
+  };
+  int split = 0;
+  for (const auto& [edge, f] : faceOfEdge) {
+    if (edge.first > edge.second) continue;
+    const Triangle &t = hull.triangles[f], &u = hull.triangles[faceOfEdge.at({edge.second, edge.first})];
+    if (!sameDirection(normal(t), normal(u))) continue;
+    ++split;
+    auto opposite = [&](const Triangle& x) {
+      for (std::uint32_t w : x)
+        if (w != edge.first && w != edge.second) return w;
+      return x[0];
+    };
+    const double facing = angleAt(opposite(t), edge.first, edge.second) + angleAt(opposite(u), edge.first, edge.second);
+    EXPECT_LE(facing, M_PI + 1e-12) << "edge " << edge.first << "-" << edge.second;
+  }
+  EXPECT_GE(split, 4);  // at least the floor, the top and two parallelograms are split faces
+}
+
 }  // namespace
 }  // namespace reamsim
