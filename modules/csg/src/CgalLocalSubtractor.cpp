@@ -660,10 +660,9 @@ LocalCut LocalSubtractor::Impl::subtractOnce(const TriangleMesh& toolMesh, bool 
         closeBone[i] = !nearBone[i];
       }
     };
-    std::vector<char> secondNearTool;
+    std::vector<char> secondNearTool(nearTool.size(), 0);  // the second part's tool flags
     char onTool[2] = {0, 0};
     csg::splitOverTwoThreads(patchSlots.size(), kParallelNearTestFaces, [&](std::size_t b, std::size_t e, int part) {
-      if (part == 1) secondNearTool.assign(nearTool.size(), 0);
       testRange(b, e, part == 0 ? nearTool : secondNearTool, onTool[part]);
     });
     toolOnBone = onTool[0] || onTool[1];
