@@ -115,7 +115,8 @@ TEST(BackgroundTask, ATaskNotYetStartedIsRunByTheCallerOnceAndOnlyOnce) {
   for (auto& b : blockers) b.get();
   std::this_thread::sleep_for(std::chrono::milliseconds(50));  // the threads reach the jobs the caller ran
   EXPECT_EQ(runs.load(), kTasks);
-  EXPECT_GT(onThisThread, kTasks / 2);
+  // Which thread wins is timing: the caller ran 21 of 60 under ThreadSanitizer, nearly all in a normal build.
+  EXPECT_GT(onThisThread, 0);
 }
 
 }  // namespace
