@@ -1398,11 +1398,32 @@ BoneInvariants LocalSubtractor::checkInvariants() const {
     roundedMesh.add_face(vr[0], vr[1], vr[2]);
   });
   BoneInvariants inv;
-  inv.closed = manifold && CGAL::is_closed(exactMesh);
-  inv.outwardOriented = inv.closed && PMP::is_outward_oriented(exactMesh);
-  inv.selfIntersectsExact = !manifold || PMP::does_self_intersect(exactMesh);
-  inv.selfIntersectsRounded = !manifold || PMP::does_self_intersect(roundedMesh);
   inv.inputSelfIntersectingPairs = m.defects.selfIntersectingPairs;
+  if (!manifold) {
+    // A non-manifold bone (a dirty input's own edges: a Surface_mesh cannot hold it) is scanned as a soup,
+    // as on loading: a self-intersecting face that was not a self-intersecting defect then is new. Only the
+    // rounded coordinates can be scanned; the exact ones are the same unless a vertex is kept exact.
+    TriangleMesh soup;
+    soup.vertices.resize(m.state.vertexSlotCount());
+    for (std::uint32_t v = 0; v < soup.vertices.size(); ++v) soup.vertices[v] = m.state.vertex(v);
+    soup.triangles.resize(m.state.triangleSlotCount(), Triangle{0, 0, 0});  // free slots: no area
+    m.state.forEachLiveTriangle([&](std::uint32_t slot, const Triangle& t) { soup.triangles[slot] = t; });
+    const csg::DefectScan scan = csg::scanDefects(soup);
+    bool anyNew = false;
+    m.state.forEachLiveTriangle([&](std::uint32_t slot, const Triangle&) {
+      const bool wasDefect = slot < m.defect.size() && (m.defect[slot] & csg::kSelfIntersecting) != 0;
+      anyNew |= (scan.flags[slot] & csg::kSelfIntersecting) != 0 && !wasDefect;
+    });
+    inv.selfIntersectsRounded = scan.selfIntersectingPairs > 0;
+    inv.newSelfIntersectionsRounded = anyNew;
+    inv.selfIntersectsExact = m.exact.empty() ? inv.selfIntersectsRounded : true;
+    inv.newSelfIntersectionsExact = m.exact.empty() ? anyNew : true;
+    return inv;
+  }
+  inv.closed = CGAL::is_closed(exactMesh);
+  inv.outwardOriented = inv.closed && PMP::is_outward_oriented(exactMesh);
+  inv.selfIntersectsExact = PMP::does_self_intersect(exactMesh);
+  inv.selfIntersectsRounded = PMP::does_self_intersect(roundedMesh);
   // Pairs the bone came with are pairs of two defect faces; any other pair is new (a cut made it).
   auto anyNewPair = [&](const auto& mesh) {
     using Face = typename std::decay_t<decltype(mesh)>::Face_index;
@@ -1412,9 +1433,8 @@ BoneInvariants LocalSubtractor::checkInvariants() const {
     return std::any_of(pairs.begin(), pairs.end(), [&](const auto& p) { return !(inputDefect(p.first) && inputDefect(p.second)); });
   };
   const bool inputHadPairs = m.defects.selfIntersectingPairs > 0;
-  inv.newSelfIntersectionsExact = !manifold || (inv.selfIntersectsExact && (!inputHadPairs || anyNewPair(exactMesh)));
-  inv.newSelfIntersectionsRounded =
-      !manifold || (inv.selfIntersectsRounded && (!inputHadPairs || anyNewPair(roundedMesh)));
+  inv.newSelfIntersectionsExact = inv.selfIntersectsExact && (!inputHadPairs || anyNewPair(exactMesh));
+  inv.newSelfIntersectionsRounded = inv.selfIntersectsRounded && (!inputHadPairs || anyNewPair(roundedMesh));
   return inv;
 }
 
