@@ -25,6 +25,15 @@ using test::toolAt;
 
 // Top face at z = 0, feeds along -Z.
 TriangleMesh block() { return buildBox(Bounds{{-30, -30, -20}, {30, 30, 0}}, 4); }
+// The block and a second box in one mesh (its own vertices: nothing shared until merged).
+TriangleMesh blockAndBox(const Bounds& box, int divisions) {
+  TriangleMesh m = block();
+  const TriangleMesh extra = buildBox(box, divisions);
+  const std::uint32_t base = std::uint32_t(m.vertices.size());
+  m.vertices.insert(m.vertices.end(), extra.vertices.begin(), extra.vertices.end());
+  for (const Triangle& t : extra.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  return m;
+}
 const Vec3 kDown{0, 0, -1};
 
 double polygonArea(double radius, int segments) { return 0.5 * segments * radius * radius * std::sin(2 * M_PI / segments); }
@@ -371,12 +380,7 @@ TEST(LocalSubtractor, OpenBorderAwayFromTheCutDoesNotStopIt) {
 
 // A second, self-intersecting solid overlapping the block at one corner.
 TEST(LocalSubtractor, SelfIntersectionAwayFromTheCutDoesNotStopIt) {
-  TriangleMesh dirty = block();
-  const TriangleMesh extra = buildBox(Bounds{{25, 25, -2}, {35, 35, 2}}, 1);
-  const std::uint32_t base = std::uint32_t(dirty.vertices.size());
-  dirty.vertices.insert(dirty.vertices.end(), extra.vertices.begin(), extra.vertices.end());
-  for (const Triangle& t : extra.triangles) dirty.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-  LocalSubtractor e(dirty);
+  LocalSubtractor e(blockAndBox(Bounds{{25, 25, -2}, {35, 35, 2}}, 1));
   EXPECT_GT(e.defects().selfIntersectingFaces, 0u);
   const LocalCut c = e.subtract(toolAt(flatSpec(20), Pose{{-10, -10, -1}, kDown, 0}));
   ASSERT_TRUE(c.changed);
@@ -403,13 +407,8 @@ TEST(LocalSubtractor, SelfIntersectionAwayFromTheCutDoesNotStopIt) {
 // bone's own defects from new ones; it used to call every non-manifold bone self-intersecting (the merged
 // CT skull's 155 non-manifold faces failed every check of `bench cut --merge-coincident`).
 TEST(LocalSubtractor, ANonManifoldBoneIsCheckedAsASoup) {
-  TriangleMesh twoBoxes = block();
-  const TriangleMesh extra = buildBox(Bounds{{30, 30, -20}, {40, 40, 0}}, 4);
-  const std::uint32_t base = std::uint32_t(twoBoxes.vertices.size());
-  twoBoxes.vertices.insert(twoBoxes.vertices.end(), extra.vertices.begin(), extra.vertices.end());
-  for (const Triangle& t : extra.triangles) twoBoxes.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   std::size_t merged = 0;
-  twoBoxes = mergeCoincidentVertices(twoBoxes, &merged);
+  const TriangleMesh twoBoxes = mergeCoincidentVertices(blockAndBox(Bounds{{30, 30, -20}, {40, 40, 0}}, 4), &merged);
   ASSERT_EQ(merged, 5u);  // the shared edge's vertices at z = -20, -15, ..., 0
   LocalSubtractor e(twoBoxes);
   EXPECT_GT(e.defects().nonManifoldFaces, 0u);
