@@ -396,7 +396,8 @@ TEST(BadVolumes, DicomCorruptElementStructureIsNamedBeforeVtkDicomParsesIt) {
 }
 
 // A CD's DICOMDIR decides what is read: files it does not list are noted, a broken file anywhere below it
-// (the index may point at any) is named before vtk-dicom parses anything, and so is a broken DICOMDIR.
+// (the index may point at any) is named before vtk-dicom parses anything, and so are a file it lists that
+// is not there and a broken DICOMDIR.
 TEST(BadVolumes, DicomDirListsWhatIsReadAndBrokenFilesBelowItAreNamed) {
   const Small s;
   const path d = cttest::scratch("bad_dicomdir");
@@ -430,6 +431,10 @@ TEST(BadVolumes, DicomDirListsWhatIsReadAndBrokenFilesBelowItAreNamed) {
   std::filesystem::create_directories(broken / "DATA" / "S2");
   phantom::writeBytes((broken / "DATA" / "S2" / "IM0001").string(), bytes);
   expectInputError(broken.string(), "S2/IM0001", "a file of the DICOMDIR's folder");
+
+  const path missing = cd("missing", n);
+  std::filesystem::remove(missing / "DATA" / "S1" / "IM0002");
+  expectInputError(missing.string(), "S1/IM0002", "listed in the folder's DICOMDIR but not there");
 
   const path cutIndex = cd("cutindex", n);
   const std::string index = phantom::readBytes((cutIndex / "DICOMDIR").string());

@@ -178,7 +178,12 @@ std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::s
   }
   vtkStringArray* files = finder->GetFileNamesForSeries(chosen);
   std::vector<std::string> out;
-  for (vtkIdType i = 0; i < files->GetNumberOfValues(); ++i) out.push_back(files->GetValue(i));
+  for (vtkIdType i = 0; i < files->GetNumberOfValues(); ++i) {
+    out.push_back(files->GetValue(i));
+    // An index may list files that are not there (a CD copied in part): named here, not by vtk-dicom's parser.
+    if (folder.dicomdir && !fs::is_regular_file(out.back(), ec))
+      throw InputError(out.back(), "listed in the folder's DICOMDIR but not there (a partly copied CD?)");
+  }
   return out;
 }
 
