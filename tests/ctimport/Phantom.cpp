@@ -307,10 +307,8 @@ void writeDicomMultiFrame(const std::string& path, const Grid& g, const std::vec
 
 namespace {
 // Explicit VR little endian elements for the DICOMDIR writer.
-void putU16(std::string& b, std::uint16_t v) { b.push_back(char(v & 0xff)), b.push_back(char(v >> 8)); }
-void putU32(std::string& b, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) b.push_back(char((v >> (8 * i)) & 0xff));
-}
+void putU16(std::string& b, std::uint16_t v) { put(b, v); }
+void putU32(std::string& b, std::uint32_t v) { put(b, v); }
 void putTag(std::string& b, std::uint16_t group, std::uint16_t element) { putU16(b, group), putU16(b, element); }
 // A short-VR element; the value padded to an even length (UI with a NUL, text with a space).
 void putText(std::string& b, std::uint16_t group, std::uint16_t element, const char* vr, std::string value) {

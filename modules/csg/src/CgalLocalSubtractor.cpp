@@ -154,6 +154,17 @@ std::array<VI, 3> faceVertices(const SM& m, FI f) {
   return {m.source(h), m.target(h), m.target(m.next(h))};
 }
 
+// The bone as a triangle soup in slot order (vertex i = vertex slot i, triangle i = triangle slot i; free
+// triangle slots are (0, 0, 0), without area), so that a whole-bone scan's per-face flags index slots.
+TriangleMesh slotSoup(const BoneState& state) {
+  TriangleMesh soup;
+  soup.vertices.resize(state.vertexSlotCount());
+  for (std::uint32_t v = 0; v < soup.vertices.size(); ++v) soup.vertices[v] = state.vertex(v);
+  soup.triangles.resize(state.triangleSlotCount(), Triangle{0, 0, 0});
+  state.forEachLiveTriangle([&](std::uint32_t slot, const Triangle& t) { soup.triangles[slot] = t; });
+  return soup;
+}
+
 // True when the faces `added` (a subset of the surface `kept`), with coordinates from `at`, are not
 // degenerate and the faces `moved` (indices into `kept` of those of `added` with a vertex that rounding
 // moves) do not intersect any face of `kept` other than along shared edges and vertices: a pair in which
@@ -1326,16 +1337,7 @@ LocalSubtractor::LocalSubtractor(const BoneState& bone) : impl_(std::make_unique
   const auto start = std::chrono::steady_clock::now();
   Impl& m = *impl_;
   m.state = bone;
-  // Scan in slot order so that flags index slots directly.
-  TriangleMesh slots;
-  slots.vertices.resize(m.state.vertexSlotCount());
-  for (std::uint32_t v = 0; v < slots.vertices.size(); ++v) slots.vertices[v] = m.state.vertex(v);
-  slots.triangles.resize(m.state.triangleSlotCount(), Triangle{0, 0, 0});
-  std::vector<char> live(slots.triangles.size(), 0);
-  m.state.forEachLiveTriangle([&](std::uint32_t s, const Triangle& t) {
-    slots.triangles[s] = t;
-    live[s] = 1;
-  });
+  const TriangleMesh slots = slotSoup(m.state);
   const csg::DefectScan scan = csg::scanDefects(slots);
   m.defect = scan.flags;
   m.defects.borderEdges = scan.borderEdges;
@@ -1343,7 +1345,7 @@ LocalSubtractor::LocalSubtractor(const BoneState& bone) : impl_(std::make_unique
   // Free slots hold (0, 0, 0): no area.
   m.grid.init(m.state.bounds(), m.state.liveTriangleCount(), 8.0, surfaceArea(slots));
   for (std::uint32_t s = 0; s < slots.triangles.size(); ++s) {
-    if (!live[s]) {
+    if (!m.state.isTriangleLive(s)) {
       m.defect[s] = 0;
       continue;
     }
@@ -1403,12 +1405,7 @@ BoneInvariants LocalSubtractor::checkInvariants() const {
     // A non-manifold bone (a dirty input's own edges: a Surface_mesh cannot hold it) is scanned as a soup,
     // as on loading: a self-intersecting face that was not a self-intersecting defect then is new. Only the
     // rounded coordinates can be scanned; the exact ones are the same unless a vertex is kept exact.
-    TriangleMesh soup;
-    soup.vertices.resize(m.state.vertexSlotCount());
-    for (std::uint32_t v = 0; v < soup.vertices.size(); ++v) soup.vertices[v] = m.state.vertex(v);
-    soup.triangles.resize(m.state.triangleSlotCount(), Triangle{0, 0, 0});  // free slots: no area
-    m.state.forEachLiveTriangle([&](std::uint32_t slot, const Triangle& t) { soup.triangles[slot] = t; });
-    const csg::DefectScan scan = csg::scanDefects(soup);
+    const csg::DefectScan scan = csg::scanDefects(slotSoup(m.state));
     bool anyNew = false;
     m.state.forEachLiveTriangle([&](std::uint32_t slot, const Triangle&) {
       const bool wasDefect = slot < m.defect.size() && (m.defect[slot] & csg::kSelfIntersecting) != 0;
