@@ -31,6 +31,7 @@
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/LocalCutBackend.h"
 #include "reamsim/ream/ReamController.h"
+#include "reamsim/ream/ReamEngine.h"
 #include "reamsim/tools/ReamerGeometry.h"
 #include "reamsim/tools/ReamerPresets.h"
 
@@ -183,6 +184,64 @@ nlohmann::json sweptHulls(const TriangleMesh& tool, const std::vector<Pose>& pos
           {"median_ms", percentile(ms, 0.5)},
           {"p95_ms", percentile(ms, 0.95)},
           {"median_faces", percentile(faces, 0.5)}};
+}
+
+// Sideways key moves (0.5 mm, back and forth) with the reamer's solid just clear of the bone (backed off
+// the path's first pose along its axis until it misses, then 0.3 mm more), through ReamEngine with the
+// application's engines: what such a step costs with the first-contact query deciding that the move swept
+// past the bone (no hull built) against the same step building the hull and cutting nothing. Alternating
+// the two engines move by move in one process, so the ratio is of the same moment of the machine.
+nlohmann::json movesPastBone(const TriangleMesh& bone, const ReamerSpec& spec, const TriangleMesh& localTool,
+                             const Pose& first) {
+  const BoneState state = BoneState::fromMesh(bone);
+  auto volume = std::make_shared<const TriangleMesh>(localTool);
+  ReamEngine skip(volume, makeBvhContactBackend(false), localCutBackendFactory(), spec);
+  ReamEngine build(volume, makeBvhContactBackend(false), localCutBackendFactory(), spec);
+  build.setSkipMissedSweeps(false);
+  const Vec3 axis = normalized(first.axis);
+  Pose clear = first;
+  for (int i = 0; i < 200; ++i) {  // back off in 0.25 mm steps until the solid misses the bone
+    const ReamComputation c = skip.compute(state, 1, clear, 0.25);
+    if (c.contact.solidOverlapsBone && !*c.contact.solidOverlapsBone) break;
+    clear.tip = clear.tip - axis * 0.25;
+  }
+  clear.tip = clear.tip - axis * 0.3;
+  Vec3 across = cross(axis, Vec3{0, 0, 1});
+  if (norm(across) < 0.1) across = cross(axis, Vec3{1, 0, 0});
+  across = normalized(across) * 0.5;
+  std::vector<double> skipMs, buildMs;
+  std::size_t reached = 0, skipped = 0, cut = 0;
+  Pose at = clear;
+  for (int i = 0; i < 41; ++i) {
+    Pose to = at;
+    to.tip = at.tip + (i % 2 == 0 ? across : across * -1.0);
+    for (ReamEngine* e : {&skip, &build}) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const ReamComputation c = e->compute(state, 1, to, 0.5, &at);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      if (i == 0) continue;  // the first move builds the engines' trees
+      (e == &skip ? skipMs : buildMs).push_back(ms);
+      if (e == &skip) {
+        reached += c.contact.alongMove && c.contact.alongMove->reached;
+        skipped += c.sweptPastBone;
+      }
+      cut += c.cut.changed;
+    }
+    at = to;
+  }
+  const double skipMedian = percentile(skipMs, 0.5), buildMedian = percentile(buildMs, 0.5);
+  return {{"what", "0.5 mm sideways moves of the reamer just clear of the bone through ReamEngine: the first-contact "
+                   "query shows the move missed the bone and no hull is built, against building the hull and cutting "
+                   "nothing (alternating, one process)"},
+          {"moves", skipMs.size()},
+          {"moves_reaching_bone", reached},
+          {"moves_swept_past_bone", skipped},
+          {"moves_that_cut", cut},
+          {"skip_median_ms", skipMedian},
+          {"skip_p95_ms", percentile(skipMs, 0.95)},
+          {"hull_median_ms", buildMedian},
+          {"hull_p95_ms", percentile(buildMs, 0.95)},
+          {"ratio", skipMedian > 0 ? buildMedian / skipMedian : 0.0}};
 }
 
 double smallestAngleDeg(const TriangleMesh& m, const Triangle& t) {
@@ -610,6 +669,7 @@ int runBenchCut(const std::vector<std::string>& args) {
   }
   if (a.has("loop")) {
     out["loop"] = appLoop(bone, spec, localTool, poses, !a.has("no-cleanup"));
+    out["loop"]["moves_past_bone"] = movesPastBone(bone, spec, localTool, poses.front());
     out["loop"]["volume_end_diff_rel"] =
         std::abs(out["loop"]["volume_end_mm3"].get<double>() - engine.volumeMm3()) / engine.volumeMm3();
   }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <QProgressBar>
 #include <QSignalSpy>
+#include <QTableWidget>
 #include <QUndoStack>
 #include <QtTest/QTest>
 
@@ -193,6 +194,26 @@ TEST(GuiReaming, KeyMovesSweepPlacementsDoNot) {
   QTest::keyClick(w.windowHandle(), Qt::Key_A);  // 0.5 degrees: the end pose covers it (ridges under 1 µm)
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_FALSE(s.lastStepSwept());
+}
+
+TEST(GuiReaming, AKeyMoveLogsWhereItFirstMetTheBone) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  placeInTheBone(s, 0.5);
+  w.setSteps(3.0, 2.0, 0.2);
+  QTest::keyClick(w.windowHandle(), Qt::Key_Up);  // 3 mm sideways from inside the bone: met at its start
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_TRUE(s.lastStepSwept());
+  const CutLogEntry& e = s.log()->entries().back();
+  ASSERT_TRUE(e.moveContactT.has_value());
+  EXPECT_EQ(*e.moveContactT, 0.0);
+  auto* table = w.findChild<QTableWidget*>("LogTable");
+  ASSERT_NE(table, nullptr);
+  ASSERT_GT(table->rowCount(), 0);
+  const QString tip = table->item(table->rowCount() - 1, 5)->toolTip();
+  EXPECT_TRUE(tip.startsWith("the move first met the bone 0.0 % of the way")) << tip.toStdString();
 }
 
 TEST(GuiReaming, StopEndsALongSwingAndLeavesTheBoneAsItWas) {

@@ -11,8 +11,11 @@
 #include <utility>
 #include <vector>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "ReamFixture.h"
+#include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/LocalCutBackend.h"
 #include "reamsim/csg/SweptVolume.h"
 #include "reamsim/mesh/TriangleMesh.h"
@@ -59,6 +62,66 @@ TEST_P(SweptCutEngines, SidewaysMoveRemovesTheSweptSlot) {
 
 INSTANTIATE_TEST_SUITE_P(SweptCut, SweptCutEngines, ::testing::Values(true, false),
                          [](const auto& info) { return info.param ? "local" : "reference"; });
+
+TEST(SweptCut, AMovePastTheBoneBuildsNoHullAndCutsNothing) {
+  // The flat reamer's face 0.5 mm above the block's top, moved 30 mm sideways: boxes overlap all along, the
+  // surfaces never meet. The first-contact query says so exactly, and the step builds no hull.
+  test::ReamScene s(block(), test::flatReamer20(), localCutBackendFactory());
+  const Pose start = at(-15, 0.5);
+  for (bool skip : {true, false}) {
+    ReamEngine engine(s.reamer->cuttingVolume(), makeBvhContactBackend(), localCutBackendFactory());
+    engine.setSkipMissedSweeps(skip);
+    const ReamComputation c = engine.compute(s.bone->current(), s.bone->currentRevision(), at(15, 0.5), 30.0, &start);
+    ASSERT_TRUE(c.contact.alongMove.has_value());
+    EXPECT_FALSE(c.contact.alongMove->reached);
+    EXPECT_TRUE(c.contact.boxesOverlap);
+    EXPECT_TRUE(c.sweptPastBone);
+    EXPECT_EQ(c.swept, !skip) << "skip " << skip;  // without the skip the hull is built, and misses
+    EXPECT_FALSE(c.cut.changed);
+  }
+  // 0.5 mm lower the face lies on the top all along: the move touches the bone from its start (t = 0),
+  // so the hull is built (it removes nothing: the Boolean's coplanar case).
+  const Pose onTop = at(-15, 0.0);
+  ReamEngine engine(s.reamer->cuttingVolume(), makeBvhContactBackend(), localCutBackendFactory());
+  const ReamComputation c = engine.compute(s.bone->current(), s.bone->currentRevision(), at(15, 0.0), 30.0, &onTop);
+  ASSERT_TRUE(c.contact.alongMove.has_value());
+  EXPECT_TRUE(c.contact.alongMove->reached);
+  EXPECT_EQ(c.contact.alongMove->t, 0.0);
+  EXPECT_FALSE(c.sweptPastBone);
+  EXPECT_TRUE(c.swept);
+}
+
+TEST(SweptCut, AFastMoveThroughAThinPlateCutsItAndLogsWhereItFirstMetIt) {
+  // A plate 1 mm thick standing across x; the reamer 1 mm deep starts and ends clear of it (20 mm across,
+  // tips at x = -15 and +15), so neither pose touches it: only the move does, first at t = 4.5 / 30 (its
+  // rim at x = -5 reaching the plate's face at x = -0.5).
+  const TriangleMesh plate = buildBox(Bounds{{-0.5, -20, -20}, {0.5, 20, 0}}, 2);
+  test::ReamScene s(plate, test::flatReamer20(), localCutBackendFactory());
+  s.controller->moveTo(at(-15, 1.0));
+  s.controller->moveTo(at(-15, -1.0));
+  const ReamStepOutcome across = s.controller->moveTo(at(15, -1.0));
+  ASSERT_TRUE(across.contact.alongMove.has_value());
+  ASSERT_TRUE(across.contact.alongMove->reached);
+  EXPECT_NEAR(across.contact.alongMove->t, 4.5 / 30.0, 1e-3);  // the polygonal rim reaches a little later
+  EXPECT_NEAR(across.contact.alongMove->point.x, -0.5, 1e-9);
+  EXPECT_FALSE(*across.contact.solidOverlapsBone);  // the end pose alone would cut nothing
+  EXPECT_TRUE(across.swept);
+  // The slot through the plate: its thickness x the reamer's width x the depth.
+  EXPECT_NEAR(across.cut.removedMm3, 1.0 * widthAcrossX(*s.reamer->cuttingVolume()) * 1.0, 1e-5 * across.cut.removedMm3);
+  ASSERT_GE(s.log->size(), 1u);
+  const CutLogEntry& e = s.log->entries().back();
+  ASSERT_TRUE(e.moveContactT.has_value());
+  EXPECT_EQ(*e.moveContactT, across.contact.alongMove->t);
+  ASSERT_TRUE(e.moveContactPoint.has_value());
+  EXPECT_NEAR(e.moveContactPoint->x, -0.5, 1e-9);
+  const std::string csv = cutLogCsv(s.log->entries());
+  EXPECT_NE(csv.find(",move_contact_t,move_contact_x,move_contact_y,move_contact_z\n"), std::string::npos) << csv;
+  char t[32];
+  std::snprintf(t, sizeof t, ",%.9g,-0.500000,", *e.moveContactT);
+  EXPECT_NE(csv.find(t), std::string::npos) << csv;
+  EXPECT_NE(cutLogJson(s.log->entries()).find("\"move_contact_t\""), std::string::npos);
+  EXPECT_FALSE(s.controller->checkBone().selfIntersectsExact);
+}
 
 TEST(SweptCut, WithoutMotionThePlacedSolidIsCut) {
   // The same end pose reached by placing the reamer: only the end disc goes, the ridge between stays.

@@ -29,6 +29,18 @@ class BvhContactBackend final : public ContactBackend {
       r.minDistanceMm = distance.distanceMm;
       r.contactPoint = distance.onBone;  // the closest point, or where the cutting face meets the bone
     }
+    if (in.movedFrom) {
+      // The move as a whole: exact, so a fast move through thin bone is seen, and one that passes beside
+      // the bone is known to miss it (the loop then skips its swept hull).
+      const FirstContactResult first = collider_->firstContact(*reamer_, *in.movedFrom, in.pose);
+      MoveContact& m = r.alongMove.emplace();
+      m.reached = first.hit;
+      if (first.hit) {
+        m.t = first.t;
+        m.point = first.point;
+        m.normal = first.normal;
+      }
+    }
     if (!r.boxesOverlap) {
       r.solidOverlapsBone = false;  // disjoint boxes
       return r;

@@ -34,7 +34,8 @@ std::string isoTimeUtc(std::int64_t unixMs) {
 std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
   std::string out =
       "step,time_utc,tip_x,tip_y,tip_z,axis_x,axis_y,axis_z,boxes_overlap,contact,min_distance_mm,removed_mm3,"
-      "cumulative_mm3,cut_ms,faces,contact_x,contact_y,contact_z,bone_state\n";
+      "cumulative_mm3,cut_ms,faces,contact_x,contact_y,contact_z,bone_state,move_contact_t,move_contact_x,"
+      "move_contact_y,move_contact_z\n";
   for (const CutLogEntry& e : entries) {
     out += std::to_string(e.stepIndex) + "," + isoTimeUtc(e.timeUnixMs);
     for (double v : {e.pose.tip.x, e.pose.tip.y, e.pose.tip.z, e.pose.axis.x, e.pose.axis.y, e.pose.axis.z})
@@ -44,7 +45,12 @@ std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
            num(e.cutMs, "%.3f") + "," + std::to_string(e.faces);
     if (e.contactPoint) out += "," + num(e.contactPoint->x) + "," + num(e.contactPoint->y) + "," + num(e.contactPoint->z);
     else out += ",,,";
-    out += "," + std::to_string(e.boneStateId) + "\n";
+    out += "," + std::to_string(e.boneStateId);
+    out += e.moveContactT ? "," + num(*e.moveContactT, "%.9g") : std::string(",");
+    if (e.moveContactPoint)
+      out += "," + num(e.moveContactPoint->x) + "," + num(e.moveContactPoint->y) + "," + num(e.moveContactPoint->z);
+    else out += ",,,";
+    out += "\n";
   }
   return out;
 }
@@ -66,6 +72,10 @@ std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::strin
                         {"bone_state", e.boneStateId}};
     r["contact_point"] = e.contactPoint ? nlohmann::json{e.contactPoint->x, e.contactPoint->y, e.contactPoint->z}
                                         : nlohmann::json(nullptr);
+    r["move_contact_t"] = e.moveContactT ? nlohmann::json(*e.moveContactT) : nlohmann::json(nullptr);
+    r["move_contact_point"] = e.moveContactPoint
+                                  ? nlohmann::json{e.moveContactPoint->x, e.moveContactPoint->y, e.moveContactPoint->z}
+                                  : nlohmann::json(nullptr);
     rows.push_back(r);
   }
   nlohmann::json j = {{"summary", nlohmann::json::parse(summaryJson)}, {"steps", rows}};

@@ -154,10 +154,11 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   probes.reserve(localFaceVertices_.size());
   for (const Vec3& p : localFaceVertices_) probes.push_back(toBone.apply(p));
   const Bounds boneBounds = bone.bounds();
+  const std::optional<RigidTransform> from = sweptFrom ? std::optional(toTransform(*sweptFrom)) : std::nullopt;
   const auto contactStart = std::chrono::steady_clock::now();
-  out.contact = contact_->query(
-      {bone, revision, meshFor(bone, revision), boneBounds, cuttingVolume_, spec_ ? &*spec_ : nullptr, toBone, tool, probes,
-       normalized(pose.axis), stepMm});
+  out.contact = contact_->query({bone, revision, meshFor(bone, revision), boneBounds, cuttingVolume_,
+                                 spec_ ? &*spec_ : nullptr, toBone, tool, probes, normalized(pose.axis), stepMm,
+                                 from ? &*from : nullptr});
   out.contactChecked = true;
   out.times.contact = msSince(contactStart);
 
@@ -165,7 +166,13 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   // whenever the boxes overlap, so that bone entering from the side (which the rays cannot see) is still cut.
   bool mayCut = out.contact.solidOverlapsBone ? *out.contact.solidOverlapsBone : out.contact.boxesOverlap;
   std::vector<TriangleMesh> tools;
-  if (sweptFrom) tools = sweepTools(toTransform(*sweptFrom), toBone);
+  // A translation that the exact first-contact query shows never brought the solid onto the bone, and that
+  // ends clear of it, swept past the bone: its hull (~4 ms to build) would cut nothing. Turns keep their
+  // sub-steps: their chain of hulls and placements is not the query's path to the micrometre.
+  const ContactResult& c = out.contact;
+  out.sweptPastBone = from && sameRotation(*from, toBone) && c.alongMove && !c.alongMove->reached &&
+                      c.solidOverlapsBone && !*c.solidOverlapsBone;
+  if (from && !(out.sweptPastBone && skipMissedSweeps_)) tools = sweepTools(*from, toBone);
   if (!tools.empty()) {
     out.swept = true;
     out.sweepCuts = static_cast<int>(tools.size());

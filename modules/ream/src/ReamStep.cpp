@@ -22,6 +22,10 @@ CutLogEntry commitReamStep(Document& document, BoneNode& bone, ReamerNode& reame
   e.boxesOverlap = c.contact.boxesOverlap;
   e.minDistanceMm = c.contact.minDistanceMm;
   e.contactPoint = c.contact.contactPoint;
+  if (c.contact.alongMove && c.contact.alongMove->reached) {
+    e.moveContactT = c.contact.alongMove->t;
+    e.moveContactPoint = c.contact.alongMove->point;
+  }
   e.cumulativeMm3 = log.cumulativeMm3();
   e.cutMs = c.cut.milliseconds;
   if (c.cut.changed && c.next) {

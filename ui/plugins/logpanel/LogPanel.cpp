@@ -95,6 +95,12 @@ void LogPanel::sync() {
                                  .arg(e.contactPoint->y, 0, 'f', 2)
                                  .arg(e.contactPoint->z, 0, 'f', 2)
                            : QStringLiteral("–"));
+    if (e.moveContactT && e.moveContactPoint)  // a move onto the bone: where it first met it
+      table_->item(row, 5)->setToolTip(tr("the move first met the bone %1 % of the way, at %2, %3, %4 mm")
+                                           .arg(100.0 * *e.moveContactT, 0, 'f', 1)
+                                           .arg(e.moveContactPoint->x, 0, 'f', 2)
+                                           .arg(e.moveContactPoint->y, 0, 'f', 2)
+                                           .arg(e.moveContactPoint->z, 0, 'f', 2));
     cell(6, QString::number(e.stepIndex));
   }
   shown_ = entries.size();

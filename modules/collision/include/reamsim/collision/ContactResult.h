@@ -10,6 +10,14 @@
 
 namespace reamsim {
 
+// Where a move first brought the cutting solid's surface onto the bone's: the first-contact query
+// (FirstContact.h) between the pose before the move and the pose after it.
+struct MoveContact {
+  bool reached = false;  // false: the surfaces never meet along the move
+  double t = 1;          // fraction of the move at first contact (0: touching at its start)
+  Vec3 point, normal;    // on the bone; the normal points from the bone towards the reamer
+};
+
 struct ContactResult {
   // Broad phase: bone box vs the reamer's box grown by stepMm (a gap <= stepMm cannot hide outside it).
   // When false nothing else is queried and contact is false.
@@ -23,6 +31,10 @@ struct ContactResult {
   // the reaming loop runs the Boolean only if it is true; otherwise whenever the boxes overlap.
   std::optional<bool> solidOverlapsBone;
   std::size_t touchedFaces = 0;  // bone faces the cutting solid touches (exact engines)
+  // Exact engines, for a step that moved the reamer (ContactInput::movedFrom): the first contact along the
+  // move. With solidOverlapsBone false at the end pose, `reached` false means a translation swept past
+  // the bone without touching it, so the loop has nothing to cut (ReamEngine skips the swept hull).
+  std::optional<MoveContact> alongMove;
   // Thesis rays only.
   std::size_t insideVertices = 0;
   std::size_t raysCast = 0;  // forward + backward rays

@@ -21,6 +21,10 @@ struct CutLogEntry {
   double cutMs = 0;               // wall time of the Boolean
   std::size_t faces = 0;          // live triangles of the bone after the step
   std::optional<Vec3> contactPoint;  // set when contact
+  // A step that moved the reamer onto the bone: where along the move (0..1) and where on the bone its
+  // cutting solid first met the bone (the exact first-contact query; unset without a move or a meeting).
+  std::optional<double> moveContactT;
+  std::optional<Vec3> moveContactPoint;
   std::uint64_t boneStateId = 0;  // BoneHistory revision committed by this step (0: none)
 };
 

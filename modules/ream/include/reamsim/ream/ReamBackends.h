@@ -30,6 +30,9 @@ struct ContactInput {
   const std::vector<Vec3>& probes;  // forward-facing cutting-face vertices placed at `pose` (thesis rays)
   Vec3 feedAxis;                 // unit
   double stepMm;                 // tip travel since the previous query
+  // The pose before this step when the reamer moved here (not placed): exact engines then also say where
+  // the move first met the bone (ContactResult::alongMove). Null: no move to follow.
+  const RigidTransform* movedFrom = nullptr;
 };
 
 class ContactBackend {

@@ -27,6 +27,7 @@ struct ReamComputation {
   ReferenceCut cut;                // cut.changed: `next` holds the bone after the cut
   bool swept = false;              // the cut subtracted the volume swept from the previous pose
   int sweepCuts = 0;               // swept: the Booleans it took (1 for a translation, the placements of a turn)
+  bool sweptPastBone = false;      // a translation the first-contact query shows missed the bone: nothing swept
   std::optional<BoneState> next;
   double volumeBookkeepingError = 0;  // |removed − (V_before − V_after)|
   // Where the step's time went (ms): the collision query (with the collider following the last cut), the
@@ -86,6 +87,9 @@ class ReamEngine {
     double hullMm = 0.1;
   };
   void setTurnTravel(TurnTravel t) { turnTravel_ = t; }
+  // Whether a translation that missed the bone (ReamComputation::sweptPastBone) skips its swept hull (on by
+  // default; off only to measure what the skip saves: `bench cut --loop`).
+  void setSkipMissedSweeps(bool on) { skipMissedSweeps_ = on; }
 
   bool canCollide() const { return contact_ != nullptr; }
   bool canCut() const { return static_cast<bool>(cutFactory_); }
@@ -105,6 +109,7 @@ class ReamEngine {
   double axialLength_ = 0;    // extent of the cutting solid along its axis
   double solidRadius_ = 0;    // farthest point of the cutting solid from the tip (a turn's arcs)
   TurnTravel turnTravel_;
+  bool skipMissedSweeps_ = true;
   std::unique_ptr<ContactBackend> contact_;
   CutBackendFactory cutFactory_;
   std::unique_ptr<CutBackend> cutter_;
