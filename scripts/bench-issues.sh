@@ -50,6 +50,10 @@ if "median_ms" in d:  # bench cut
                  f"{rs['standoff_max_mm']:.4f} mm (facet sag {rs['reamer_facet_sag_mm']:.4f})")
     if "loop" in d:
         line += f"; loop step median {d['loop']['step']['median_ms']:.2f} p99 {d['loop']['step']['p99_ms']:.2f} ms"
+        mp = d["loop"].get("moves_past_bone")
+        if mp:
+            line += (f"; moves past the bone {mp['skip_median_ms']:.2f} ms against {mp['hull_median_ms']:.2f} with the hull "
+                     f"({mp['ratio']:.1f}x, {mp['moves_reaching_bone']} of {mp['moves']} reached it)")
     print(line)
 else:  # bench collision
     q = d["queries"]
