@@ -91,6 +91,22 @@ TEST(SweptCut, AMovePastTheBoneBuildsNoHullAndCutsNothing) {
   EXPECT_TRUE(c.swept);
 }
 
+TEST(SweptCut, AMoveOfLengthZeroIsAskedLikeAnyOther) {
+  // A step to the pose the reamer is at (a plan's repeated pose, a key released at once): the query's
+  // motion has no translation and no turn; clear of the bone it is not reached, lying on it it is at t = 0.
+  test::ReamScene s(block(), test::flatReamer20(), localCutBackendFactory());
+  for (double z : {0.5, 0.0}) {
+    const Pose here = at(3, z);
+    ReamEngine engine(s.reamer->cuttingVolume(), makeBvhContactBackend(), localCutBackendFactory());
+    const ReamComputation c = engine.compute(s.bone->current(), s.bone->currentRevision(), here, 0.0, &here);
+    ASSERT_TRUE(c.contact.alongMove.has_value());
+    EXPECT_EQ(c.contact.alongMove->reached, z == 0.0) << z;
+    if (z == 0.0) EXPECT_EQ(c.contact.alongMove->t, 0.0);
+    EXPECT_FALSE(c.swept);
+    EXPECT_FALSE(c.cut.changed);
+  }
+}
+
 TEST(SweptCut, AFastMoveThroughAThinPlateCutsItAndLogsWhereItFirstMetIt) {
   // A plate 1 mm thick standing across x; the reamer 1 mm deep starts and ends clear of it (20 mm across,
   // tips at x = -15 and +15), so neither pose touches it: only the move does, first at t = 4.5 / 30 (its
