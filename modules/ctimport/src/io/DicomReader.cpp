@@ -102,10 +102,11 @@ std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::s
   std::error_code ec;
   const bool isDir = fs::is_directory(path, ec);
   if (!isDir && !fs::is_regular_file(path, ec)) throw InputError(path, "file or directory not found");
-  const std::string dir = isDir ? path : fs::path(path).parent_path().string();
-  folder = checkFolder(dir.empty() ? "." : dir, false);
+  const std::string parent = isDir ? path : fs::path(path).parent_path().string();
+  const std::string dir = parent.empty() ? "." : parent;  // a bare file name lies in the working folder
+  folder = checkFolder(dir, false);
   if (folder.dicomdir) {
-    folder = checkFolder(dir.empty() ? "." : dir, true);
+    folder = checkFolder(dir, true);
     if (!folder.broken.empty()) {
       const bool index = fs::path(folder.broken[0].first).filename() == "DICOMDIR";
       throw InputError(folder.broken[0].first,
@@ -125,7 +126,7 @@ std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::s
   auto finder = vtkSmartPointer<vtkDICOMDirectory>::New();
   capture.observe(finder);
   if (folder.dicomdir) {
-    finder->SetDirectoryName(dir.empty() ? "." : dir.c_str());
+    finder->SetDirectoryName(dir.c_str());
     finder->SetScanDepth(1);
   } else {
     auto names = vtkSmartPointer<vtkStringArray>::New();
@@ -151,7 +152,7 @@ std::vector<std::string> seriesFiles(const std::string& path, std::vector<std::s
     std::string firstUnlisted;
     for (const std::string& f : folder.sound)
       if (fs::path(f).filename() != "DICOMDIR" && !listed.count(fs::weakly_canonical(f, ec).string()) && unlisted++ == 0)
-        firstUnlisted = fs::relative(f, dir.empty() ? "." : dir, ec).string();
+        firstUnlisted = fs::relative(f, dir, ec).string();
     if (unlisted > 0)
       notes.push_back(std::to_string(unlisted) + " DICOM file(s) below the folder are not among the images its DICOMDIR lists (" +
                       firstUnlisted + (unlisted > 1 ? ", …" : "") + ") and were not read");
