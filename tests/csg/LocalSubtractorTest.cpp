@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "LocalTestMeshes.h"
+#include "TestMeshOps.h"
 #include "reamsim/csg/LocalSubtractor.h"
 #include "reamsim/csg/ReferenceSubtractor.h"
 #include "reamsim/csg/SweptVolume.h"
@@ -26,14 +27,7 @@ using test::toolAt;
 // Top face at z = 0, feeds along -Z.
 TriangleMesh block() { return buildBox(Bounds{{-30, -30, -20}, {30, 30, 0}}, 4); }
 // The block and a second box in one mesh (its own vertices: nothing shared until merged).
-TriangleMesh blockAndBox(const Bounds& box, int divisions) {
-  TriangleMesh m = block();
-  const TriangleMesh extra = buildBox(box, divisions);
-  const std::uint32_t base = std::uint32_t(m.vertices.size());
-  m.vertices.insert(m.vertices.end(), extra.vertices.begin(), extra.vertices.end());
-  for (const Triangle& t : extra.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-  return m;
-}
+TriangleMesh blockAndBox(const Bounds& box, int divisions) { return test::merged(block(), buildBox(box, divisions)); }
 const Vec3 kDown{0, 0, -1};
 
 double polygonArea(double radius, int segments) { return 0.5 * segments * radius * radius * std::sin(2 * M_PI / segments); }

@@ -1,4 +1,5 @@
 #pragma once
+#include "TestMeshOps.h"
 #include "reamsim/tools/Primitives.h"
 
 namespace reamsim::test {
@@ -21,14 +22,6 @@ inline TriangleMesh asSoup(const TriangleMesh& m) {
 inline TriangleMesh translated(TriangleMesh m, const Vec3& d) {
   for (Vec3& p : m.vertices) p += d;
   return m;
-}
-
-inline TriangleMesh merged(const TriangleMesh& a, const TriangleMesh& b) {
-  TriangleMesh out = a;
-  const auto base = std::uint32_t(out.vertices.size());
-  out.vertices.insert(out.vertices.end(), b.vertices.begin(), b.vertices.end());
-  for (Triangle t : b.triangles) out.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-  return out;
 }
 
 }  // namespace reamsim::test
