@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "reamsim/mesh/MeshError.h"
@@ -17,6 +18,13 @@ std::string num(double v, const char* fmt = "%.6f") {
   return buf;
 }
 nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+// A point's three CSV fields (each after a comma), empty when there is none.
+std::string pointCsv(const std::optional<Vec3>& p) {
+  return p ? "," + num(p->x) + "," + num(p->y) + "," + num(p->z) : std::string(",,,");
+}
+nlohmann::json pointOrNull(const std::optional<Vec3>& p) {
+  return p ? nlohmann::json{p->x, p->y, p->z} : nlohmann::json(nullptr);
+}
 }  // namespace
 
 std::string isoTimeUtc(std::int64_t unixMs) {
@@ -43,14 +51,8 @@ std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
     out += std::string(",") + (e.boxesOverlap ? "1" : "0") + "," + (e.contact ? "1" : "0");
     out += "," + num(e.minDistanceMm) + "," + num(e.removedMm3, "%.9g") + "," + num(e.cumulativeMm3, "%.9g") + "," +
            num(e.cutMs, "%.3f") + "," + std::to_string(e.faces);
-    if (e.contactPoint) out += "," + num(e.contactPoint->x) + "," + num(e.contactPoint->y) + "," + num(e.contactPoint->z);
-    else out += ",,,";
-    out += "," + std::to_string(e.boneStateId);
-    out += e.moveContactT ? "," + num(*e.moveContactT, "%.9g") : std::string(",");
-    if (e.moveContactPoint)
-      out += "," + num(e.moveContactPoint->x) + "," + num(e.moveContactPoint->y) + "," + num(e.moveContactPoint->z);
-    else out += ",,,";
-    out += "\n";
+    out += pointCsv(e.contactPoint) + "," + std::to_string(e.boneStateId);
+    out += (e.moveContactT ? "," + num(*e.moveContactT, "%.9g") : std::string(",")) + pointCsv(e.moveContactPoint) + "\n";
   }
   return out;
 }
@@ -70,12 +72,9 @@ std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::strin
                         {"cut_ms", e.cutMs},
                         {"faces", e.faces},
                         {"bone_state", e.boneStateId}};
-    r["contact_point"] = e.contactPoint ? nlohmann::json{e.contactPoint->x, e.contactPoint->y, e.contactPoint->z}
-                                        : nlohmann::json(nullptr);
+    r["contact_point"] = pointOrNull(e.contactPoint);
     r["move_contact_t"] = e.moveContactT ? nlohmann::json(*e.moveContactT) : nlohmann::json(nullptr);
-    r["move_contact_point"] = e.moveContactPoint
-                                  ? nlohmann::json{e.moveContactPoint->x, e.moveContactPoint->y, e.moveContactPoint->z}
-                                  : nlohmann::json(nullptr);
+    r["move_contact_point"] = pointOrNull(e.moveContactPoint);
     rows.push_back(r);
   }
   nlohmann::json j = {{"summary", nlohmann::json::parse(summaryJson)}, {"steps", rows}};
