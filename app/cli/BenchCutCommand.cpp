@@ -166,14 +166,19 @@ double percentile(std::vector<double> v, double q) {
 
 // What a sideways move costs before its cut: the swept hull (SweptVolume.h) of the reamer at the path's
 // first poses and the same poses moved 0.5 mm across their axis, as a key press moves it in the GUI.
+// 0.5 mm across the axis: the sideways key move of the swept-hull and moves-past-bone figures.
+Vec3 sidewaysKeyMove(const Vec3& axis) {
+  Vec3 across = cross(axis, Vec3{0, 0, 1});
+  if (norm(across) < 0.1) across = cross(axis, Vec3{1, 0, 0});
+  return across * (0.5 / norm(across));
+}
+
 nlohmann::json sweptHulls(const TriangleMesh& tool, const std::vector<Pose>& poses) {
   std::vector<double> ms, faces;
   for (std::size_t i = 0; i < std::min<std::size_t>(poses.size(), 50); ++i) {
     const RigidTransform from = toTransform(poses[i]);
-    Vec3 across = cross(poses[i].axis, Vec3{0, 0, 1});
-    if (norm(across) < 0.1) across = cross(poses[i].axis, Vec3{1, 0, 0});
     RigidTransform to = from;
-    to.translation = from.translation + across * (0.5 / norm(across));
+    to.translation = from.translation + sidewaysKeyMove(poses[i].axis);
     const auto t0 = std::chrono::steady_clock::now();
     const TriangleMesh hull = sweptByTranslation(tool, from, to);
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
@@ -206,9 +211,7 @@ nlohmann::json movesPastBone(const TriangleMesh& bone, const ReamerSpec& spec, c
     clear.tip = clear.tip - axis * 0.25;
   }
   clear.tip = clear.tip - axis * 0.3;
-  Vec3 across = cross(axis, Vec3{0, 0, 1});
-  if (norm(across) < 0.1) across = cross(axis, Vec3{1, 0, 0});
-  across = normalized(across) * 0.5;
+  const Vec3 across = sidewaysKeyMove(axis);
   std::vector<double> skipMs, buildMs;
   std::size_t reached = 0, skipped = 0, cut = 0;
   Pose at = clear;
