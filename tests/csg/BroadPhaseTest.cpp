@@ -1,5 +1,6 @@
 // The local engine's broad phase (internal headers of modules/csg/src): the tool's bound never drops a bone
-// face that meets the tool, and the grid's block-filtered query never drops a face in a block it keeps.
+// face that meets the tool, the grid's block-filtered query never drops a face in a block it keeps, and the
+// tool's packed grid finds exactly the boxes a query or a ray meets.
 #include <gtest/gtest.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -7,10 +8,12 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
+#include <limits>
 #include <optional>
 #include <random>
 
 #include "LocalTestMeshes.h"
+#include "PackedTriangleGrid.h"
 #include "ToolBound.h"
 #include "TriangleGrid.h"
 
@@ -155,6 +158,51 @@ TEST(TriangleGrid, QueriesAgreeWithBruteForce) {
     std::sort(out.begin(), out.end());  // a duplicate would make it differ: `expected` has none
     EXPECT_EQ(out, expected) << "shared query " << q;
   }
+}
+
+// The tool's packed grid against brute force: box queries and axis-parallel rays (both directions, from
+// inside and outside the domain) return exactly the boxes they meet, each once; boxes beyond the domain
+// (filed in border cells) and an empty grid included.
+TEST(PackedTriangleGrid, QueriesAndRaysAgreeWithBruteForce) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const Bounds domain{{-5, 0, 10}, {35, 30, 30}};
+  auto randomBox = [&](double extent, double reach) {
+    Box3 b;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = domain.min[a] - reach + (domain.max[a] - domain.min[a] + 2 * reach) * unit(rng);
+      b.lo[a] = lo;
+      b.hi[a] = lo + extent * unit(rng);
+    }
+    return b;
+  };
+  std::vector<Box3> boxes;
+  for (int s = 0; s < 3000; ++s) boxes.push_back(randomBox(s % 50 == 0 ? 12.0 : 1.5, 1));
+  csg::PackedTriangleGrid grid;
+  grid.build(domain, boxes, 4.0);
+  auto expectedFor = [&](const Box3& query) {
+    std::vector<std::uint32_t> expected;
+    for (std::uint32_t s = 0; s < boxes.size(); ++s)
+      if (boxes[s].overlaps(query)) expected.push_back(s);
+    return expected;
+  };
+  std::vector<std::uint32_t> out;
+  for (int q = 0; q < 400; ++q) {
+    const Box3 query = randomBox(q % 4 == 0 ? 25.0 : q % 4 == 1 ? 3.0 : q % 4 == 2 ? 0.2 : 0.0, 4);
+    grid.query(query, out);
+    std::sort(out.begin(), out.end());  // a duplicate would make it differ: `expected` has none
+    EXPECT_EQ(out, expectedFor(query)) << "query " << q;
+    const int axis = q % 3, dir = q % 2 ? 1 : -1;
+    Box3 ray{query.lo, query.lo};
+    (dir > 0 ? ray.hi : ray.lo)[axis] = dir * std::numeric_limits<double>::infinity();
+    grid.ray(query.lo, axis, dir, out);
+    std::sort(out.begin(), out.end());
+    EXPECT_EQ(out, expectedFor(ray)) << "ray " << q;
+  }
+  csg::PackedTriangleGrid empty;
+  empty.build(domain, {}, 4.0);
+  empty.query(randomBox(10, 0), out);
+  EXPECT_TRUE(out.empty());
 }
 
 }  // namespace

@@ -6,28 +6,34 @@
 
 namespace reamsim::csg {
 
-void TriangleGrid::init(const Bounds& domain, std::size_t faces, double targetPerCell, double surfaceArea) {
+GridShape gridShape(const Bounds& domain, std::size_t faces, double targetPerCell, double surfaceArea, std::size_t maxCells) {
   const Vec3 size = !domain.empty() ? domain.max - domain.min : Vec3{1, 1, 1};
   const double ext[3] = {std::max(size.x, 1e-3), std::max(size.y, 1e-3), std::max(size.z, 1e-3)};
   const double volume = ext[0] * ext[1] * ext[2];
+  GridShape g;
   if (surfaceArea > 0 && faces > 0) {
     // A cell of side c is crossed by about c² / (area per face) faces.
-    cell_ = std::sqrt(targetPerCell * surfaceArea / double(faces));
+    g.cell = std::sqrt(targetPerCell * surfaceArea / double(faces));
   } else {
     // Without the area, sizing cells by the box volume gives roughly the wanted density on the occupied
     // cells for small bone-like shapes.
-    cell_ = std::cbrt(volume / std::max(1.0, double(faces) / targetPerCell));
+    g.cell = std::cbrt(volume / std::max(1.0, double(faces) / targetPerCell));
   }
-  // At most 256 cells along an axis and kMaxCells in all.
-  cell_ = std::max(cell_, std::cbrt(volume / double(kMaxCells)));
+  g.cell = std::max(g.cell, std::cbrt(volume / double(maxCells)));
+  for (int i = 0; i < 3; ++i) g.cell = std::max(g.cell, ext[i] / 256.0);
   for (int i = 0; i < 3; ++i) {
-    cell_ = std::max(cell_, ext[i] / 256.0);
+    g.n[i] = std::max(1, std::min(256, int(std::ceil(ext[i] / g.cell))));
+    g.origin[i] = !domain.empty() ? domain.min[i] : 0.0;
   }
+  return g;
+}
+
+void TriangleGrid::init(const Bounds& domain, std::size_t faces, double targetPerCell, double surfaceArea) {
+  const GridShape g = gridShape(domain, faces, targetPerCell, surfaceArea, kMaxCells);
+  origin_ = g.origin;
+  cell_ = g.cell;
   invCell_ = 1.0 / cell_;
-  for (int i = 0; i < 3; ++i) {
-    n_[i] = std::max(1, std::min(256, int(std::ceil(ext[i] / cell_))));
-    origin_[i] = (!domain.empty() ? domain.min[i] : 0.0);
-  }
+  n_ = g.n;
   cells_.assign(std::size_t(n_[0]) * n_[1] * n_[2], {});
   for (int i = 0; i < 3; ++i) nb_[i] = (n_[i] + kBlock - 1) / kBlock;
   blockCount_.assign(std::size_t(nb_[0]) * nb_[1] * nb_[2], 0);
@@ -170,18 +176,6 @@ void TriangleGrid::queryShared(const Box3& q, std::vector<std::uint32_t>& out) c
       if (index(std::max(int(slo[0]), qlo[0]), std::max(int(slo[1]), qlo[1]), std::max(int(slo[2]), qlo[2])) == c) out.push_back(s);
     }
   });
-}
-
-void TriangleGrid::ray(const std::array<double, 3>& origin, int axis, int dir, std::vector<std::uint32_t>& out) {
-  // The ray as a degenerate box reaching to infinity: faces beyond the domain sit in the border cells.
-  Box3 q;
-  q.lo = origin;
-  q.hi = origin;
-  if (dir > 0)
-    q.hi[axis] = std::numeric_limits<double>::infinity();
-  else
-    q.lo[axis] = -std::numeric_limits<double>::infinity();
-  query(q, out);
 }
 
 }  // namespace reamsim::csg

@@ -40,6 +40,16 @@ struct Box3 {
   }
 };
 
+// The cells of a uniform grid over `domain`: about `targetPerCell` faces per occupied cell for a surface of
+// `faces` faces (sized by `surfaceArea` when given, else by the box's volume), at most 256 cells along an
+// axis and `maxCells` in all.
+struct GridShape {
+  std::array<double, 3> origin{};
+  double cell = 1;
+  std::array<int, 3> n{1, 1, 1};
+};
+GridShape gridShape(const Bounds& domain, std::size_t faces, double targetPerCell, double surfaceArea, std::size_t maxCells);
+
 class TriangleGrid {
  public:
   // About `targetPerCell` faces per occupied cell for a surface of `faces` faces spanning `domain`. With the
@@ -61,8 +71,6 @@ class TriangleGrid {
   // Slots whose boxes overlap `query`, each once, in no particular order; const, so threads may share the
   // grid: a slot is reported only from the first cell of its box's range within the query's (no stamps).
   void queryShared(const Box3& query, std::vector<std::uint32_t>& out) const;
-  // Slots in the cells an axis-parallel ray from `origin` along +axis (dir > 0) or −axis crosses.
-  void ray(const std::array<double, 3>& origin, int axis, int dir, std::vector<std::uint32_t>& out);
 
  private:
   std::array<int, 3> cellOf(const std::array<double, 3>& p) const;
