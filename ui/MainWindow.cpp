@@ -48,6 +48,7 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   session_->setFrameGate(true);
   connect(view_, &QOpenGLWidget::frameSwapped, session_.get(), &ReamSession::frameShown);
   connect(session_.get(), &ReamSession::stepFinished, this, [this] { updateStatus(); });
+  connect(session_.get(), &ReamSession::contactSearched, this, &MainWindow::contactSearched);
   connect(session_.get(), &ReamSession::engineError, this, [this](const QString& m) {
     showError(tr("Cutting failed"), tr("The cutting engine reported an error; the bone is unchanged.\n\n%1").arg(m));
   });
@@ -77,7 +78,6 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
     }
   });
   connect(&importWatcher_, &QFutureWatcher<ImportOutcome>::finished, this, &MainWindow::importFinished);
-  connect(&contactSearch_, &QFutureWatcher<std::optional<double>>::finished, this, &MainWindow::contactSearchFinished);
   alertSubscription_ = session_->document().observeNode(session_->alerts()->id(), [this] { updateStatus(); });
   updateStatus();
   updateTitle();

@@ -65,7 +65,7 @@ class MainWindow : public QMainWindow {
   void saveBoneAs(const QString& path);
   // Depth below the first contact along the axis (searched on a worker, then fed in feed steps).
   void reamToDepth(double depthMm);
-  bool contactSearchRunning() const { return contactSearch_.isRunning() || pendingDepth_.has_value(); }
+  bool contactSearchRunning() const { return pendingDepth_.has_value(); }
   double lastApproachMm() const { return lastApproachMm_; }  // of the last reamToDepth (tests)
   // Feed along the axis by `mm` from where the last queued step ends, in feed steps.
   void feedBy(double mm);
@@ -105,7 +105,7 @@ class MainWindow : public QMainWindow {
   void editRenderSettings();
   void askReamToDepth();
   void askFeedBy();
-  void contactSearchFinished();
+  void contactSearched(const ContactSearch& result);
   Pose targetPose() const;
   void buildVolumeImport();  // menu actions, status label, other bones (MainWindowCtImport.cpp)
   void updateBoneFrame();
@@ -138,10 +138,8 @@ class MainWindow : public QMainWindow {
   struct PendingDepth {
     Pose start;
     double depthMm;
-    std::uint64_t boneRevision;
   };
-  QFutureWatcher<std::optional<double>> contactSearch_;
-  std::optional<PendingDepth> pendingDepth_;
+  std::optional<PendingDepth> pendingDepth_;  // a "ream to depth" waiting for its contact search
   double lastApproachMm_ = -1;
   QString importPath_;
   QString boneName_;

@@ -4,7 +4,6 @@
 #include <QInputDialog>
 #include <QSettings>
 #include <QStatusBar>
-#include <QtConcurrent>
 #include <cmath>
 #include <utility>
 
@@ -45,44 +44,39 @@ void MainWindow::feedBy(double mm) {
   session_->runSteps(reamToDepthPoses(targetPose(), 0.0, mm, feedStep_->value()));
 }
 
-// Depth below the first contact: the contact is searched on a worker (it builds a BVH of the bone), then
-// the reamer moves to it and feeds in feed steps.
+// Depth below the first contact: the session searches the contact on its worker, with the collision
+// structure that already follows the bone, then the reamer moves to it and feeds in feed steps.
 void MainWindow::reamToDepth(double depthMm) {
-  if (!(depthMm > 0) || contactSearch_.isRunning()) return;
-  const auto volume = session_->reamer()->cuttingVolume();
-  if (!volume || session_->bone()->current().empty()) {
+  if (!(depthMm > 0) || pendingDepth_) return;
+  if (!session_->reamer()->cuttingVolume() || session_->bone()->current().empty()) {
     showError(tr("Ream to depth"), tr("There is no bone or no reamer to ream with."));
     return;
   }
   const Pose start = targetPose();
-  const BoneState bone = session_->bone()->current();
-  const std::uint64_t revision = session_->bone()->currentRevision();
   statusBar()->showMessage(tr("Searching the first contact along the reamer axis…"));
-  const ReamerSpec spec = session_->reamer()->spec();
-  contactSearch_.setFuture(QtConcurrent::run([bone, volume, start, spec]() -> std::optional<double> {
-    return advanceToContactMm(bone, *volume, start, kContactSearchMm, &spec);
-  }));
-  pendingDepth_ = {start, depthMm, revision};
+  pendingDepth_ = PendingDepth{start, depthMm};
+  session_->searchContactAlongAxis(start, kContactSearchMm);
 }
 
-void MainWindow::contactSearchFinished() {
-  statusBar()->clearMessage();
+void MainWindow::contactSearched(const ContactSearch& result) {
   const std::optional<PendingDepth> pending = std::exchange(pendingDepth_, std::nullopt);
-  std::optional<double> approach;
-  try {
-    approach = contactSearch_.result();
-  } catch (const std::exception& e) {
-    showError(tr("Ream to depth"), QString::fromStdString(e.what()));
-    return;
+  if (!pending) return;
+  statusBar()->clearMessage();
+  switch (result.outcome) {
+    case ContactSearch::Outcome::Dropped:  // the bone changed or the user moved on first
+      return;
+    case ContactSearch::Outcome::Failed:
+      showError(tr("Ream to depth"), result.error);
+      return;
+    case ContactSearch::Outcome::NoneInReach:
+      showError(tr("Ream to depth"),
+                tr("The reamer meets no bone within %1 mm along its axis: aim it at the bone first.").arg(kContactSearchMm));
+      return;
+    case ContactSearch::Outcome::Found:
+      lastApproachMm_ = result.approachMm;
+      session_->runSteps(reamToDepthPoses(pending->start, result.approachMm, pending->depthMm, feedStep_->value()));
+      return;
   }
-  if (!pending || session_->bone()->currentRevision() != pending->boneRevision) return;  // the bone changed
-  if (!approach) {
-    showError(tr("Ream to depth"),
-              tr("The reamer meets no bone within %1 mm along its axis: aim it at the bone first.").arg(kContactSearchMm));
-    return;
-  }
-  lastApproachMm_ = *approach;
-  session_->runSteps(reamToDepthPoses(pending->start, *approach, pending->depthMm, feedStep_->value()));
 }
 
 void MainWindow::askReamToDepth() {

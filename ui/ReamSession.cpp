@@ -1,5 +1,7 @@
 #include "ReamSession.h"
 
+#include <algorithm>
+
 #include <QElapsedTimer>
 #include <QEventLoop>
 #include <QTimer>
@@ -35,7 +37,7 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
 }
 
 ReamSession::~ReamSession() {
-  queued_.clear();
+  queued_.clear();  // nobody to answer
   latestUserPose_.reset();
   if (control_) control_->stop = true;  // a long swing stops at its next Boolean
   if (running_) watcher_.waitForFinished();  // the job uses engine_
@@ -96,7 +98,7 @@ void ReamSession::moveReamer(const Pose& pose, bool moved) {
   reamer_->setPose(pose);  // the view follows at once; the step itself is computed on the worker
   if (!engine_) return;
   if (!queued_.empty()) {  // a move by hand interrupts a feed sequence
-    queued_.clear();
+    clearQueue();
     sequenceDone_ = sequenceTotal_ = 0;
     Q_EMIT progress(0, 0);
   }
@@ -122,18 +124,41 @@ void ReamSession::frameShown() {
 void ReamSession::runSteps(const std::vector<Pose>& poses) {
   if (!engine_ || poses.empty()) return;
   if (latestUserPose_) {  // keep the order: the pending move by hand first
-    queued_.push_back(*latestUserPose_);
+    queued_.push_back({*latestUserPose_, std::nullopt});
     latestUserPose_.reset();
   }
-  queued_.insert(queued_.end(), poses.begin(), poses.end());
+  for (const Pose& p : poses) queued_.push_back({p, std::nullopt});
   sequenceTotal_ += static_cast<int>(poses.size());
   Q_EMIT progress(sequenceDone_, sequenceTotal_);
   startNext();
 }
 
+void ReamSession::searchContactAlongAxis(const Pose& start, double maxMm) {
+  if (!engine_ || !(maxMm > 0)) {
+    ContactSearch r;
+    r.outcome = ContactSearch::Outcome::Failed;
+    r.error = tr("There is no reamer or no bone to search along.");
+    Q_EMIT contactSearched(r);
+    return;
+  }
+  if (latestUserPose_) {  // keep the order: the pending move by hand first
+    queued_.push_back({*latestUserPose_, std::nullopt});
+    latestUserPose_.reset();
+  }
+  queued_.push_back({start, maxMm});
+  startNext();
+}
+
+void ReamSession::clearQueue() {
+  const bool searchQueued =
+      std::any_of(queued_.begin(), queued_.end(), [](const QueuedStep& q) { return q.searchMm.has_value(); });
+  queued_.clear();
+  if (searchQueued) Q_EMIT contactSearched(ContactSearch{});  // Dropped
+}
+
 void ReamSession::cancelQueued() {
   if (running_ && control_) control_->stop = true;
-  queued_.clear();
+  clearQueue();
   latestUserPose_.reset();
   waitingForFrame_ = false;
   sequenceDone_ = sequenceTotal_ = 0;
@@ -143,7 +168,7 @@ void ReamSession::cancelQueued() {
 
 Pose ReamSession::targetPose() const {
   if (latestUserPose_) return *latestUserPose_;
-  if (!queued_.empty()) return queued_.back();
+  if (!queued_.empty()) return queued_.back().pose;
   if (running_ && lastComputedPose_) return *lastComputedPose_;
   return reamer_->pose();
 }
@@ -172,8 +197,13 @@ void ReamSession::startNext() {
   Pose pose;
   bool moved = true;  // queued steps (feeds, ream to depth, plans) follow a path
   if (!queued_.empty()) {
-    pose = queued_.front();
+    const QueuedStep next = queued_.front();
     queued_.pop_front();
+    if (next.searchMm) {
+      startSearch(next.pose, *next.searchMm);
+      return;
+    }
+    pose = next.pose;
   } else {
     pose = *latestUserPose_;
     moved = latestUserMoved_;
@@ -207,10 +237,56 @@ void ReamSession::startNext() {
   }));
 }
 
+// A contact search runs on the worker like a step (one job at a time: the engine's structures are not shared
+// between threads) but moves nothing and commits nothing.
+void ReamSession::startSearch(const Pose& start, double maxMm) {
+  running_ = true;
+  Q_EMIT busyChanged(true);
+  ReamEngine* engine = engine_.get();
+  const BoneState state = bone_->current();
+  const std::uint64_t revision = bone_->currentRevision();
+  control_.reset();
+  watcher_.setFuture(QtConcurrent::run([engine, state, revision, start, maxMm] {
+    StepResult r;
+    r.revision = revision;
+    r.searchMm = maxMm;
+    QElapsedTimer timer;
+    timer.start();
+    try {
+      r.approachMm = engine->advanceToContactMm(state, revision, start, maxMm);
+    } catch (const std::exception& e) {
+      r.error = QString::fromStdString(e.what());
+    }
+    r.computeMs = timer.nsecsElapsed() / 1e6;
+    return r;
+  }));
+}
+
+void ReamSession::answerSearch(const StepResult& r) {
+  ContactSearch answer;
+  if (!r.error.isEmpty()) {
+    answer.outcome = ContactSearch::Outcome::Failed;
+    answer.error = r.error;
+  } else if (r.revision != bone_->currentRevision()) {
+    answer.outcome = ContactSearch::Outcome::Dropped;  // the bone changed while it ran (undo, a new bone)
+  } else if (r.approachMm) {
+    answer.outcome = ContactSearch::Outcome::Found;
+    answer.approachMm = *r.approachMm;
+  } else {
+    answer.outcome = ContactSearch::Outcome::NoneInReach;
+  }
+  Q_EMIT contactSearched(answer);
+}
+
 void ReamSession::finished() {
   running_ = false;
   progressTimer_->stop();
   StepResult r = watcher_.result();
+  if (r.searchMm) {
+    answerSearch(r);
+    startNext();
+    return;
+  }
   if (r.cancelled) {
     // Stop: the step never happened, so the next one sweeps from where the bone was last cut and, unless a
     // newer move is pending, the reamer goes back there. Stopped because the bone changed (undo, another
@@ -222,7 +298,7 @@ void ReamSession::finished() {
     }
   } else if (!r.error.isEmpty()) {
     // Stop the rest of a queued sequence: its steps would meet the same problem (one message, not one per step).
-    queued_.clear();
+    clearQueue();
     sequenceDone_ = sequenceTotal_ = 0;
     Q_EMIT progress(0, 0);
     Q_EMIT engineError(r.error);

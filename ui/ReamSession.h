@@ -29,7 +29,22 @@ namespace reamsim::ui {
 
 class PluginHost;
 
+// The answer to ReamSession::searchContactAlongAxis.
+struct ContactSearch {
+  enum class Outcome {
+    Found,        // approachMm: how far the reamer advances before it first touches the bone (0: touching)
+    NoneInReach,  // nothing met within the search's reach
+    Dropped,      // not answered: the bone changed or the queue was cleared (a move by hand, Stop, undo) first
+    Failed,       // the query threw: error
+  };
+  Outcome outcome = Outcome::Dropped;
+  double approachMm = 0;
+  QString error;
+};
+
 struct StepResult {
+  std::optional<double> searchMm;  // a contact search along the axis (no step): how far it looked
+  std::optional<double> approachMm;  // its answer
   ReamComputation computation;
   QString error;           // the engine threw: nothing was computed
   bool cancelled = false;  // stopped between the Booleans of a swept turn: nothing was computed
@@ -67,6 +82,10 @@ class ReamSession : public QObject {
   // was (keys, drag), so a sideways translation cuts the volume it swept; false: it was placed here.
   void moveReamer(const Pose& pose, bool moved = false);
   void runSteps(const std::vector<Pose>& poses);  // every step runs (feed, ream to depth, plan)
+  // Queues a search for the first contact of the reamer advancing from `start` along its axis (up to
+  // maxMm): run on the worker after the steps queued before it, against the bone they leave, on the
+  // engine's own collision structure (no tree is built for it). Answered by contactSearched.
+  void searchContactAlongAxis(const Pose& start, double maxMm);
   // Drops the queued steps and stops the running one between two of its Booleans (a long swing is a chain
   // of them): a stopped step leaves the bone as it was and the reamer where that step started.
   void cancelQueued();
@@ -95,11 +114,15 @@ class ReamSession : public QObject {
   // How far the running step has got when it is a chain of Booleans (a swept turn), every kProgressMs.
   void stepProgress(int booleansDone, int booleansTotal);
   void boneReplaced();
+  void contactSearched(const ContactSearch& result);
 
  private:
   void startNext();
   void finished();
   void rebuildEngine();
+  void clearQueue();  // drops the queued steps; a queued contact search is answered Dropped
+  void startSearch(const Pose& start, double maxMm);
+  void answerSearch(const StepResult& r);
 
   const PluginHost& plugins_;
   Document document_;
@@ -116,7 +139,11 @@ class ReamSession : public QObject {
   std::unique_ptr<ReamEngine> engine_;
   QFutureWatcher<StepResult> watcher_;
   bool running_ = false;
-  std::deque<Pose> queued_;
+  struct QueuedStep {
+    Pose pose;
+    std::optional<double> searchMm;  // set: a contact search from `pose` along its axis, not a step
+  };
+  std::deque<QueuedStep> queued_;
   std::optional<Pose> latestUserPose_;
   bool latestUserMoved_ = false;
   bool lastStepSwept_ = false;

@@ -27,6 +27,7 @@
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/mesh/MeshIO.h"
 #include "reamsim/mesh/TriangleMesh.h"
+#include "reamsim/ream/Approach.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/LocalCutBackend.h"
@@ -245,6 +246,44 @@ nlohmann::json movesPastBone(const TriangleMesh& bone, const ReamerSpec& spec, c
           {"hull_median_ms", buildMedian},
           {"hull_p95_ms", percentile(buildMs, 0.95)},
           {"ratio", skipMedian > 0 ? buildMedian / skipMedian : 0.0}};
+}
+
+// "Ream to depth"'s contact search as the GUI makes it (ReamEngine::advanceToContactMm on the engine that
+// has been reaming: its tree follows the bone) against the free advanceToContactMm, which builds a tree for
+// the call (what the GUI did before session 30); from 1 to 5 mm before the first pose, alternating.
+nlohmann::json reamToDepthSearch(const TriangleMesh& bone, const ReamerSpec& spec, const TriangleMesh& localTool,
+                                 const Pose& first) {
+  const BoneState state = BoneState::fromMesh(bone);
+  auto volume = std::make_shared<const TriangleMesh>(localTool);
+  ReamEngine engine(volume, makeBvhContactBackend(false), CutBackendFactory{}, spec);
+  engine.compute(state, 1, first, 0);  // a session's engine has answered a step: its tree exists
+  std::vector<double> engineMs, freshMs;
+  double maxDiffMm = 0;
+  std::size_t found = 0;
+  for (int i = 0; i < 9; ++i) {
+    const Pose from = advancedAlongAxis(first, -1.0 - 0.5 * i);
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto viaEngine = engine.advanceToContactMm(state, 1, from, 100);
+    const auto t1 = std::chrono::steady_clock::now();
+    const auto fresh = advanceToContactMm(state, localTool, from, 100, &spec);
+    const auto t2 = std::chrono::steady_clock::now();
+    engineMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    freshMs.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
+    if (viaEngine.has_value() != fresh.has_value()) maxDiffMm = std::numeric_limits<double>::infinity();
+    if (viaEngine && fresh) {
+      maxDiffMm = std::max(maxDiffMm, std::abs(*viaEngine - *fresh));
+      ++found;
+    }
+  }
+  const double engineMedian = percentile(engineMs, 0.5), freshMedian = percentile(freshMs, 0.5);
+  return {{"what", "the first contact along the reamer axis (ream to depth) on the reaming engine's own tree, against "
+                   "a tree built for each search (alternating, one process)"},
+          {"searches", engineMs.size()},
+          {"found", found},
+          {"max_diff_mm", maxDiffMm},
+          {"engine_median_ms", engineMedian},
+          {"fresh_tree_median_ms", freshMedian},
+          {"ratio", engineMedian > 0 ? freshMedian / engineMedian : 0.0}};
 }
 
 double smallestAngleDeg(const TriangleMesh& m, const Triangle& t) {
@@ -673,6 +712,7 @@ int runBenchCut(const std::vector<std::string>& args) {
   if (a.has("loop")) {
     out["loop"] = appLoop(bone, spec, localTool, poses, !a.has("no-cleanup"));
     out["loop"]["moves_past_bone"] = movesPastBone(bone, spec, localTool, poses.front());
+    out["loop"]["ream_to_depth_search"] = reamToDepthSearch(bone, spec, localTool, poses.front());
     out["loop"]["volume_end_diff_rel"] =
         std::abs(out["loop"]["volume_end_mm3"].get<double>() - engine.volumeMm3()) / engine.volumeMm3();
   }

@@ -1,5 +1,6 @@
-// Reaming actions through the real window: "Ream to depth" measures from the first contact; a move by hand
-// during a queued feed starts where the reamer is shown (it interrupts the feed, it does not jump to its end).
+// Reaming actions through the real window: "Ream to depth" measures from the first contact (searched after
+// the steps queued before it); a move by hand during a queued feed starts where the reamer is shown (it
+// interrupts the feed, it does not jump to its end).
 #include <QAction>
 #include <QDockWidget>
 #include <QLabel>
@@ -109,6 +110,52 @@ TEST(GuiReaming, ReamToDepthWithNoBoneAheadSaysSo) {
   ASSERT_TRUE(f.session().waitIdle(60000));
   EXPECT_TRUE(w.lastError().contains("meets no bone")) << w.lastError().toStdString();
   EXPECT_EQ(f.session().log()->size(), cuts);
+}
+
+// "Ream to depth" asked while steps are still queued searches after them, on the bone they leave: here a cut
+// 1 mm past the first contact and a move back to 1 mm before it, so the reamer meets its own cavity's
+// floor 2 mm ahead (the bone before those steps would say 1 mm).
+TEST(GuiReaming, ReamToDepthBehindQueuedStepsSearchesTheBoneTheyLeave) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const Pose start = s.plan()->poses().front();
+  s.moveReamer(start);
+  ASSERT_TRUE(s.waitIdle(60000));
+  const std::size_t cutsBefore = s.log()->size();
+  const Pose inside = pastFirstContact(s, start, 1.0), backedOut = pastFirstContact(s, start, -1.0);
+  w.setSteps(0.5, 2.0, 0.25);
+  s.runSteps({inside, backedOut});
+  w.reamToDepth(0.5);  // from where the queued steps end: backedOut
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !w.contactSearchRunning(); }, 60000));
+  ASSERT_TRUE(s.waitIdle(120000));
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_NEAR(w.lastApproachMm(), 2.0, 0.01);
+  EXPECT_GT(s.log()->size(), cutsBefore + 1);  // the cut at `inside`, then the feed below the floor
+  EXPECT_NEAR(dot(s.reamer()->pose().tip - backedOut.tip, normalized(backedOut.axis)), w.lastApproachMm() + 0.5, 1e-9);
+}
+
+// A move by hand clears the queue, a contact search waiting in it too: the "ream to depth" is dropped
+// without a message and nothing is fed.
+TEST(GuiReaming, AHandMoveDropsAQueuedReamToDepth) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const Pose start = s.plan()->poses().front();
+  s.moveReamer(start);
+  ASSERT_TRUE(s.waitIdle(60000));
+  s.runSteps({pastFirstContact(s, start, 1.0), pastFirstContact(s, start, 1.25)});
+  w.reamToDepth(0.5);
+  ASSERT_TRUE(w.contactSearchRunning());
+  const Pose away = advancedAlongAxis(start, -5.0);
+  s.moveReamer(away);
+  EXPECT_FALSE(w.contactSearchRunning());
+  ASSERT_TRUE(s.waitIdle(120000));
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_EQ(w.lastApproachMm(), -1);  // never answered
+  EXPECT_EQ(s.reamer()->pose().tip, away.tip);
 }
 
 TEST(GuiReaming, HandMoveDuringAFeedStartsWhereTheReamerIsShown) {

@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <future>
+#include <optional>
 #include <stdexcept>
 
 #include "ReamFixture.h"
+#include "reamsim/ream/Approach.h"
 #include "reamsim/ream/ReamStep.h"
 #include "reamsim/tools/Primitives.h"
 
@@ -101,6 +103,48 @@ TEST(ReamEngine, CumulativeFromInitialVolumeIgnoresUndoneCuts) {
   const CutLogEntry again = step(-0.5, 1);  // the same cut again: cumulative is one cut, not two
   EXPECT_NEAR(again.cumulativeMm3, first.removedMm3, 1e-6 * first.removedMm3);
   EXPECT_EQ(s.log->size(), 2u);
+}
+
+// "Ream to depth"'s search on the engine's own collision structure, which follows the bone from revision to
+// revision, gives what a tree built afresh for the bone gives: before and after another engine's cuts (the
+// searching reamer, 10 mm across, fits in their 20 mm hole and meets its floor), from the side, pointing
+// away, after an undo; the thesis's rays (no exact motion query) get the same answers through a tree built
+// for the call.
+TEST(ReamEngine, ContactSearchAlongTheAxisFollowsTheBone) {
+  test::ReamScene s(block(), test::flatReamer20());
+  ReamEngine cutter = referenceEngine(*s.reamer);
+  ReamerSpec narrow = test::flatReamer20();
+  narrow.diameterMm = 10;
+  const auto narrowSolid = std::make_shared<const TriangleMesh>(buildCuttingSolid(narrow));
+  ReamEngine bvh(narrowSolid, makeBvhContactBackend(), CutBackendFactory{}, narrow);
+  ReamEngine rays(narrowSolid, makeThesisContactBackend(), CutBackendFactory{}, narrow);
+  auto search = [&](const Pose& from, const char* what) -> std::optional<double> {
+    const auto expected = advanceToContactMm(s.bone->current(), *narrowSolid, from, 50, &narrow);
+    for (ReamEngine* e : {&bvh, &rays}) {
+      const auto got = e->advanceToContactMm(s.bone->current(), s.bone->currentRevision(), from, 50);
+      EXPECT_EQ(got.has_value(), expected.has_value()) << what;
+      if (got && expected) {
+        EXPECT_NEAR(*got, *expected, 1e-9) << what;
+      }
+    }
+    return expected;
+  };
+  const Pose tilted{{7.5, -3, 4}, normalized(Vec3{0.3, -0.2, -1}), 0};
+  EXPECT_NEAR(search(at(3.0), "before any cut").value_or(-1), 3.0, 1e-9);
+  EXPECT_FALSE(search(Pose{{0, 0, 15}, {0, 0, 1}, 0}, "pointing away").has_value());
+  const double tiltedBefore = search(tilted, "tilted, before the cuts").value_or(-1);
+  std::size_t i = 0;
+  for (double z : {-0.5, -1.2}) {
+    ReamComputation c = cutter.compute(s.bone->current(), s.bone->currentRevision(), at(z), 0.5);
+    const CutLogEntry e = commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, c, i++);
+    ASSERT_TRUE(e.boneStateId);
+    cutter.adopt(e.boneStateId);
+  }
+  EXPECT_NEAR(search(at(3.0), "into the hole").value_or(-1), 4.2, 1e-6);  // its floor is at -1.2
+  EXPECT_EQ(search(at(-1.2), "on the floor").value_or(-1), 0.0);
+  EXPECT_GT(search(tilted, "tilted, into the hole's side").value_or(-1), tiltedBefore);
+  ASSERT_TRUE(s.bone->undo());
+  EXPECT_NEAR(search(at(3.0), "after an undo").value_or(-1), 3.5, 1e-6);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // updates (a cut touches a few thousand slots; the tree is not rebuilt), and a ReamerModel built once from
 // the reamer's cutting volume.
 #include <memory>
+#include <optional>
 
 #include "reamsim/collision/BoneCollider.h"
 #include "reamsim/collision/BroadPhase.h"
@@ -13,6 +14,15 @@ namespace {
 class BvhContactBackend final : public ContactBackend {
  public:
   explicit BvhContactBackend(bool axialDepth) : axialDepth_(axialDepth) {}
+
+  std::optional<MoveContact> firstContactAlong(const BoneState& bone, std::uint64_t revision,
+                                               const std::shared_ptr<const TriangleMesh>& cuttingVolumeLocal,
+                                               const ReamerSpec* reamerSpec, const RigidTransform& from,
+                                               const RigidTransform& to) override {
+    syncReamer(cuttingVolumeLocal, reamerSpec);
+    syncBone(bone, revision);
+    return moveContact(collider_->firstContact(*reamer_, from, to));
+  }
 
   ContactResult query(const ContactInput& in) override {
     syncReamer(in.cuttingVolumeLocal, in.reamerSpec);
@@ -32,14 +42,7 @@ class BvhContactBackend final : public ContactBackend {
     if (in.movedFrom) {
       // The move as a whole: exact, so a fast move through thin bone is seen, and one that passes beside
       // the bone is known to miss it (the loop then skips its swept hull).
-      const FirstContactResult first = collider_->firstContact(*reamer_, *in.movedFrom, in.pose);
-      MoveContact& m = r.alongMove.emplace();
-      m.reached = first.hit;
-      if (first.hit) {
-        m.t = first.t;
-        m.point = first.point;
-        m.normal = first.normal;
-      }
+      r.alongMove = moveContact(collider_->firstContact(*reamer_, *in.movedFrom, in.pose));
     }
     if (!r.boxesOverlap) {
       r.solidOverlapsBone = false;  // disjoint boxes
@@ -58,6 +61,17 @@ class BvhContactBackend final : public ContactBackend {
   }
 
  private:
+  static MoveContact moveContact(const FirstContactResult& first) {
+    MoveContact m;
+    m.reached = first.hit;
+    if (first.hit) {
+      m.t = first.t;
+      m.point = first.point;
+      m.normal = first.normal;
+    }
+    return m;
+  }
+
   void syncReamer(const std::shared_ptr<const TriangleMesh>& solid, const ReamerSpec* spec) {
     if (solid == reamerSource_) return;
     reamer_ = std::make_unique<ReamerModel>(ReamerModel::fromCuttingVolume(*solid, spec));

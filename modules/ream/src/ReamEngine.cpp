@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "reamsim/csg/SweptVolume.h"
+#include "reamsim/ream/Approach.h"
 
 namespace reamsim {
 namespace {
@@ -51,6 +52,19 @@ ReamEngine::ReamEngine(std::shared_ptr<const TriangleMesh> cuttingVolumeLocal, s
 ReamEngine::~ReamEngine() = default;
 
 void ReamEngine::prepare(const BoneState& bone, std::uint64_t revision) { sync(bone, revision); }
+
+std::optional<double> ReamEngine::advanceToContactMm(const BoneState& bone, std::uint64_t revision, const Pose& start,
+                                                     double maxMm) {
+  if (!(maxMm > 0) || !std::isfinite(maxMm)) throw std::invalid_argument("advanceToContactMm: maxMm must be > 0");
+  if (bone.empty()) return std::nullopt;
+  const ReamerSpec* spec = spec_ ? &*spec_ : nullptr;
+  if (contact_) {
+    const auto along = contact_->firstContactAlong(bone, revision, cuttingVolume_, spec, toTransform(start),
+                                                   toTransform(advancedAlongAxis(start, maxMm)));
+    if (along) return along->reached ? std::optional<double>(along->t * maxMm) : std::nullopt;
+  }
+  return reamsim::advanceToContactMm(bone, *cuttingVolume_, start, maxMm, spec);  // builds a tree for this call
+}
 
 // The cutter keeps exact coordinates between cuts; when the bone changed underneath (undo, a new import,
 // a dropped computation) it restarts from the given state.

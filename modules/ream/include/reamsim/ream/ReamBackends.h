@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "reamsim/collision/ContactResult.h"
@@ -40,6 +41,15 @@ class ContactBackend {
   virtual ~ContactBackend() = default;
   virtual ContactResult query(const ContactInput& input) = 0;
   virtual bool needsMesh() const { return false; }  // wants ContactInput::boneMesh (the thesis's rays)
+  // The exact first contact of the cutting solid moving from `from` to `to` (reamer-local -> bone), on the
+  // engine's own structure brought up to `bone` (so "ream to depth" searches without building one). Engines
+  // without an exact motion query return nullopt (the caller then builds one: advanceToContactMm).
+  virtual std::optional<MoveContact> firstContactAlong(const BoneState& /*bone*/, std::uint64_t /*revision*/,
+                                                       const std::shared_ptr<const TriangleMesh>& /*cuttingVolumeLocal*/,
+                                                       const ReamerSpec* /*reamerSpec*/, const RigidTransform& /*from*/,
+                                                       const RigidTransform& /*to*/) {
+    return std::nullopt;
+  }
 };
 
 // A cutting engine holding one bone (it may keep its own exact representation between cuts).

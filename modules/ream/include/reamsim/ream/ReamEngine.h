@@ -73,6 +73,12 @@ class ReamEngine {
   // stop raised, the step throws ReamCancelled, so a long swing stops within one Boolean.
   ReamComputation compute(const BoneState& bone, std::uint64_t revision, const Pose& pose, double stepMm,
                           const Pose* sweptFrom = nullptr, StepControl* control = nullptr);
+  // How far the reamer can advance from `start` along its axis, up to maxMm, before its cutting solid first
+  // touches `bone` (0: touching already; nullopt: nothing within maxMm): the start of "ream to depth". Asks
+  // the contact engine's own structure, which follows the bone from cut to cut, so the search costs a query
+  // rather than a tree built for it (~0.6 s at 400k faces; the free advanceToContactMm, used by engines
+  // without an exact motion query). A call like compute: one at a time.
+  std::optional<double> advanceToContactMm(const BoneState& bone, std::uint64_t revision, const Pose& start, double maxMm);
   // The `next` of the last compute was committed to the bone history as `revision`.
   void adopt(std::uint64_t revision);
 
