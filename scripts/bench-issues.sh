@@ -54,6 +54,10 @@ if "median_ms" in d:  # bench cut
         if mp:
             line += (f"; moves past the bone {mp['skip_median_ms']:.2f} ms against {mp['hull_median_ms']:.2f} with the hull "
                      f"({mp['ratio']:.1f}x, {mp['moves_reaching_bone']} of {mp['moves']} reached it)")
+        rd = d["loop"].get("ream_to_depth_search")
+        if rd:
+            line += (f"; ream-to-depth search {rd['engine_median_ms']:.3f} ms against {rd['fresh_tree_median_ms']:.1f} "
+                     f"with a tree built for it ({rd['ratio']:.0f}x, max diff {rd['max_diff_mm']:.1e} mm)")
     print(line)
 else:  # bench collision
     q = d["queries"]

@@ -78,6 +78,7 @@ void ReamSession::setReamer(const ReamerSpec& spec) {
 
 void ReamSession::rebuildEngine() {
   engine_.reset();
+  ++engineGeneration_;
   if (!reamer_->cuttingVolume() || bone_->current().empty()) return;
   std::unique_ptr<ContactBackend> contact = plugins_.collision() ? plugins_.collision()->createContactBackend() : nullptr;
   CutBackendFactory cut = plugins_.csg() && boneCuttable_ ? plugins_.csg()->cutBackendFactory() : CutBackendFactory{};
@@ -244,11 +245,12 @@ void ReamSession::startSearch(const Pose& start, double maxMm) {
   Q_EMIT busyChanged(true);
   ReamEngine* engine = engine_.get();
   const BoneState state = bone_->current();
-  const std::uint64_t revision = bone_->currentRevision();
+  const std::uint64_t revision = bone_->currentRevision(), generation = engineGeneration_;
   control_.reset();
-  watcher_.setFuture(QtConcurrent::run([engine, state, revision, start, maxMm] {
+  watcher_.setFuture(QtConcurrent::run([engine, state, revision, generation, start, maxMm] {
     StepResult r;
     r.revision = revision;
+    r.engineGeneration = generation;
     r.searchMm = maxMm;
     QElapsedTimer timer;
     timer.start();
@@ -267,8 +269,8 @@ void ReamSession::answerSearch(const StepResult& r) {
   if (!r.error.isEmpty()) {
     answer.outcome = ContactSearch::Outcome::Failed;
     answer.error = r.error;
-  } else if (r.revision != bone_->currentRevision()) {
-    answer.outcome = ContactSearch::Outcome::Dropped;  // the bone changed while it ran (undo, a new bone)
+  } else if (r.revision != bone_->currentRevision() || r.engineGeneration != engineGeneration_) {
+    answer.outcome = ContactSearch::Outcome::Dropped;  // the bone or the reamer changed while it ran
   } else if (r.approachMm) {
     answer.outcome = ContactSearch::Outcome::Found;
     answer.approachMm = *r.approachMm;

@@ -34,7 +34,7 @@ struct ContactSearch {
   enum class Outcome {
     Found,        // approachMm: how far the reamer advances before it first touches the bone (0: touching)
     NoneInReach,  // nothing met within the search's reach
-    Dropped,      // not answered: the bone changed or the queue was cleared (a move by hand, Stop, undo) first
+    Dropped,      // not answered: the bone or the reamer changed, or the queue was cleared (a move by hand, Stop, undo)
     Failed,       // the query threw: error
   };
   Outcome outcome = Outcome::Dropped;
@@ -45,6 +45,7 @@ struct ContactSearch {
 struct StepResult {
   std::optional<double> searchMm;  // a contact search along the axis (no step): how far it looked
   std::optional<double> approachMm;  // its answer
+  std::uint64_t engineGeneration = 0;  // of the engine that answered (another reamer: a new engine)
   ReamComputation computation;
   QString error;           // the engine threw: nothing was computed
   bool cancelled = false;  // stopped between the Booleans of a swept turn: nothing was computed
@@ -137,6 +138,7 @@ class ReamSession : public QObject {
   double initialVolume_ = 0;
 
   std::unique_ptr<ReamEngine> engine_;
+  std::uint64_t engineGeneration_ = 0;  // counts rebuildEngine calls
   QFutureWatcher<StepResult> watcher_;
   bool running_ = false;
   struct QueuedStep {
