@@ -33,6 +33,15 @@ Pose turned60(const Pose& p) {
   return q;
 }
 
+// Places the reamer at the plan's first pose (in front of the glenoid, not touching) and waits for that
+// step; returns the pose.
+Pose placeAtThePlanStart(ReamSession& s) {
+  const Pose start = s.plan()->poses().front();
+  s.moveReamer(start);
+  EXPECT_TRUE(s.waitIdle(60000));
+  return start;
+}
+
 // Places the reamer (nothing swept) `mm` past where it first touches the bone in front of the glenoid and
 // waits for that step; returns the pose.
 Pose placeInTheBone(ReamSession& s, double mm) {
@@ -120,9 +129,7 @@ TEST(GuiReaming, ReamToDepthBehindQueuedStepsSearchesTheBoneTheyLeave) {
   GuiFixture f;
   MainWindow& w = *f.window;
   ReamSession& s = f.session();
-  const Pose start = s.plan()->poses().front();
-  s.moveReamer(start);
-  ASSERT_TRUE(s.waitIdle(60000));
+  const Pose start = placeAtThePlanStart(s);
   const std::size_t cutsBefore = s.log()->size();
   const Pose inside = pastFirstContact(s, start, 1.0), backedOut = pastFirstContact(s, start, -1.0);
   w.setSteps(0.5, 2.0, 0.25);
@@ -143,9 +150,7 @@ TEST(GuiReaming, AHandMoveDropsAQueuedReamToDepth) {
   GuiFixture f;
   MainWindow& w = *f.window;
   ReamSession& s = f.session();
-  const Pose start = s.plan()->poses().front();
-  s.moveReamer(start);
-  ASSERT_TRUE(s.waitIdle(60000));
+  const Pose start = placeAtThePlanStart(s);
   s.runSteps({pastFirstContact(s, start, 1.0), pastFirstContact(s, start, 1.25)});
   w.reamToDepth(0.5);
   ASSERT_TRUE(w.contactSearchRunning());
@@ -163,9 +168,7 @@ TEST(GuiReaming, HandMoveDuringAFeedStartsWhereTheReamerIsShown) {
   GuiFixture f;
   MainWindow& w = *f.window;
   ReamSession& s = f.session();
-  const Pose start = s.plan()->poses().front();
-  s.moveReamer(start);
-  ASSERT_TRUE(s.waitIdle(60000));
+  const Pose start = placeAtThePlanStart(s);
   w.setSteps(0.5, 2.0, 0.2);
   w.feedBy(4.0);  // 20 feed steps queued
   const Pose shown = s.reamer()->pose();
