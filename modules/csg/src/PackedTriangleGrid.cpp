@@ -6,34 +6,22 @@
 
 namespace reamsim::csg {
 
-std::array<int, 3> PackedTriangleGrid::cellOf(const std::array<double, 3>& p) const {
-  std::array<int, 3> c{};
-  for (int i = 0; i < 3; ++i) {
-    const double f = std::floor((p[i] - origin_[i]) * invCell_);
-    c[i] = !(f >= 0) ? 0 : (f >= n_[i] ? n_[i] - 1 : int(f));
-  }
-  return c;
-}
-
 void PackedTriangleGrid::build(const Bounds& domain, std::vector<Box3> boxes, double targetPerCell) {
-  const GridShape g = gridShape(domain, boxes.size(), targetPerCell, 0, TriangleGrid::kMaxCells);
-  origin_ = g.origin;
-  invCell_ = 1.0 / g.cell;
-  n_ = g.n;
+  shape_ = gridShape(domain, boxes.size(), targetPerCell, 0, TriangleGrid::kMaxCells);
   boxes_ = std::move(boxes);
   loCell_.resize(boxes_.size());
   std::vector<std::array<int, 3>> hiCell(boxes_.size());
-  cellStart_.assign(std::size_t(n_[0]) * n_[1] * n_[2] + 1, 0);
+  cellStart_.assign(shape_.cellCount() + 1, 0);
   // Two passes: count each cell's slots, then file them behind the prefix sums.
   auto forCellsOf = [&](std::size_t s, auto&& f) {
     const auto &lo = loCell_[s], &hi = hiCell[s];
     for (int k = lo[2]; k <= hi[2]; ++k)
       for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i) f(index(i, j, k));
+        for (int i = lo[0]; i <= hi[0]; ++i) f(shape_.index(i, j, k));
   };
   for (std::size_t s = 0; s < boxes_.size(); ++s) {
-    loCell_[s] = cellOf(boxes_[s].lo);
-    hiCell[s] = cellOf(boxes_[s].hi);
+    loCell_[s] = shape_.cellOf(boxes_[s].lo);
+    hiCell[s] = shape_.cellOf(boxes_[s].hi);
     forCellsOf(s, [&](std::size_t c) { ++cellStart_[c + 1]; });
   }
   for (std::size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
@@ -46,17 +34,17 @@ void PackedTriangleGrid::build(const Bounds& domain, std::vector<Box3> boxes, do
 void PackedTriangleGrid::query(const Box3& q, std::vector<std::uint32_t>& out) const {
   out.clear();
   if (boxes_.empty()) return;
-  const auto lo = cellOf(q.lo), hi = cellOf(q.hi);
+  const auto lo = shape_.cellOf(q.lo), hi = shape_.cellOf(q.hi);
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)
       for (int i = lo[0]; i <= hi[0]; ++i) {
-        const std::size_t c = index(i, j, k);
+        const std::size_t c = shape_.index(i, j, k);
         for (std::uint32_t e = cellStart_[c]; e < cellStart_[c + 1]; ++e) {
           const std::uint32_t s = slots_[e];
           if (!boxes_[s].overlaps(q)) continue;
           // cellOf is monotone, so the first cell both ranges share is the larger of their first cells.
           const auto& slo = loCell_[s];
-          if (index(std::max(slo[0], lo[0]), std::max(slo[1], lo[1]), std::max(slo[2], lo[2])) == c) out.push_back(s);
+          if (shape_.index(std::max(slo[0], lo[0]), std::max(slo[1], lo[1]), std::max(slo[2], lo[2])) == c) out.push_back(s);
         }
       }
 }

@@ -23,12 +23,7 @@ class PackedTriangleGrid {
   void ray(const std::array<double, 3>& origin, int axis, int dir, std::vector<std::uint32_t>& out) const;
 
  private:
-  std::array<int, 3> cellOf(const std::array<double, 3>& p) const;
-  std::size_t index(int i, int j, int k) const { return (std::size_t(k) * n_[1] + j) * n_[0] + i; }
-
-  std::array<double, 3> origin_{};
-  double invCell_ = 1;
-  std::array<int, 3> n_{1, 1, 1};
+  GridShape shape_;
   std::vector<std::uint32_t> cellStart_;  // cell c holds slots_[cellStart_[c] .. cellStart_[c + 1])
   std::vector<std::uint32_t> slots_;
   std::vector<Box3> boxes_;

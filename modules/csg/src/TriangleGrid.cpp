@@ -21,6 +21,7 @@ GridShape gridShape(const Bounds& domain, std::size_t faces, double targetPerCel
   }
   g.cell = std::max(g.cell, std::cbrt(volume / double(maxCells)));
   for (int i = 0; i < 3; ++i) g.cell = std::max(g.cell, ext[i] / 256.0);
+  g.invCell = 1.0 / g.cell;
   for (int i = 0; i < 3; ++i) {
     g.n[i] = std::max(1, std::min(256, int(std::ceil(ext[i] / g.cell))));
     g.origin[i] = !domain.empty() ? domain.min[i] : 0.0;
@@ -29,28 +30,15 @@ GridShape gridShape(const Bounds& domain, std::size_t faces, double targetPerCel
 }
 
 void TriangleGrid::init(const Bounds& domain, std::size_t faces, double targetPerCell, double surfaceArea) {
-  const GridShape g = gridShape(domain, faces, targetPerCell, surfaceArea, kMaxCells);
-  origin_ = g.origin;
-  cell_ = g.cell;
-  invCell_ = 1.0 / cell_;
-  n_ = g.n;
-  cells_.assign(std::size_t(n_[0]) * n_[1] * n_[2], {});
-  for (int i = 0; i < 3; ++i) nb_[i] = (n_[i] + kBlock - 1) / kBlock;
+  shape_ = gridShape(domain, faces, targetPerCell, surfaceArea, kMaxCells);
+  cells_.assign(shape_.cellCount(), {});
+  for (int i = 0; i < 3; ++i) nb_[i] = (shape_.n[i] + kBlock - 1) / kBlock;
   blockCount_.assign(std::size_t(nb_[0]) * nb_[1] * nb_[2], 0);
   boxes_.clear();
   loCell_.clear();
   present_.clear();
   stamp_.clear();
   epoch_ = 0;
-}
-
-std::array<int, 3> TriangleGrid::cellOf(const std::array<double, 3>& p) const {
-  std::array<int, 3> c{};
-  for (int i = 0; i < 3; ++i) {
-    const double f = std::floor((p[i] - origin_[i]) * invCell_);
-    c[i] = f < 0 ? 0 : (f >= n_[i] ? n_[i] - 1 : int(f));
-  }
-  return c;
 }
 
 template <class F, class KeepBlock>
@@ -140,14 +128,14 @@ void TriangleGrid::query(const Box3& q, const std::function<bool(const Box3&)>& 
                          std::vector<std::uint32_t>& out) {
   beginQuery(out);
   // Block boxes padded by a millionth of a cell: a point on a cell's face may be filed in either cell.
-  const double pad = 1e-6 * cell_, side = kBlock * cell_;
+  const double pad = 1e-6 * shape_.cell, side = kBlock * shape_.cell;
   auto keepBlock = [&](int bi, int bj, int bk) {
     const int b[3] = {bi, bj, bk};
     Box3 box;
     for (int a = 0; a < 3; ++a) {
-      if (b[a] == 0 || (b[a] + 1) * kBlock >= n_[a]) return true;  // border: holds faces beyond the domain
-      box.lo[a] = origin_[a] + b[a] * side - pad;
-      box.hi[a] = origin_[a] + (b[a] + 1) * side + pad;
+      if (b[a] == 0 || (b[a] + 1) * kBlock >= shape_.n[a]) return true;  // border: holds faces beyond the domain
+      box.lo[a] = shape_.origin[a] + b[a] * side - pad;
+      box.hi[a] = shape_.origin[a] + (b[a] + 1) * side + pad;
     }
     return mayHold(box);
   };

@@ -5,6 +5,7 @@
 // domain are clamped to the border cells, so faces created outside it are still found.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -42,11 +43,24 @@ struct Box3 {
 
 // The cells of a uniform grid over `domain`: about `targetPerCell` faces per occupied cell for a surface of
 // `faces` faces (sized by `surfaceArea` when given, else by the box's volume), at most 256 cells along an
-// axis and `maxCells` in all.
+// axis and `maxCells` in all. Both grids (TriangleGrid, PackedTriangleGrid) index their cells through it.
 struct GridShape {
   std::array<double, 3> origin{};
   double cell = 1;
+  double invCell = 1;  // cellOf multiplies (a division per axis showed in profiles); still monotone
   std::array<int, 3> n{1, 1, 1};
+
+  // The cell holding p, clamped to the grid: points beyond the domain (and NaN) fall in the border cells.
+  std::array<int, 3> cellOf(const std::array<double, 3>& p) const {
+    std::array<int, 3> c{};
+    for (int i = 0; i < 3; ++i) {
+      const double f = std::floor((p[i] - origin[i]) * invCell);
+      c[i] = !(f >= 0) ? 0 : (f >= n[i] ? n[i] - 1 : int(f));
+    }
+    return c;
+  }
+  std::size_t index(int i, int j, int k) const { return (std::size_t(k) * n[1] + j) * n[0] + i; }
+  std::size_t cellCount() const { return std::size_t(n[0]) * n[1] * n[2]; }
 };
 GridShape gridShape(const Bounds& domain, std::size_t faces, double targetPerCell, double surfaceArea, std::size_t maxCells);
 
@@ -73,10 +87,10 @@ class TriangleGrid {
   void queryShared(const Box3& query, std::vector<std::uint32_t>& out) const;
 
  private:
-  std::array<int, 3> cellOf(const std::array<double, 3>& p) const;
+  std::array<int, 3> cellOf(const std::array<double, 3>& p) const { return shape_.cellOf(p); }
   // A slot's first cell (its box's lo corner), kept so that shared queries need no cellOf per face found.
-  using CellCoords = std::array<std::uint8_t, 3>;  // n_ <= 256 along every axis
-  std::size_t index(int i, int j, int k) const { return (std::size_t(k) * n_[1] + j) * n_[0] + i; }
+  using CellCoords = std::array<std::uint8_t, 3>;  // shape_.n <= 256 along every axis
+  std::size_t index(int i, int j, int k) const { return shape_.index(i, j, k); }
   // Cells are grouped in blocks of kBlock³ that count the entries of their cells, so that queries skip
   // empty space a block at a time (a tool's box at 400k faces spans ~10⁵ cells, most of them empty).
   static constexpr int kBlock = 4;
@@ -94,10 +108,7 @@ class TriangleGrid {
   void beginQuery(std::vector<std::uint32_t>& out);  // clears out; a new stamp for mark()
   bool mark(std::uint32_t slot);  // true the first time a slot is seen in the current query
 
-  std::array<double, 3> origin_{};
-  double cell_ = 1;
-  double invCell_ = 1;  // cellOf multiplies (a division per axis showed in profiles); still monotone
-  std::array<int, 3> n_{1, 1, 1};
+  GridShape shape_;
   std::array<int, 3> nb_{1, 1, 1};
   std::vector<std::vector<std::uint32_t>> cells_;
   std::vector<std::uint32_t> blockCount_;  // entries in the cells of each block
