@@ -214,48 +214,40 @@ void ReamSession::startNext() {
   const std::optional<Pose> sweptFrom = moved ? lastComputedPose_ : std::nullopt;
   poseBeforeRunning_ = lastComputedPose_;
   lastComputedPose_ = pose;
-  running_ = true;
-  Q_EMIT busyChanged(true);
-  ReamEngine* engine = engine_.get();
-  const BoneState state = bone_->current();  // immutable value: safe on the worker
-  const std::uint64_t revision = bone_->currentRevision();
   control_ = std::make_shared<StepControl>();
   progressTimer_->start();
-  watcher_.setFuture(QtConcurrent::run([engine, state, revision, pose, stepMm, sweptFrom, control = control_] {
-    StepResult r;
-    r.revision = revision;
-    QElapsedTimer timer;
-    timer.start();
-    try {
-      r.computation = engine->compute(state, revision, pose, stepMm, sweptFrom ? &*sweptFrom : nullptr, control.get());
-    } catch (const ReamCancelled&) {
-      r.cancelled = true;
-    } catch (const std::exception& e) {
-      r.error = QString::fromStdString(e.what());
-    }
-    r.computeMs = timer.nsecsElapsed() / 1e6;
-    return r;
-  }));
+  runOnWorker([pose, stepMm, sweptFrom, control = control_](ReamEngine& engine, const BoneState& state,
+                                                            std::uint64_t revision, StepResult& r) {
+    r.computation = engine.compute(state, revision, pose, stepMm, sweptFrom ? &*sweptFrom : nullptr, control.get());
+  });
 }
 
 // A contact search runs on the worker like a step (one job at a time: the engine's structures are not shared
 // between threads) but moves nothing and commits nothing.
 void ReamSession::startSearch(const Pose& start, double maxMm) {
+  control_.reset();
+  runOnWorker([start, maxMm](ReamEngine& engine, const BoneState& state, std::uint64_t revision, StepResult& r) {
+    r.searchMm = maxMm;
+    r.approachMm = engine.advanceToContactMm(state, revision, start, maxMm);
+  });
+}
+
+void ReamSession::runOnWorker(WorkerJob job) {
   running_ = true;
   Q_EMIT busyChanged(true);
   ReamEngine* engine = engine_.get();
-  const BoneState state = bone_->current();
+  const BoneState state = bone_->current();  // immutable value: safe on the worker
   const std::uint64_t revision = bone_->currentRevision(), generation = engineGeneration_;
-  control_.reset();
-  watcher_.setFuture(QtConcurrent::run([engine, state, revision, generation, start, maxMm] {
+  watcher_.setFuture(QtConcurrent::run([engine, state, revision, generation, job = std::move(job)] {
     StepResult r;
     r.revision = revision;
     r.engineGeneration = generation;
-    r.searchMm = maxMm;
     QElapsedTimer timer;
     timer.start();
     try {
-      r.approachMm = engine->advanceToContactMm(state, revision, start, maxMm);
+      job(*engine, state, revision, r);
+    } catch (const ReamCancelled&) {
+      r.cancelled = true;
     } catch (const std::exception& e) {
       r.error = QString::fromStdString(e.what());
     }

@@ -13,6 +13,7 @@
 #include <QTimer>
 #include <QUndoStack>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -123,6 +124,10 @@ class ReamSession : public QObject {
   void rebuildEngine();
   void clearQueue();  // drops the queued steps; a queued contact search is answered Dropped
   void startSearch(const Pose& start, double maxMm);
+  // Runs `job` on the worker against the current bone, timed; an exception becomes the result's error
+  // (ReamCancelled: cancelled). One job at a time: the engine is not shared between threads.
+  using WorkerJob = std::function<void(ReamEngine&, const BoneState&, std::uint64_t revision, StepResult&)>;
+  void runOnWorker(WorkerJob job);
   void answerSearch(const StepResult& r);
 
   const PluginHost& plugins_;
