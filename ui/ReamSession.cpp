@@ -124,14 +124,17 @@ void ReamSession::frameShown() {
 
 void ReamSession::runSteps(const std::vector<Pose>& poses) {
   if (!engine_ || poses.empty()) return;
-  if (latestUserPose_) {  // keep the order: the pending move by hand first
-    queued_.push_back({*latestUserPose_, std::nullopt});
-    latestUserPose_.reset();
-  }
+  queuePendingUserMove();  // keep the order: the pending move by hand first
   for (const Pose& p : poses) queued_.push_back({p, std::nullopt});
   sequenceTotal_ += static_cast<int>(poses.size());
   Q_EMIT progress(sequenceDone_, sequenceTotal_);
   startNext();
+}
+
+void ReamSession::queuePendingUserMove() {
+  if (!latestUserPose_) return;
+  queued_.push_back({*latestUserPose_, std::nullopt});
+  latestUserPose_.reset();
 }
 
 void ReamSession::searchContactAlongAxis(const Pose& start, double maxMm) {
@@ -142,10 +145,7 @@ void ReamSession::searchContactAlongAxis(const Pose& start, double maxMm) {
     Q_EMIT contactSearched(r);
     return;
   }
-  if (latestUserPose_) {  // keep the order: the pending move by hand first
-    queued_.push_back({*latestUserPose_, std::nullopt});
-    latestUserPose_.reset();
-  }
+  queuePendingUserMove();  // keep the order: the pending move by hand first
   queued_.push_back({start, maxMm});
   startNext();
 }

@@ -123,6 +123,7 @@ class ReamSession : public QObject {
   void finished();
   void rebuildEngine();
   void clearQueue();  // drops the queued steps; a queued contact search is answered Dropped
+  void queuePendingUserMove();  // the move by hand not yet computed goes to the queue's end
   void startSearch(const Pose& start, double maxMm);
   // Runs `job` on the worker against the current bone, timed; an exception becomes the result's error
   // (ReamCancelled: cancelled). One job at a time: the engine is not shared between threads.

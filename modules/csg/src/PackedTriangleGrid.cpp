@@ -42,9 +42,7 @@ void PackedTriangleGrid::query(const Box3& q, std::vector<std::uint32_t>& out) c
         for (std::uint32_t e = cellStart_[c]; e < cellStart_[c + 1]; ++e) {
           const std::uint32_t s = slots_[e];
           if (!boxes_[s].overlaps(q)) continue;
-          // cellOf is monotone, so the first cell both ranges share is the larger of their first cells.
-          const auto& slo = loCell_[s];
-          if (shape_.index(std::max(slo[0], lo[0]), std::max(slo[1], lo[1]), std::max(slo[2], lo[2])) == c) out.push_back(s);
+          if (shape_.firstSharedCell(loCell_[s], lo) == c) out.push_back(s);
         }
       }
 }

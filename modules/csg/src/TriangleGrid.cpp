@@ -159,9 +159,7 @@ void TriangleGrid::queryShared(const Box3& q, std::vector<std::uint32_t>& out) c
         out.push_back(s);
         continue;
       }
-      // cellOf is monotone, so the first cell both ranges share is the larger of their first cells.
-      const CellCoords& slo = loCell_[s];
-      if (index(std::max(int(slo[0]), qlo[0]), std::max(int(slo[1]), qlo[1]), std::max(int(slo[2]), qlo[2])) == c) out.push_back(s);
+      if (shape_.firstSharedCell(loCell_[s], qlo) == c) out.push_back(s);
     }
   });
 }

@@ -61,6 +61,14 @@ struct GridShape {
   }
   std::size_t index(int i, int j, int k) const { return (std::size_t(k) * n[1] + j) * n[0] + i; }
   std::size_t cellCount() const { return std::size_t(n[0]) * n[1] * n[2]; }
+  // The first cell a slot's cell range (from slotLo) shares with a query's (from queryLo): cellOf is
+  // monotone, so it is the larger of their first cells. A query reports the slot from that cell only, so
+  // each once, without stamps (threads may share the grid).
+  template <class Coord>
+  std::size_t firstSharedCell(const std::array<Coord, 3>& slotLo, const std::array<int, 3>& queryLo) const {
+    return index(std::max(int(slotLo[0]), queryLo[0]), std::max(int(slotLo[1]), queryLo[1]),
+                 std::max(int(slotLo[2]), queryLo[2]));
+  }
 };
 GridShape gridShape(const Bounds& domain, std::size_t faces, double targetPerCell, double surfaceArea, std::size_t maxCells);
 
