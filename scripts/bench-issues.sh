@@ -62,7 +62,8 @@ if "median_ms" in d:  # bench cut
 else:  # bench collision
     q = d["queries"]
     print(f"{sys.argv[2]}: faces {d['faces']}, build {d['build_ms']:.0f} ms, update {d['update_after_cut_ms']:.3f} ms, "
-          f"min distance {q['min_distance']['median_us']:.1f} us, first contact {q['first_contact']['median_us']:.1f} us, "
+          f"min distance {q['min_distance']['median_us']:.1f} us, first contact {q['first_contact']['median_us']:.1f} us "
+          f"({q['first_contact'].get('within_20us', '?')} of {q['first_contact']['samples']} within 20 us), "
           f"tick {q['first_contact_haptic_tick']['median_us']:.1f} us, targets {d.get('targets')}")
     h = d.get("hand_held_path")
     if h:

@@ -50,6 +50,13 @@ TEST(collisionBenchCli, PrintsOneJsonObjectWithEveryQueryType) {
     EXPECT_GT(j["queries"][q]["median_us"].get<double>(), 0.0) << q;
     EXPECT_GE(j["queries"][q]["p99_us"].get<double>(), j["queries"][q]["median_us"].get<double>()) << q;
     EXPECT_TRUE(j["queries"][q].contains("speedup_vs_thesis")) << q;
+    // The count under the 20 µs target agrees with the median: at least half when the median is under it,
+    // at most half when it is over.
+    const double median = j["queries"][q]["median_us"].get<double>();
+    const int within = j["queries"][q]["within_20us"].get<int>(), samples = j["queries"][q]["samples"].get<int>();
+    EXPECT_LE(within, samples) << q;
+    if (median <= 20) EXPECT_GE(2 * within, samples) << q;
+    else EXPECT_LE(2 * within, samples) << q;
   }
   EXPECT_TRUE(j["queries"]["ray_first_hit"].contains("speedup_vs_cgal"));
   EXPECT_TRUE(j["queries"]["min_distance"]["cgal"].is_null());  // AABB_tree has no triangle-triangle distance
