@@ -70,19 +70,22 @@ int runExport(const std::vector<std::string>& args) {
   const std::string out = a.required("out");
   if (a.positionals().size() != 1) throw UsageError("expected exactly one MESH (or 'default')");
   TriangleMesh mesh;
+  WriteOptions w;
   if (a.positionals()[0] == "default") {
     mesh = loadDefaultBone().mesh;
   } else {
     LoadedMesh m = loadPositional(a, "MESH");
     printNotes(m, a.positionals()[0]);
     mesh = std::move(m.mesh);
+    // ReamSim's own metadata (the patient frame) goes on into the new file where its format has room.
+    for (std::string& c : m.comments)
+      if (c.rfind("reamsim ", 0) == 0) w.comments.push_back(std::move(c));
   }
   if (a.has("repair")) {
     RepairResult r = repairMesh(mesh);
     std::cerr << toText(r.report);
     mesh = std::move(r.mesh);
   }
-  WriteOptions w;
   w.binary = !a.has("ascii");
   try {
     writeMesh(mesh, out, w);

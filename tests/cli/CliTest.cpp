@@ -68,6 +68,24 @@ TEST(Cli, ExportConvertsBetweenFormats) {
   EXPECT_EQ(run("export default --out /nonexistent-dir/x.stl").exitCode, 4);
 }
 
+// ReamSim's own comments (the patient frame) go on into the converted file; another program's do not.
+TEST(Cli, ExportKeepsThePatientFrame) {
+  const fs::path in = scratch("framed.ply");
+  std::ofstream(in) << "ply\nformat ascii 1.0\ncomment made by hand\ncomment reamsim patient_frame RAS\n"
+                       "element vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+                       "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                       "0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  for (const char* ext : {".obj", ".off"}) {
+    const fs::path out = scratch(std::string("framed") + ext);
+    const CliRun r = run("export " + in.string() + " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    std::ifstream f(out);
+    const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("# reamsim patient_frame RAS\n"), std::string::npos) << ext << "\n" << text.substr(0, 200);
+    EXPECT_EQ(text.find("made by hand"), std::string::npos) << ext;
+  }
+}
+
 TEST(Cli, ReamWritesLogsAndMesh) {
   const fs::path plan = scratch("plan.json");
   {

@@ -395,8 +395,9 @@ TEST(GuiCtImport, WithoutThePluginTheActionIsOffAndListed) {
   EXPECT_TRUE(f.window->lastError().contains("no CT import plugin")) << f.window->lastError().toStdString();
 }
 
-// The patient frame is kept through Save as PLY (the one format with room for it) and read back.
-TEST(GuiCtImport, PatientFrameSurvivesSaveAsPly) {
+// The patient frame is kept through Save as in every format with room for it (PLY, OBJ and OFF comments, a
+// VTP field array, a binary STL's header) and read back when the file is opened.
+TEST(GuiCtImport, PatientFrameSurvivesSaveAs) {
   REAMSIM_REQUIRE_DISPLAY();
   GuiFixture f(REAMSIM_GUI_PLUGIN_DIR, false);
   MainWindow& w = *f.window;
@@ -407,14 +408,18 @@ TEST(GuiCtImport, PatientFrameSurvivesSaveAsPly) {
   ASSERT_TRUE(f.session().waitIdle(kWaitMs));
   ASSERT_EQ(f.session().bone()->patientFrame(), PatientFrame::RAS);
   QTemporaryDir out;
-  w.saveBoneAs(out.filePath("bone.ply"));
-  w.saveBoneAs(out.filePath("bone.stl"));
-  ASSERT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
-  w.openFile(out.filePath("bone.ply"));
-  w.waitImport();
-  EXPECT_EQ(f.session().bone()->patientFrame(), PatientFrame::RAS);
-  EXPECT_TRUE(w.boneFrameText().contains("RAS"));
-  w.openFile(out.filePath("bone.stl"));  // STL has no place for it
+  const QStringList names = {"bone.ply", "bone.obj", "bone.off", "bone.vtp", "bone.stl"};
+  for (const QString& name : names) {
+    w.saveBoneAs(out.filePath(name));
+    ASSERT_TRUE(w.lastError().isEmpty()) << name.toStdString() << ": " << w.lastError().toStdString();
+  }
+  for (const QString& name : names) {
+    w.openFile(out.filePath(name));
+    w.waitImport();
+    EXPECT_EQ(f.session().bone()->patientFrame(), PatientFrame::RAS) << name.toStdString();
+    EXPECT_TRUE(w.boneFrameText().contains("RAS")) << name.toStdString();
+  }
+  w.openFile(QString(REAMSIM_TEST_DATA_DIR) + "/good/cube_quads_comments.off");  // a file without one
   w.waitImport();
   EXPECT_EQ(f.session().bone()->patientFrame(), PatientFrame::Unspecified);
 }

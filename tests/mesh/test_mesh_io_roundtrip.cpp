@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/mesh/MeshIO.h"
@@ -26,6 +27,8 @@ TriangleMesh octahedron(double scale, Vec3 offset) {
   m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   return m;
 }
+
+std::string good(const std::string& name) { return std::string(REAMSIM_IO_DATA_DIR) + "/good/" + name; }
 
 class TempDir : public ::testing::Test {
  protected:
@@ -122,6 +125,74 @@ TEST_F(io_MeshIO, PlyCommentsRoundTripInBothEncodings) {
     EXPECT_EQ(m.comments[1], "reamsim patient_frame LPS");
     EXPECT_EQ(m.comments[2], "reamsim source CT volume head.nrrd");
   }
+}
+
+// Every format with room for comments keeps them (the GUI stores the bone's patient frame there): OBJ and OFF
+// as '#' lines, VTP as a field-data string array, binary STL in its 80-byte header (what fits).
+TEST_F(io_MeshIO, CommentsRoundTripInEveryFormatWithRoomForThem) {
+  const std::vector<std::string> written = {"reamsim patient_frame RAS", "reamsim source CT\nhead.nrrd"};
+  const std::vector<std::string> expected = {"written by ReamSim", "reamsim patient_frame RAS", "reamsim source CT head.nrrd"};
+  for (const char* name : {"c.obj", "c.off", "c.vtp", "c.stl", "c.ply"}) {
+    WriteOptions o;
+    o.comments = written;
+    writeMesh(octahedron(1, {}), path(name), o);
+    const LoadedMesh m = readMesh(path(name), ReadOptions{Units::Millimetres});
+    EXPECT_EQ(m.mesh.triangles.size(), 8u) << name;
+    EXPECT_EQ(m.comments, expected) << name;
+  }
+  // Without comments of its own a file still says who wrote it.
+  for (const char* name : {"n.obj", "n.off", "n.vtp", "n.stl"}) {
+    writeMesh(octahedron(1, {}), path(name));
+    EXPECT_EQ(readMesh(path(name), ReadOptions{Units::Millimetres}).comments, std::vector<std::string>{"written by ReamSim"})
+        << name;
+  }
+}
+
+// A binary STL header has 80 bytes: the comments that fit are kept in order, a longer one is left out; ASCII STL
+// has no place for any, and another program's header gives none.
+TEST_F(io_MeshIO, StlKeepsTheCommentsItsHeaderHasRoomFor) {
+  WriteOptions o;
+  o.comments = {"reamsim patient_frame LPS", std::string(70, 'x'), "short"};
+  writeMesh(octahedron(1, {}), path("h.stl"), o);
+  EXPECT_EQ(readMesh(path("h.stl"), ReadOptions{Units::Millimetres}).comments,
+            (std::vector<std::string>{"written by ReamSim", "reamsim patient_frame LPS", "short"}));
+  o.binary = false;
+  writeMesh(octahedron(1, {}), path("a.stl"), o);
+  EXPECT_TRUE(readMesh(path("a.stl"), ReadOptions{Units::Millimetres}).comments.empty());
+  o.binary = true;
+  writeMesh(octahedron(1, {}), path("other.stl"), o);
+  {
+    std::fstream f(path("other.stl"), std::ios::in | std::ios::out | std::ios::binary);
+    f.write("Exported by another program", 27);
+  }
+  EXPECT_TRUE(readMesh(path("other.stl"), ReadOptions{Units::Millimetres}).comments.empty());
+}
+
+// Comments of files written elsewhere: whole-line '#' comments of OBJ and OFF (not those after data on a
+// line), and a VTP's comment array written by VTK in ASCII (a string's bytes as numbers, each string ended by 0).
+TEST_F(io_MeshIO, CommentsOfFilesWrittenElsewhere) {
+  const LoadedMesh off = readMesh(good("cube_quads_comments.off"));
+  EXPECT_EQ(off.comments, (std::vector<std::string>{"10 mm cube made of quads; counts on the keyword line", "vertices", "faces"}));
+  EXPECT_EQ(readMesh(good("cube_mixed_faces.obj")).comments.at(0),
+            "10 mm cube using every OBJ face form, negative indices, quads and ignored statements");
+  std::string bytes;
+  for (const std::string& c : {std::string("reamsim patient_frame LPS"), std::string("ab")}) {
+    for (char ch : c) bytes += std::to_string(int(ch)) + ' ';
+    bytes += "0 ";
+  }
+  {
+    std::ofstream f(path("ascii.vtp"));
+    f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "<PolyData>\n<FieldData>\n<Array type=\"String\" Name=\"ReamSimComments\" NumberOfTuples=\"2\" format=\"ascii\">\n"
+      << bytes
+      << "\n</Array>\n</FieldData>\n<Piece NumberOfPoints=\"3\" NumberOfPolys=\"1\">\n<Points>\n"
+         "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 10 0 0 0 10 0</DataArray>\n"
+         "</Points>\n<Polys>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>\n"
+         "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray>\n</Polys>\n</Piece>\n</PolyData>\n"
+         "</VTKFile>\n";
+  }
+  EXPECT_EQ(readMesh(path("ascii.vtp"), ReadOptions{Units::Millimetres}).comments,
+            (std::vector<std::string>{"reamsim patient_frame LPS", "ab"}));
 }
 
 TEST_F(io_MeshIO, UppercaseExtensionIsAccepted) {
@@ -250,7 +321,6 @@ TEST_F(io_MeshIO, WritingAMeshWithBadIndicesFails) {
 
 // ---- small valid files with the less common syntax -----------------------------------------------------
 
-std::string good(const std::string& name) { return std::string(REAMSIM_IO_DATA_DIR) + "/good/" + name; }
 
 TEST(io_GoodFiles, ObjAllFaceFormsNegativeIndicesAndQuads) {
   const LoadedMesh m = readMesh(good("cube_mixed_faces.obj"));

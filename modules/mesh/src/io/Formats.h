@@ -13,8 +13,20 @@ struct RawMesh {
   TriangleMesh mesh;
   std::string format;
   std::vector<std::string> notes;
-  std::vector<std::string> comments;  // PLY 'comment' lines
+  // The file's comments: PLY 'comment' lines, OBJ and OFF whole-line '#' comments, the comments a ReamSim
+  // binary STL header or VTP file carries (see the writers).
+  std::vector<std::string> comments;
 };
+
+// The VTP field-data string array that holds the comments.
+inline constexpr const char* kVtpCommentsArray = "ReamSimComments";
+
+// What ReamSim writes into every file that has room for it, before the caller's comments.
+inline constexpr const char* kWrittenByComment = "written by ReamSim";
+
+// The comments a writer stores: "written by ReamSim", then the caller's, each on one line (a line break
+// would end a comment early in every format that has them).
+std::vector<std::string> commentLinesToWrite(const std::vector<std::string>& comments);
 
 RawMesh readStl(const std::string& path, std::string_view data);
 RawMesh readObj(const std::string& path, std::string_view data);
@@ -23,11 +35,14 @@ RawMesh readOff(const std::string& path, std::string_view data);
 RawMesh readVtp(const std::string& path, std::string_view data);
 
 // Writers return the file contents; MeshIO.cpp writes them (VTP writes the file itself).
-std::string writeStl(const TriangleMesh& mesh, const std::string& path, bool binary);
-std::string writeObj(const TriangleMesh& mesh);
+// `comments` go where the format has room: PLY 'comment' lines, OBJ and OFF '#' lines, a VTP field-data
+// string array, a binary STL's 80-byte header (those that fit; ASCII STL has no place for them).
+std::string writeStl(const TriangleMesh& mesh, const std::string& path, bool binary,
+                     const std::vector<std::string>& comments);
+std::string writeObj(const TriangleMesh& mesh, const std::vector<std::string>& comments);
 std::string writePly(const TriangleMesh& mesh, const std::string& path, bool binary,
                      const std::vector<std::string>& comments);
-std::string writeOff(const TriangleMesh& mesh);
-void writeVtp(const TriangleMesh& mesh, const std::string& path);
+std::string writeOff(const TriangleMesh& mesh, const std::vector<std::string>& comments);
+void writeVtp(const TriangleMesh& mesh, const std::string& path, const std::vector<std::string>& comments);
 
 }  // namespace reamsim::io

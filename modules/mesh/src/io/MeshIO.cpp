@@ -86,6 +86,20 @@ LoadedMesh readMesh(const std::string& path, const ReadOptions& options) {
   return out;
 }
 
+namespace io {
+
+std::vector<std::string> commentLinesToWrite(const std::vector<std::string>& comments) {
+  std::vector<std::string> out{kWrittenByComment};
+  for (std::string c : comments) {
+    for (char& ch : c)
+      if (ch == '\n' || ch == '\r' || ch == '\0') ch = ' ';
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+}  // namespace io
+
 void writeMesh(const TriangleMesh& mesh, const std::string& path, const WriteOptions& options) {
   const std::string ext = extensionOf(path);
   for (const Triangle& t : mesh.triangles)
@@ -93,11 +107,11 @@ void writeMesh(const TriangleMesh& mesh, const std::string& path, const WriteOpt
       if (i >= mesh.vertices.size())
         throw InputError(path, "cannot write: a triangle refers to vertex " + std::to_string(i) + " but the mesh has " +
                                    std::to_string(mesh.vertices.size()) + " vertices");
-  if (ext == ".stl") io::writeFileBytes(path, io::writeStl(mesh, path, options.binary));
+  if (ext == ".stl") io::writeFileBytes(path, io::writeStl(mesh, path, options.binary, options.comments));
   else if (ext == ".ply") io::writeFileBytes(path, io::writePly(mesh, path, options.binary, options.comments));
-  else if (ext == ".obj") io::writeFileBytes(path, io::writeObj(mesh));
-  else if (ext == ".off") io::writeFileBytes(path, io::writeOff(mesh));
-  else if (ext == ".vtp") io::writeVtp(mesh, path);
+  else if (ext == ".obj") io::writeFileBytes(path, io::writeObj(mesh, options.comments));
+  else if (ext == ".off") io::writeFileBytes(path, io::writeOff(mesh, options.comments));
+  else if (ext == ".vtp") io::writeVtp(mesh, path, options.comments);
   else throw InputError(path, "unknown mesh file extension '" + ext + "' for writing (supported: " + supportedList() + ")");
 }
 

@@ -28,6 +28,7 @@ RawMesh readObj(const std::string& path, std::string_view data) {
   MeshBuilder b(path, 1);
   RawMesh out;
   out.format = "obj";
+  s.collectCommentLines(&out.comments);
   std::vector<std::int64_t> poly;
   std::size_t faces = 0;
   std::string_view key;
@@ -82,8 +83,9 @@ RawMesh readObj(const std::string& path, std::string_view data) {
   return out;
 }
 
-std::string writeObj(const TriangleMesh& mesh) {
-  std::string out = "# ReamSim mesh\n";
+std::string writeObj(const TriangleMesh& mesh, const std::vector<std::string>& comments) {
+  std::string out;
+  for (const std::string& c : commentLinesToWrite(comments)) out += "# " + c + "\n";
   for (const Vec3& p : mesh.vertices) {
     out += "v ";
     appendTriple(out, p.x, p.y, p.z);

@@ -36,6 +36,7 @@ RawMesh readOff(const std::string& path, std::string_view data) {
   TextScanner s(data, path, '#');
   RawMesh out;
   out.format = "off";
+  s.collectCommentLines(&out.comments);
   Variant variant;
   std::string_view tok;
   if (!s.nextNonEmptyLine()) s.fail("the file has no content (only comments or blank lines)");
@@ -105,9 +106,10 @@ RawMesh readOff(const std::string& path, std::string_view data) {
   return out;
 }
 
-std::string writeOff(const TriangleMesh& mesh) {
-  std::string out = "OFF\n# written by ReamSim\n" + std::to_string(mesh.vertices.size()) + ' ' +
-                    std::to_string(mesh.triangles.size()) + " 0\n";
+std::string writeOff(const TriangleMesh& mesh, const std::vector<std::string>& comments) {
+  std::string out = "OFF\n";
+  for (const std::string& c : commentLinesToWrite(comments)) out += "# " + c + "\n";
+  out += std::to_string(mesh.vertices.size()) + ' ' + std::to_string(mesh.triangles.size()) + " 0\n";
   appendVertexAndTriangleLines(out, mesh);
   return out;
 }

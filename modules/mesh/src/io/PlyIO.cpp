@@ -326,12 +326,8 @@ void appendHeader(std::string& out, const TriangleMesh& mesh, const char* format
                   const std::vector<std::string>& comments) {
   out += "ply\nformat ";
   out += format;
-  out += " 1.0\ncomment written by ReamSim\n";
-  for (std::string c : comments) {  // one line each: a line break would end the comment early
-    for (char& ch : c)
-      if (ch == '\n' || ch == '\r') ch = ' ';
-    out += "comment " + c + "\n";
-  }
+  out += " 1.0\n";
+  for (const std::string& c : commentLinesToWrite(comments)) out += "comment " + c + "\n";
   out += "element vertex " + std::to_string(mesh.vertices.size()) +
          "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
          std::to_string(mesh.triangles.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";

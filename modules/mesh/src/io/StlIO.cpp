@@ -14,6 +14,7 @@ namespace {
 
 constexpr std::size_t kHeader = 84;
 constexpr std::size_t kRecord = 50;
+constexpr const char* kStlHeaderMark = "ReamSim binary STL";
 
 bool looksLikeAsciiStl(std::string_view data) {
   std::size_t i = 0;
@@ -25,6 +26,29 @@ bool looksLikeAsciiStl(std::string_view data) {
     if (c < 0x20 && c != '\n' && c != '\r' && c != '\t' && c != '\f' && c != '\v') return false;
   }
   return true;
+}
+
+// "ReamSim binary STL", then the comments after "written by ReamSim" that fit in the 80 bytes, each ended
+// by a line break; spaces after. Other programs ignore the header.
+std::string binaryHeader(const std::vector<std::string>& comments) {
+  std::string header = kStlHeaderMark;
+  const std::vector<std::string> lines = commentLinesToWrite(comments);
+  for (std::size_t i = 1; i < lines.size(); ++i)
+    if (header.size() + 1 + lines[i].size() <= kHeader - 4) header += '\n' + lines[i];
+  header += '\n';
+  header.resize(kHeader - 4, ' ');
+  return header;
+}
+
+// The comments of a header ReamSim wrote ("written by ReamSim" for the mark itself); none for others.
+std::vector<std::string> commentsOfHeader(std::string_view header) {
+  const std::string_view mark = kStlHeaderMark;
+  if (header.substr(0, mark.size()) != mark || header.size() == mark.size() || header[mark.size()] != '\n') return {};
+  std::vector<std::string> out{kWrittenByComment};
+  std::string_view rest = header.substr(mark.size() + 1);
+  for (std::size_t end; (end = rest.find('\n')) != std::string_view::npos; rest.remove_prefix(end + 1))
+    out.emplace_back(rest.substr(0, end));
+  return out;
 }
 
 RawMesh readBinary(const std::string& path, std::string_view data) {
@@ -46,6 +70,7 @@ RawMesh readBinary(const std::string& path, std::string_view data) {
                                " bytes (extra data after the last triangle, or not an STL file)");
   RawMesh out;
   out.format = "stl-binary";
+  out.comments = commentsOfHeader(data.substr(0, 80));
   MeshBuilder b(path);
   b.reserve(count, count);  // justified: the file holds all records
   const std::string what = "triangle data";  // sizes were checked above; reads cannot fail
@@ -143,14 +168,14 @@ RawMesh readStl(const std::string& path, std::string_view data) {
   return readBinary(path, data);
 }
 
-std::string writeStl(const TriangleMesh& mesh, const std::string& path, bool binary) {
+std::string writeStl(const TriangleMesh& mesh, const std::string& path, bool binary,
+                     const std::vector<std::string>& comments) {
   std::string out;
   if (binary) {
     if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max())
       throw InputError(path, "too many triangles for binary STL");
     out.reserve(kHeader + kRecord * mesh.triangles.size());
-    std::string header = "ReamSim binary STL";
-    header.resize(80, ' ');
+    std::string header = binaryHeader(comments);
     out += header;
     appendLittleEndian(out, static_cast<std::uint32_t>(mesh.triangles.size()));
     for (const Triangle& t : mesh.triangles) {

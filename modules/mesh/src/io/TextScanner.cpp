@@ -17,6 +17,12 @@ std::string_view stripPlus(std::string_view tok) {
   return tok;
 }
 
+std::string_view trimmed(std::string_view t) {
+  while (!t.empty() && (isSpace(t.front()) || t.front() == '\n')) t.remove_prefix(1);
+  while (!t.empty() && (isSpace(t.back()) || t.back() == '\n')) t.remove_suffix(1);
+  return t;
+}
+
 }  // namespace
 
 bool parseDoubleToken(std::string_view tok, double& out) {
@@ -70,7 +76,11 @@ bool TextScanner::nextLine() {
   lineText_ = text_.substr(start, end - start);
   if (comment_ != '\0') {
     const std::size_t c = lineText_.find(comment_);
-    if (c != std::string_view::npos) lineText_ = lineText_.substr(0, c);
+    if (c != std::string_view::npos) {
+      if (commentLines_ && lineText_.find_first_not_of(" \t\r\v\f") == c)
+        commentLines_->emplace_back(trimmed(lineText_.substr(c + 1)));
+      lineText_ = lineText_.substr(0, c);
+    }
   }
   pos_ = 0;
   ++line_;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace reamsim::io {
 
@@ -13,6 +14,10 @@ class TextScanner {
  public:
   // commentChar: everything from this character to the end of the line is ignored ('\0' = no comments).
   TextScanner(std::string_view text, std::string file, char commentChar = '\0');
+
+  // Lines that are only a comment are also appended to `out` (the text after the comment character,
+  // trimmed): OBJ and OFF files written by ReamSim keep the bone's patient frame in one.
+  void collectCommentLines(std::vector<std::string>* out) { commentLines_ = out; }
 
   // Advances to the next line (the first call moves to line 1). Returns false at the end of the text.
   bool nextLine();
@@ -49,6 +54,7 @@ class TextScanner {
   std::string_view text_;
   std::string file_;
   char comment_;
+  std::vector<std::string>* commentLines_ = nullptr;
   std::size_t next_ = 0;  // start of the next line
   std::string_view lineText_;
   std::size_t pos_ = 0;  // cursor within lineText_

@@ -22,7 +22,8 @@ struct ArrayElement {
 struct VtpDocument {
   Attributes file;                    // <VTKFile>
   std::vector<Attributes> pieces;     // <Piece>
-  std::vector<ArrayElement> arrays;   // the DataArrays of the first piece's Points, Polys and Strips
+  std::vector<ArrayElement> arrays;   // the DataArrays of the first piece's Points, Polys and Strips, and
+                                      // the PolyData's FieldData arrays (section "FieldData")
   std::optional<Attributes> appended; // <AppendedData>
   std::string_view appendedBytes;     // after its '_' marker
 };

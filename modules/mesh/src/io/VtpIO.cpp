@@ -10,12 +10,14 @@
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkLogger.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include "Formats.h"
@@ -100,7 +102,7 @@ class VtkMessageCapture {
 
 }  // namespace
 
-void writeVtp(const TriangleMesh& mesh, const std::string& path) {
+void writeVtp(const TriangleMesh& mesh, const std::string& path, const std::vector<std::string>& comments) {
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.vertices.size()));
@@ -117,6 +119,11 @@ void writeVtp(const TriangleMesh& mesh, const std::string& path) {
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(points);
   poly->SetPolys(cells);
+  // The comments as a field-data string array (kept by VTK and ParaView when they rewrite the file).
+  auto notes = vtkSmartPointer<vtkStringArray>::New();
+  notes->SetName(kVtpCommentsArray);
+  for (const std::string& c : commentLinesToWrite(comments)) notes->InsertNextValue(c);
+  poly->GetFieldData()->AddArray(notes);
 
   VtkMessageCapture capture;
   auto writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();

@@ -401,6 +401,23 @@ void readCells(const std::string& path, const VtpDocument& doc, ArrayDecoder& de
   }
 }
 
+// ReamSim's comments (kVtpCommentsArray in the field data): a string array, each value ended by a NUL byte,
+// stored as VTK stores strings in every format (ascii: the bytes as numbers).
+std::vector<std::string> readComments(const VtpDocument& doc, ArrayDecoder& dec, std::uint64_t limit) {
+  const ArrayElement* a = findArray(doc, "FieldData", kVtpCommentsArray);
+  if (!a) return {};
+  ArrayElement bytes = *a;
+  if (const auto t = bytes.attrs.find("type"); t == bytes.attrs.end() || t->second != "String") return {};
+  bytes.attrs["type"] = "UInt8";
+  std::vector<std::string> out(1);
+  for (const std::int64_t c : dec.values<std::int64_t>(bytes, std::string("the ") + kVtpCommentsArray + " array", -1, limit)) {
+    if (c == 0) out.emplace_back();
+    else out.back() += char(c);
+  }
+  out.pop_back();  // after the last NUL
+  return out;
+}
+
 // The first bytes, before any scanning: binary garbage gets a message about what the file is not.
 void checkLooksLikeVtkXml(const std::string& path, std::string_view data) {
   std::size_t i = 0;
@@ -505,6 +522,7 @@ RawMesh readVtp(const std::string& path, std::string_view data) {
     out.notes.push_back(std::to_string(stripCount) + " triangle strips were converted to " +
                         std::to_string(stripTriangles) + " triangles");
   if (ignored > 0) out.notes.push_back(std::to_string(ignored) + " vertex/line cells were ignored");
+  out.comments = readComments(doc, dec, limit);
   out.mesh = b.finish(out.notes);
   return out;
 }

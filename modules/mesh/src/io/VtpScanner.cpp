@@ -82,6 +82,10 @@ class Scanner {
     const std::string parent = stack.empty() ? "" : stack.back().name;
     if (e.name == "VTKFile") doc.file = e.attrs;
     if (e.name == "Piece" && parent == "PolyData") doc.pieces.push_back(e.attrs);
+    if ((e.name == "Array" || e.name == "DataArray") && parent == "FieldData" && doc.pieces.empty()) {
+      doc.arrays.push_back({parent, e.attrs, {}});  // the data set's own field data (ReamSim's comments)
+      openArray_ = true;
+    }
     if (e.name == "DataArray") {
       if (doc.pieces.size() != 1 || stack.size() < 2) return;
       // Only the arrays the mesh needs are kept (point and cell data are skipped).

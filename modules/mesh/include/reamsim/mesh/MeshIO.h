@@ -20,15 +20,18 @@ struct LoadedMesh {
   std::string format;               // "stl-ascii", "stl-binary", "obj", "ply-ascii", "ply-binary", "off", "vtp"
   double scaleToMillimetres = 1.0;  // factor applied to the file's coordinates
   std::vector<std::string> notes;   // what the reader did that the user should know (unit scaling, triangulation)
-  std::vector<std::string> comments;  // the file's own comment lines (PLY 'comment'; other formats: none)
+  // The file's comment lines: PLY 'comment' lines, OBJ and OFF whole-line '#' comments, a VTP's ReamSimComments
+  // field array, the comments in a binary STL header ReamSim wrote (ASCII STL: none). docs/FORMATS.md.
+  std::vector<std::string> comments;
 };
 
 LoadedMesh readMesh(const std::string& path, const ReadOptions& options = {});
 
 struct WriteOptions {
   bool binary = true;  // for STL and PLY; OBJ and OFF are always text
-  // PLY only: written as header 'comment' lines (line breaks become spaces) and read back into
-  // LoadedMesh::comments; e.g. the bone's patient frame. The other formats have no place for them.
+  // Written where the format has room, after "written by ReamSim" (line breaks become spaces), and read back
+  // into LoadedMesh::comments; e.g. the bone's patient frame. PLY, OBJ, OFF and VTP keep them all, binary STL
+  // those that fit in its 80-byte header, ASCII STL none.
   std::vector<std::string> comments;
 };
 // The format follows the extension (.stl .obj .ply .off .vtp); throws InputError on failure.
