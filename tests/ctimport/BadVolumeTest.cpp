@@ -271,6 +271,34 @@ TEST(BadVolumes, DicomMissingSliceInconsistentSpacingAndTruncatedFile) {
   EXPECT_THROW(ct::readVolume((d / "cut").string()), InputError);
 }
 
+// A slice moved within its plane (1 mm along x, editing ImagePositionPatient's text) is off the straight line
+// the others follow; slices shifted as by a 60° gantry tilt are beyond any scanner. Both would stack into a
+// wrongly sheared volume.
+TEST(BadVolumes, DicomSlicesShiftedWithinTheirPlaneAreRefused) {
+  const Small s;
+  const path d = cttest::scratch("bad_dicom_in_plane");
+  phantom::writeDicomSeries((d / "moved").string(), s.grid, s.hu);
+  const std::string file = (d / "moved" / "IM-0003.dcm").string();
+  auto parser = vtkSmartPointer<vtkDICOMParser>::New();
+  auto meta = vtkSmartPointer<vtkDICOMMetaData>::New();
+  parser->SetMetaData(meta);
+  parser->SetFileName(file.c_str());
+  parser->Update();
+  const std::string ipp = meta->Get(DC::ImagePositionPatient).AsString();
+  const std::size_t firstSep = ipp.find('\\');
+  ASSERT_NE(firstSep, std::string::npos) << ipp;
+  std::string x = std::to_string(std::stod(ipp.substr(0, firstSep)) + 1.0).substr(0, firstSep);
+  x.resize(firstSep, '0');
+  phantom::writeBytes(file, replaceOnce(phantom::readBytes(file), ipp, x + ipp.substr(firstSep)));
+  expectInputError((d / "moved").string(), "moved", "IM-0003.dcm is 1 mm off the line");
+
+  phantom::Grid tilted = s.grid;
+  const double t = 60 * M_PI / 180;
+  tilted.direction = {1, 0, 0, 0, 1, std::sin(t), 0, 0, std::cos(t)};
+  phantom::writeDicomSeries((d / "tilted").string(), tilted, s.hu);
+  expectInputError((d / "tilted").string(), "tilted", "as by a gantry tilt of 60.0°");
+}
+
 }  // namespace
 
 namespace {

@@ -155,3 +155,43 @@ TEST(PhantomOrientation, MirroredAxesGiveAnOutwardMeshInPlace) {
 }
 
 }  // namespace
+
+namespace {
+
+// A gantry-tilted CT: the slices are parallel to each other but each is shifted within its plane (the gantry
+// leaned 15° about the patient's left-right axis), so the slice-to-slice step is not along the slices'
+// normal. The series is resampled onto a rectangular grid (with a note saying so) and comes back in place.
+TEST(PhantomOrientation, GantryTiltedDicomSeriesIsResampledInPlace) {
+  phantom::SphereAndCylinder shape;
+  shape.axis = normalized(Vec3{0, 1, 2});
+  const double tilt = 15 * M_PI / 180;
+  std::array<double, 9> d{1, 0, 0, 0, 1, std::sin(tilt), 0, 0, std::cos(tilt)};  // columns: x, y, the step
+  Grid g = phantom::gridAround(shape.center, 26, {0.9, 0.9, 1.25}, {1, 0, 0, 0, 1, 0, 0, 0, 1});
+  g.direction = d;
+  g.origin = g.origin - Vec3{0, std::sin(tilt), 0} * (0.5 * g.spacing[2] * (g.dims[2] - 1));  // still around it
+  const std::vector<float> hu = phantom::sample(g, [&](const Vec3& p) { return shape.inside(p); });
+  const std::string dir = (cttest::scratch("gantry_tilt") / "series").string();
+  phantom::writeDicomSeries(dir, g, hu);
+  const ct::CtVolume v = ct::readVolume(dir);
+  bool noted = false;
+  for (const std::string& n : v.notes) noted = noted || n.find("gantry tilt of 15.0") != std::string::npos;
+  EXPECT_TRUE(noted) << (v.notes.empty() ? "" : v.notes.front());
+  for (int a = 0; a < 3; ++a)
+    for (int b = a + 1; b < 3; ++b) EXPECT_NEAR(dot(v.axis(a), v.axis(b)), 0.0, 1e-9);
+  ct::ImportOptions o;
+  o.lowerThreshold = 620;
+  const ct::ImportResult r = ct::importBone(v, o);
+  EXPECT_TRUE(r.report.validation.isCleanSolid()) << ct::toText(r.report);
+  EXPECT_NEAR(*r.report.validation.volumeMm3 / shape.mainVolume(), 1.0, 0.01);
+  EXPECT_NEAR(norm(cttest::solidCentroid(r.mesh) - shape.center), 0.0, 0.3);
+  // Not sheared: the cylinder's ends where they are (a shear keeps volume and centroid, not these).
+  double top = -HUGE_VAL, bottom = HUGE_VAL;
+  for (const Vec3& p : r.mesh.vertices) {
+    top = std::max(top, dot(p - shape.center, shape.axis));
+    bottom = std::min(bottom, dot(p - shape.center, shape.axis));
+  }
+  EXPECT_NEAR(top, shape.cylinderLength / 2, 0.6);
+  EXPECT_NEAR(bottom, -shape.cylinderLength / 2, 0.6);
+}
+
+}  // namespace

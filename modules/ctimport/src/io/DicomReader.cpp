@@ -3,6 +3,7 @@
 // checked here (vtk-dicom would silently stack slices with gaps): equal orientation and size, no duplicate
 // positions, uniform spacing — a gap of n spacings is reported as n-1 missing slices. World coordinates are
 // DICOM patient coordinates (LPS); CT values are rescaled to HU.
+#include <vtkDICOMCTRectifier.h>
 #include <vtkDICOMDirectory.h>
 #include <vtkDICOMMetaData.h>
 #include <vtkDICOMReader.h>
@@ -37,6 +38,15 @@
 
 namespace reamsim::ct::io {
 namespace {
+
+// Smaller tilts (a step within 1.7e-4 of the normal) are within what the axes' perpendicularity check accepts.
+constexpr double kTiltToRectifyDegrees = 0.01;
+// Scanners tilt the gantry by at most about ±30°; beyond this the positions are wrong, and resampling them
+// would make a volume many times the series' size.
+constexpr double kMaxTiltDegrees = 45;
+// How far a slice may lie off the straight line of in-plane shifts: positions are written to 0.01 mm or so,
+// and a quarter of a pixel does not show.
+constexpr double kInPlaneToleranceMm = 0.05, kInPlaneTolerancePixels = 0.25;
 
 namespace fs = std::filesystem;
 
@@ -212,6 +222,43 @@ std::string outsiders(const std::vector<std::string>& files) {
          " not part of the series (unreadable, not an image, or another series)";
 }
 
+// Within their plane, the slices of a gantry-tilted series are shifted in proportion to their distance along
+// the normal (the reader's patient matrix, and the resampling, take the shift as one straight line from the
+// first slice to the last); an untilted series is not shifted at all. A slice off that line means slices
+// of different series, or positions that are simply wrong: stacking them would shear the volume unevenly.
+void checkInPlaneShifts(const std::string& path, vtkDICOMMetaData* meta, const Vec3& normal,
+                        const std::vector<std::pair<double, int>>& byPosition, const std::vector<std::string>& files) {
+  const auto position = [&](int f) {
+    const vtkDICOMValue& p = meta->Get(f, DC::ImagePositionPatient);
+    return Vec3{p.GetDouble(0), p.GetDouble(1), p.GetDouble(2)};
+  };
+  const auto inPlane = [&](const Vec3& d) { return d - normal * dot(normal, d); };
+  const vtkDICOMValue& pixel = meta->Get(0, DC::PixelSpacing);
+  const double pixelMm = pixel.GetNumberOfValues() == 2 ? std::min(pixel.GetDouble(0), pixel.GetDouble(1)) : 0.0;
+  const double tolerance = std::max(kInPlaneToleranceMm, std::isfinite(pixelMm) ? kInPlaneTolerancePixels * pixelMm : 0.0);
+  const Vec3 first = position(byPosition.front().second);
+  const double depth = byPosition.back().first - byPosition.front().first;
+  if (!(depth > 0)) return;  // coincident slices: the spacing check names them
+  const Vec3 shiftPerMm = inPlane(position(byPosition.back().second) - first) / depth;
+  const double tiltDegrees = std::atan(norm(shiftPerMm)) * 180 / M_PI;
+  if (tiltDegrees > kMaxTiltDegrees) {
+    char m[200];
+    std::snprintf(m, sizeof m, "the slices are shifted within their plane as by a gantry tilt of %.1f° (scanners tilt "
+                  "at most about 30°): their positions are inconsistent", tiltDegrees);
+    throw InputError(path, m);
+  }
+  for (const auto& [depthOf, f] : byPosition) {
+    const double off = norm(inPlane(position(f) - first) - shiftPerMm * (depthOf - byPosition.front().first));
+    if (off > tolerance) {
+      char m[260];
+      std::snprintf(m, sizeof m, "slice %s is %.3g mm off the line the other slices' positions follow within their "
+                    "plane (slices of different series, or wrong positions)",
+                    f < int(files.size()) ? fs::path(files[std::size_t(f)]).filename().string().c_str() : "?", off);
+      throw InputError(path, m);
+    }
+  }
+}
+
 // Orientation, size and spacing of single-frame slices must agree before they are stacked.
 // `why`: what the messages add about files beside the series (outsiders, leftOut).
 void checkSlices(const std::string& path, vtkDICOMMetaData* meta, const std::vector<std::string>& files,
@@ -240,6 +287,7 @@ void checkSlices(const std::string& path, vtkDICOMMetaData* meta, const std::vec
     pos.emplace_back(dot(normal, Vec3{p.GetDouble(0), p.GetDouble(1), p.GetDouble(2)}), f);
   }
   std::sort(pos.begin(), pos.end());
+  checkInPlaneShifts(path, meta, normalized(normal), pos, files);
   std::vector<double> gaps;
   for (std::size_t i = 1; i < pos.size(); ++i) gaps.push_back(pos[i].first - pos[i - 1].first);
   std::vector<double> sorted = gaps;
@@ -300,6 +348,7 @@ void checkDeclaredSize(const std::string& path, vtkDICOMReader* reader, vtkDICOM
 
 }  // namespace
 
+
 CtVolume readDicom(const std::string& path, const ReadTick& tick) {
   CtVolume v;
   v.sourcePath = path;
@@ -335,6 +384,30 @@ CtVolume readDicom(const std::string& path, const ReadTick& tick) {
   }
   if (capture.anyError()) throw InputError(path, "cannot read the DICOM pixel data: " + capture.firstMessage());
   vtkImageData* img = reader->GetOutput();
+  vtkMatrix4x4* m = reader->GetPatientMatrix();
+  if (!m) throw InputError(path, "the series gives no patient orientation");
+  // A tilted gantry shifts each slice within its plane: the slice-to-slice step is not along the slices'
+  // normal, so the voxels are sheared. vtk-dicom resamples such a series onto a rectangular grid.
+  vtkSmartPointer<vtkDICOMCTRectifier> rectifier;
+  if (const double tilt = vtkDICOMCTRectifier::GetGantryDetectorTilt(m); std::abs(tilt) > kTiltToRectifyDegrees) {
+    rectifier = vtkSmartPointer<vtkDICOMCTRectifier>::New();
+    capture.observe(rectifier);
+    rectifier->SetInputConnection(reader->GetOutputPort());
+    rectifier->SetVolumeMatrix(m);
+    rectifier->SetInterpolationModeToLinear();  // no ringing beside bone for the threshold to pick up
+    try {
+      rectifier->Update();
+    } catch (const std::bad_alloc&) {
+      throw InputError(path, "out of memory resampling the gantry-tilted series");
+    }
+    if (capture.anyError()) throw InputError(path, "cannot resample the gantry-tilted series: " + capture.firstMessage());
+    img = rectifier->GetOutput();
+    m = rectifier->GetRectifiedMatrix();
+    char note[160];
+    std::snprintf(note, sizeof note, "gantry tilt of %.1f°: the sheared slices were resampled onto a rectangular grid "
+                  "(linear interpolation)", tilt);
+    v.notes.push_back(note);
+  }
   vtkDataArray* scalars = img ? img->GetPointData()->GetScalars() : nullptr;
   if (!scalars || scalars->GetNumberOfComponents() != 1)
     throw InputError(path, "the series is not a single-component (grayscale) image");
@@ -354,8 +427,6 @@ CtVolume readDicom(const std::string& path, const ReadTick& tick) {
   double spacing[3], vtkOrigin[3];
   img->GetSpacing(spacing);
   img->GetOrigin(vtkOrigin);
-  vtkMatrix4x4* m = reader->GetPatientMatrix();
-  if (!m) throw InputError(path, "the series gives no patient orientation");
   std::array<Vec3, 3> steps;
   for (int a = 0; a < 3; ++a) steps[std::size_t(a)] = Vec3{m->GetElement(0, a), m->GetElement(1, a), m->GetElement(2, a)} * spacing[a];
   setAxesFromSteps(v, steps, path, 0);
