@@ -395,6 +395,40 @@ TEST(GuiCtImport, WithoutThePluginTheActionIsOffAndListed) {
   EXPECT_TRUE(f.window->lastError().contains("no CT import plugin")) << f.window->lastError().toStdString();
 }
 
+// "Region at the crosshair": clicking a slice puts the crosshair on a voxel; the import then keeps the region
+// there, here the small loose fragment beside the larger body (which "largest region" would keep).
+TEST(GuiCtImport, RegionAtTheCrosshairKeepsTheClickedBone) {
+  REAMSIM_REQUIRE_DISPLAY();
+  phantom::SphereAndCylinder shape;
+  shape.fragment = true;
+  const phantom::Grid grid = phantom::gridAround(shape.center, 26, {0.9, 0.8, 1.0}, phantom::rotation({1, 2, 3}, 30));
+  QTemporaryDir dir;
+  const std::string path = dir.filePath("fragment.nrrd").toStdString();
+  phantom::writeNrrd(path, grid, phantom::sample(grid, [&](const Vec3& p) { return shape.inside(p); }));
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  QDialog* d = openInDialog(w, path);
+  ASSERT_NE(d, nullptr);
+  setLower(d, 620);
+  d->findChild<QComboBox*>("Component")->setCurrentIndex(2);
+  // The fragment's centre as voxel indices (the grid's axes are orthonormal), each set as a click would.
+  for (int a = 0; a < 3; ++a) {
+    const int index = int(std::lround(dot(grid.axis(a), shape.fragmentCenter - grid.origin) / grid.spacing[std::size_t(a)]));
+    ASSERT_TRUE(QMetaObject::invokeMethod(d, "setSliceIndex", Q_ARG(int, a), Q_ARG(int, index)));
+  }
+  ASSERT_TRUE(waitIdle(d));
+  EXPECT_GT(d->property("previewFaces").toInt(), 0);
+  clickImport(d, false);
+  ASSERT_TRUE(f.session().waitIdle(kWaitMs));
+  const BoneNode& bone = *f.session().bone();
+  // A 3.5 mm ball on ~1 mm voxels: its 50 % surface comes out a few per cent small (the main body is 50× larger).
+  EXPECT_NEAR(bone.current().volume(), shape.fragmentVolume(), 0.1 * shape.fragmentVolume());
+  Vec3 centre;
+  const TriangleMesh mesh = bone.current().toMesh();
+  for (const Vec3& p : mesh.vertices) centre = centre + p / double(mesh.vertices.size());
+  EXPECT_LT(norm(centre - shape.fragmentCenter), 0.5);
+}
+
 // The patient frame is kept through Save as in every format with room for it (PLY, OBJ and OFF comments, a
 // VTP field array, a binary STL's header) and read back when the file is opened.
 TEST(GuiCtImport, PatientFrameSurvivesSaveAs) {

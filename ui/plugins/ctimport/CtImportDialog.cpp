@@ -186,6 +186,7 @@ void CtImportDialog::setSliceIndex(int axis, int index) {
   }
   updateSlice(axis);
   updateCrosshairs();
+  if (component_->currentIndex() == 2) requestPreview();  // the kept region follows the crosshair
 }
 
 void CtImportDialog::updateSlices() {
@@ -256,7 +257,15 @@ ct::ImportOptions CtImportDialog::options() const {
   if (upperOn_->isChecked()) o.upperThreshold = upper_->value();
   o.targetFaces = std::size_t(targetFaces_->value());
   o.smoothingIterations = smoothing_->value();
-  o.component = component_->currentIndex() == 1 ? ct::ComponentMode::All : ct::ComponentMode::Largest;
+  switch (component_->currentIndex()) {
+    case 1: o.component = ct::ComponentMode::All; break;
+    case 2:
+      // The voxel at the crosshair (the three slices' indices), in the volume's own space as the pipeline takes it.
+      o.component = ct::ComponentMode::Seed;
+      if (volume_) o.seedWorld = volume_->indexToWorld(index_[0], index_[1], index_[2]);
+      break;
+    default: o.component = ct::ComponentMode::Largest; break;
+  }
   o.fillCavities = fillCavities_->isChecked();
   switch (frame_->currentIndex()) {
     case 0: o.outputSpace = ct::PatientSpace::LPS; break;

@@ -149,7 +149,10 @@ void CtImportDialog::buildUi() {
   smoothing_->setToolTip(tr("Windowed-sinc iterations; the volume is kept"));
   component_ = new QComboBox(options);
   component_->setObjectName("Component");
-  component_->addItems({tr("largest region"), tr("all regions")});
+  component_->addItems({tr("largest region"), tr("all regions"), tr("region at the crosshair")});
+  component_->setToolTip(tr("Which connected bone to keep. For the region at the crosshair, click the slices to put "
+                            "the crosshair on the bone you want (it may be any of them, e.g. the scapula beside the "
+                            "larger humerus)"));
   fillCavities_ = new QCheckBox(tr("fill cavities"), options);
   fillCavities_->setObjectName("FillCavities");
   fillCavities_->setChecked(true);
