@@ -237,6 +237,16 @@ TEST(BadVolumes, NiftiTruncatedAndWrongHeader) {
 }
 
 // The positions of the slices of a DICOM series decide whether they form one regular volume.
+// A slice's ImagePositionPatient as written in the file ("x\\y\\z"), for tests that edit it in place.
+std::string imagePositionText(const std::string& file) {
+  auto parser = vtkSmartPointer<vtkDICOMParser>::New();
+  auto meta = vtkSmartPointer<vtkDICOMMetaData>::New();
+  parser->SetMetaData(meta);
+  parser->SetFileName(file.c_str());
+  parser->Update();
+  return meta->Get(DC::ImagePositionPatient).AsString();
+}
+
 TEST(BadVolumes, DicomMissingSliceInconsistentSpacingAndTruncatedFile) {
   const Small s;
   const path d = cttest::scratch("bad_dicom");
@@ -250,12 +260,7 @@ TEST(BadVolumes, DicomMissingSliceInconsistentSpacingAndTruncatedFile) {
   // Move one slice by a third of the spacing, editing ImagePositionPatient's text in the file.
   phantom::writeDicomSeries((d / "uneven").string(), s.grid, s.hu);
   const std::string file = (d / "uneven" / "IM-0003.dcm").string();
-  auto parser = vtkSmartPointer<vtkDICOMParser>::New();
-  auto meta = vtkSmartPointer<vtkDICOMMetaData>::New();
-  parser->SetMetaData(meta);
-  parser->SetFileName(file.c_str());
-  parser->Update();
-  const std::string ipp = meta->Get(DC::ImagePositionPatient).AsString();
+  const std::string ipp = imagePositionText(file);
   const std::size_t lastSep = ipp.rfind('\\');
   ASSERT_NE(lastSep, std::string::npos) << ipp;
   const double z = std::stod(ipp.substr(lastSep + 1));
@@ -279,12 +284,7 @@ TEST(BadVolumes, DicomSlicesShiftedWithinTheirPlaneAreRefused) {
   const path d = cttest::scratch("bad_dicom_in_plane");
   phantom::writeDicomSeries((d / "moved").string(), s.grid, s.hu);
   const std::string file = (d / "moved" / "IM-0003.dcm").string();
-  auto parser = vtkSmartPointer<vtkDICOMParser>::New();
-  auto meta = vtkSmartPointer<vtkDICOMMetaData>::New();
-  parser->SetMetaData(meta);
-  parser->SetFileName(file.c_str());
-  parser->Update();
-  const std::string ipp = meta->Get(DC::ImagePositionPatient).AsString();
+  const std::string ipp = imagePositionText(file);
   const std::size_t firstSep = ipp.find('\\');
   ASSERT_NE(firstSep, std::string::npos) << ipp;
   std::string x = std::to_string(std::stod(ipp.substr(0, firstSep)) + 1.0).substr(0, firstSep);
@@ -518,7 +518,7 @@ TEST(BadVolumes, DicomStructureCheckAcceptsValidLayoutsAndLetsNoCrashThrough) {
   const Small s;
   const path d = cttest::scratch("dicom_layouts");
   for (const std::string syntax : {"", "1.2.840.10008.1.2", "1.2.840.10008.1.2.2"}) {
-    for (const std::string tail : {std::string(), std::string(16, '\0'), std::string(3, '\0'), std::string("\n")}) {
+    for (const std::string& tail : {std::string(), std::string(16, '\0'), std::string(3, '\0'), std::string("\n")}) {
       const path dir = d / ("s" + syntax + "_" + std::to_string(tail.size()) + (tail == "\n" ? "nl" : ""));
       phantom::writeDicomSeries(dir.string(), s.grid, s.hu, syntax);
       for (const auto& e : cttest::fs::directory_iterator(dir))

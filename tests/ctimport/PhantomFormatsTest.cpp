@@ -56,6 +56,17 @@ std::vector<Format> formats() {
   };
 }
 
+// In the right place, the right way round: the cylinder's ends along its axis, within 0.6 mm.
+void expectCylinderEndsInPlace(const TriangleMesh& mesh, const phantom::SphereAndCylinder& shape) {
+  double top = -HUGE_VAL, bottom = HUGE_VAL;
+  for (const Vec3& p : mesh.vertices) {
+    top = std::max(top, dot(p - shape.center, shape.axis));
+    bottom = std::min(bottom, dot(p - shape.center, shape.axis));
+  }
+  EXPECT_NEAR(top, shape.cylinderLength / 2, 0.6);
+  EXPECT_NEAR(bottom, -shape.cylinderLength / 2, 0.6);
+}
+
 class PhantomFormats : public ::testing::TestWithParam<Format> {
  protected:
   static void SetUpTestSuite() {
@@ -109,13 +120,7 @@ TEST_P(PhantomFormats, ReadsGeometryAndImportsAClosedMeshOfTheRightVolume) {
   EXPECT_NEAR(*rep.volumeMm3 / shape_.mainVolume(), 1.0, 0.01) << "volume " << *rep.volumeMm3;
   // In the right place, the right way round: centroid at the centre, cylinder ends along the axis.
   EXPECT_NEAR(norm(cttest::solidCentroid(r.mesh) - shape_.center), 0.0, 0.3);
-  double top = -HUGE_VAL, bottom = HUGE_VAL;
-  for (const Vec3& p : r.mesh.vertices) {
-    top = std::max(top, dot(p - shape_.center, shape_.axis));
-    bottom = std::min(bottom, dot(p - shape_.center, shape_.axis));
-  }
-  EXPECT_NEAR(top, shape_.cylinderLength / 2, 0.6);
-  EXPECT_NEAR(bottom, -shape_.cylinderLength / 2, 0.6);
+  expectCylinderEndsInPlace(r.mesh, shape_);
 }
 
 TEST_P(PhantomFormats, ReadingReportsProgressAndCanBeCancelled) {
@@ -185,13 +190,7 @@ TEST(PhantomOrientation, GantryTiltedDicomSeriesIsResampledInPlace) {
   EXPECT_NEAR(*r.report.validation.volumeMm3 / shape.mainVolume(), 1.0, 0.01);
   EXPECT_NEAR(norm(cttest::solidCentroid(r.mesh) - shape.center), 0.0, 0.3);
   // Not sheared: the cylinder's ends where they are (a shear keeps volume and centroid, not these).
-  double top = -HUGE_VAL, bottom = HUGE_VAL;
-  for (const Vec3& p : r.mesh.vertices) {
-    top = std::max(top, dot(p - shape.center, shape.axis));
-    bottom = std::min(bottom, dot(p - shape.center, shape.axis));
-  }
-  EXPECT_NEAR(top, shape.cylinderLength / 2, 0.6);
-  EXPECT_NEAR(bottom, -shape.cylinderLength / 2, 0.6);
+  expectCylinderEndsInPlace(r.mesh, shape);
 }
 
 }  // namespace
