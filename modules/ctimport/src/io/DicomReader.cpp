@@ -348,7 +348,6 @@ void checkDeclaredSize(const std::string& path, vtkDICOMReader* reader, vtkDICOM
 
 }  // namespace
 
-
 CtVolume readDicom(const std::string& path, const ReadTick& tick) {
   CtVolume v;
   v.sourcePath = path;
