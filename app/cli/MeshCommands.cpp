@@ -1,6 +1,7 @@
 // info, repair, export: mesh inspection and conversion.
 #include <cstdio>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "CliArgs.h"
 #include "Commands.h"
@@ -33,10 +34,14 @@ int runInfo(const std::vector<std::string>& args) {
   options.checkSelfIntersections = !a.has("no-self-intersections");
   const ValidationReport report = validateMesh(m.mesh, options);
   if (a.has("json")) {
-    std::cout << toJson(report) << "\n";
+    // The file's comments too: where ReamSim keeps the bone's patient frame ("reamsim patient_frame LPS").
+    nlohmann::json j = nlohmann::json::parse(toJson(report));
+    j["comments"] = m.comments;
+    std::cout << j.dump(2) << "\n";
   } else {
     printNotes(m, a.positionals()[0]);
     std::cout << "file:                   " << a.positionals()[0] << " (" << m.format << ")\n" << toText(report);
+    for (const std::string& c : m.comments) std::cout << "comment:                " << c << "\n";
   }
   return kOk;
 }

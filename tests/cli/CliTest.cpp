@@ -83,6 +83,11 @@ TEST(Cli, ExportKeepsThePatientFrame) {
     const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("# reamsim patient_frame RAS\n"), std::string::npos) << ext << "\n" << text.substr(0, 200);
     EXPECT_EQ(text.find("made by hand"), std::string::npos) << ext;
+    // info lists a file's comments, where the frame is.
+    const CliRun info = run("info " + out.string() + " --json");
+    ASSERT_EQ(info.exitCode, 0) << info.out;
+    const auto comments = nlohmann::json::parse(info.out)["comments"];
+    EXPECT_EQ(comments, nlohmann::json({"written by ReamSim", "reamsim patient_frame RAS"})) << ext;
   }
 }
 
