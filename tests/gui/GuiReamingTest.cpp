@@ -264,6 +264,10 @@ TEST(GuiReaming, AKeyMoveLogsWhereItFirstMetTheBone) {
   ASSERT_GT(table->rowCount(), 0);
   const QString tip = table->item(table->rowCount() - 1, 5)->toolTip();
   EXPECT_TRUE(tip.startsWith("the move first met the bone 0.0 % of the way")) << tip.toStdString();
+  // The reamer that made the step, with its size.
+  EXPECT_EQ(e.reamer, s.reamer()->spec().name);
+  EXPECT_EQ(table->item(table->rowCount() - 1, 7)->text().toStdString(), s.reamer()->spec().name);
+  EXPECT_TRUE(table->item(table->rowCount() - 1, 7)->toolTip().startsWith("Ø ")) << table->item(table->rowCount() - 1, 7)->toolTip().toStdString();
 }
 
 TEST(GuiReaming, StopEndsALongSwingAndLeavesTheBoneAsItWas) {

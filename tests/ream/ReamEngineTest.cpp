@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "ReamFixture.h"
+#include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/Approach.h"
 #include "reamsim/ream/ReamStep.h"
 #include "reamsim/tools/Primitives.h"
@@ -47,6 +48,37 @@ TEST(ReamEngine, WorkerThreadStepsMatchTheController) {
   EXPECT_GT(split.log->cumulativeMm3(), 100.0);  // 1.3 mm of a 20 mm flat reamer: ~400 mm3
   EXPECT_NEAR(split.bone->current().volume(), sync.bone->current().volume(), 1e-6);
   EXPECT_FALSE(engine.checkBone().selfIntersectsExact);
+}
+
+// The log names the reamer each step was computed with: a step still running when the user picks another
+// reamer is committed as made, by the first one.
+TEST(ReamEngine, LogNamesTheReamerTheStepWasComputedWith) {
+  test::ReamScene s(block(), test::flatReamer20());
+  ReamEngine engine(s.reamer->cuttingVolume(), makeBvhContactBackend(), referenceCutBackendFactory(), s.reamer->spec());
+  ReamComputation c = engine.compute(s.bone->current(), s.bone->currentRevision(), at(-0.5), 0);
+  ReamerSpec other;
+  other.name = "glenoid-40-R35";
+  other.diameterMm = 40;
+  other.sphereRadiusMm = 35;
+  s.reamer->setSpec(other);  // changed while the step ran
+  const CutLogEntry e = commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, c, 0);
+  ASSERT_TRUE(e.contact);
+  EXPECT_EQ(e.reamer, "flat-20");
+  EXPECT_EQ(e.reamerDiameterMm, 20);
+  EXPECT_FALSE(e.reamerSphereRadiusMm);  // flat
+  const std::string csv = cutLogCsv(s.log->entries());
+  EXPECT_NE(csv.find(",reamer,reamer_diameter_mm,reamer_sphere_radius_mm\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",flat-20,20,\n"), std::string::npos) << csv;
+  // An engine that does not know its reamer's spec logs the node's: the curved one, with its radius.
+  s.reamer->setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(other)));
+  ReamEngine anonymous = referenceEngine(*s.reamer);
+  anonymous.adopt(e.boneStateId);
+  ReamComputation d = anonymous.compute(s.bone->current(), s.bone->currentRevision(), at(-1.0), 0.5);
+  const CutLogEntry f = commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, d, 1);
+  EXPECT_EQ(f.reamer, "glenoid-40-R35");
+  ASSERT_TRUE(f.reamerSphereRadiusMm);
+  EXPECT_EQ(*f.reamerSphereRadiusMm, 35);
+  EXPECT_NE(cutLogJson(s.log->entries()).find("\"name\": \"glenoid-40-R35\""), std::string::npos);
 }
 
 TEST(ReamEngine, StaleComputationIsRefusedAndEngineResyncs) {

@@ -19,6 +19,14 @@ std::string num(double v, const char* fmt = "%.6f") {
 }
 nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 // A point's three CSV fields (each after a comma), empty when there is none.
+// A text field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
 std::string pointCsv(const std::optional<Vec3>& p) {
   return p ? "," + num(p->x) + "," + num(p->y) + "," + num(p->z) : std::string(",,,");
 }
@@ -43,7 +51,7 @@ std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
   std::string out =
       "step,time_utc,tip_x,tip_y,tip_z,axis_x,axis_y,axis_z,boxes_overlap,contact,min_distance_mm,removed_mm3,"
       "cumulative_mm3,cut_ms,faces,contact_x,contact_y,contact_z,bone_state,move_contact_t,move_contact_x,"
-      "move_contact_y,move_contact_z\n";
+      "move_contact_y,move_contact_z,reamer,reamer_diameter_mm,reamer_sphere_radius_mm\n";
   for (const CutLogEntry& e : entries) {
     out += std::to_string(e.stepIndex) + "," + isoTimeUtc(e.timeUnixMs);
     for (double v : {e.pose.tip.x, e.pose.tip.y, e.pose.tip.z, e.pose.axis.x, e.pose.axis.y, e.pose.axis.z})
@@ -52,7 +60,9 @@ std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
     out += "," + num(e.minDistanceMm) + "," + num(e.removedMm3, "%.9g") + "," + num(e.cumulativeMm3, "%.9g") + "," +
            num(e.cutMs, "%.3f") + "," + std::to_string(e.faces);
     out += pointCsv(e.contactPoint) + "," + std::to_string(e.boneStateId);
-    out += (e.moveContactT ? "," + num(*e.moveContactT, "%.9g") : std::string(",")) + pointCsv(e.moveContactPoint) + "\n";
+    out += (e.moveContactT ? "," + num(*e.moveContactT, "%.9g") : std::string(",")) + pointCsv(e.moveContactPoint);
+    out += "," + csvField(e.reamer) + "," + (e.reamerDiameterMm > 0 ? num(e.reamerDiameterMm, "%.9g") : std::string()) + "," +
+           (e.reamerSphereRadiusMm ? num(*e.reamerSphereRadiusMm, "%.9g") : std::string()) + "\n";
   }
   return out;
 }
@@ -75,6 +85,11 @@ std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::strin
     r["contact_point"] = pointOrNull(e.contactPoint);
     r["move_contact_t"] = e.moveContactT ? nlohmann::json(*e.moveContactT) : nlohmann::json(nullptr);
     r["move_contact_point"] = pointOrNull(e.moveContactPoint);
+    r["reamer"] = e.reamer.empty() ? nlohmann::json(nullptr)
+                                   : nlohmann::json{{"name", e.reamer},
+                                                    {"diameter_mm", e.reamerDiameterMm},
+                                                    {"sphere_radius_mm", e.reamerSphereRadiusMm ? nlohmann::json(*e.reamerSphereRadiusMm)
+                                                                                                : nlohmann::json(nullptr)}};
     rows.push_back(r);
   }
   nlohmann::json j = {{"summary", nlohmann::json::parse(summaryJson)}, {"steps", rows}};

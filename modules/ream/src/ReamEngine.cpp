@@ -160,6 +160,7 @@ ReamComputation ReamEngine::compute(const BoneState& bone, std::uint64_t revisio
   ReamComputation out;
   out.pose = pose;
   out.baseRevision = revision;
+  out.reamer = spec_;
   if (!contact_) return out;
 
   const RigidTransform toBone = toTransform(pose);

@@ -26,10 +26,10 @@ LogPanel::LogPanel(Document& document, QWidget* parent) : QDockWidget(tr("Cut lo
   auto* body = new QWidget(this);
   auto* layout = new QVBoxLayout(body);
   auto* splitter = new QSplitter(Qt::Vertical, body);
-  table_ = new QTableWidget(0, 7, splitter);
+  table_ = new QTableWidget(0, 8, splitter);
   table_->setObjectName("LogTable");
   table_->setHorizontalHeaderLabels({tr("time"), tr("removed mm³"), tr("cumulative mm³"), tr("cut ms"), tr("faces"),
-                                     tr("contact point (mm)"), tr("step")});
+                                     tr("contact point (mm)"), tr("step"), tr("reamer")});
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   table_->setFocusPolicy(Qt::NoFocus);  // the reamer keys stay with the main window
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
@@ -102,6 +102,11 @@ void LogPanel::sync() {
                                            .arg(e.moveContactPoint->y, 0, 'f', 2)
                                            .arg(e.moveContactPoint->z, 0, 'f', 2));
     cell(6, QString::number(e.stepIndex));
+    cell(7, QString::fromStdString(e.reamer));  // a session may change reamers
+    if (e.reamerDiameterMm > 0)
+      table_->item(row, 7)->setToolTip(e.reamerSphereRadiusMm
+                                           ? tr("Ø %1 mm, cap sphere R %2 mm").arg(e.reamerDiameterMm).arg(*e.reamerSphereRadiusMm)
+                                           : tr("Ø %1 mm, flat").arg(e.reamerDiameterMm));
   }
   shown_ = entries.size();
   table_->scrollToBottom();

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "reamsim/core/Pose.h"
 #include "reamsim/mesh/Vec3.h"
@@ -26,6 +27,11 @@ struct CutLogEntry {
   std::optional<double> moveContactT;
   std::optional<Vec3> moveContactPoint;
   std::uint64_t boneStateId = 0;  // BoneHistory revision committed by this step (0: none)
+  // The reamer that made the step (a session may change reamers): its name, chord diameter and cap sphere
+  // radius (unset for a flat reamer).
+  std::string reamer;
+  double reamerDiameterMm = 0;
+  std::optional<double> reamerSphereRadiusMm;
 };
 
 }  // namespace reamsim

@@ -29,6 +29,7 @@ struct ReamComputation {
   int sweepCuts = 0;               // swept: the Booleans it took (1 for a translation, the placements of a turn)
   bool sweptPastBone = false;      // a translation the first-contact query shows missed the bone: nothing swept
   std::optional<BoneState> next;
+  std::optional<ReamerSpec> reamer;  // what the step's cutting volume was built from, when the engine knows
   double volumeBookkeepingError = 0;  // |removed − (V_before − V_after)|
   // Where the step's time went (ms): the collision query (with the collider following the last cut), the
   // Boolean as the cutting engine reports it, and turning the cut into the next BoneState.
