@@ -186,7 +186,7 @@ void CtImportDialog::setSliceIndex(int axis, int index) {
   }
   updateSlice(axis);
   updateCrosshairs();
-  if (component_->currentIndex() == 2) requestPreview();  // the kept region follows the crosshair
+  if (component_->currentIndex() == kRegionAtCrosshair) requestPreview();  // the kept region follows the crosshair
 }
 
 void CtImportDialog::updateSlices() {
@@ -258,8 +258,8 @@ ct::ImportOptions CtImportDialog::options() const {
   o.targetFaces = std::size_t(targetFaces_->value());
   o.smoothingIterations = smoothing_->value();
   switch (component_->currentIndex()) {
-    case 1: o.component = ct::ComponentMode::All; break;
-    case 2:
+    case kAllRegions: o.component = ct::ComponentMode::All; break;
+    case kRegionAtCrosshair:
       // The voxel at the crosshair (the three slices' indices), in the volume's own space as the pipeline takes it.
       o.component = ct::ComponentMode::Seed;
       if (volume_) o.seedWorld = volume_->indexToWorld(index_[0], index_[1], index_[2]);

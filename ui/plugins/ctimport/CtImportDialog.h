@@ -71,6 +71,9 @@ class CtImportDialog : public QDialog {
   void closeEvent(QCloseEvent* e) override;
 
  private:
+  // The Component choices, in the combo box's order.
+  enum ComponentItem { kLargestRegion, kAllRegions, kRegionAtCrosshair };
+
   void buildUi();
   void chooseFile();
   void chooseFolder();

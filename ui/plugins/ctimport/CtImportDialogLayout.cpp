@@ -149,7 +149,7 @@ void CtImportDialog::buildUi() {
   smoothing_->setToolTip(tr("Windowed-sinc iterations; the volume is kept"));
   component_ = new QComboBox(options);
   component_->setObjectName("Component");
-  component_->addItems({tr("largest region"), tr("all regions"), tr("region at the crosshair")});
+  component_->addItems({tr("largest region"), tr("all regions"), tr("region at the crosshair")});  // ComponentItem
   component_->setToolTip(tr("Which connected bone to keep. For the region at the crosshair, click the slices to put "
                             "the crosshair on the bone you want (it may be any of them, e.g. the scapula beside the "
                             "larger humerus)"));

@@ -222,16 +222,20 @@ std::string outsiders(const std::vector<std::string>& files) {
          " not part of the series (unreadable, not an image, or another series)";
 }
 
+// The name of slice f's file, for messages ("?" when the series has more instances than files).
+std::string sliceFileName(const std::vector<std::string>& files, int f) {
+  return f < int(files.size()) ? fs::path(files[std::size_t(f)]).filename().string() : std::string("?");
+}
+
 // Within their plane, the slices of a gantry-tilted series are shifted in proportion to their distance along
 // the normal (the reader's patient matrix, and the resampling, take the shift as one straight line from the
 // first slice to the last); an untilted series is not shifted at all. A slice off that line means slices
 // of different series, or positions that are simply wrong: stacking them would shear the volume unevenly.
+// `positions`: each slice's ImagePositionPatient; `byPosition`: (distance along the normal, slice), sorted.
 void checkInPlaneShifts(const std::string& path, vtkDICOMMetaData* meta, const Vec3& normal,
-                        const std::vector<std::pair<double, int>>& byPosition, const std::vector<std::string>& files) {
-  const auto position = [&](int f) {
-    const vtkDICOMValue& p = meta->Get(f, DC::ImagePositionPatient);
-    return Vec3{p.GetDouble(0), p.GetDouble(1), p.GetDouble(2)};
-  };
+                        const std::vector<Vec3>& positions, const std::vector<std::pair<double, int>>& byPosition,
+                        const std::vector<std::string>& files) {
+  const auto position = [&](int f) { return positions[std::size_t(f)]; };
   const auto inPlane = [&](const Vec3& d) { return d - normal * dot(normal, d); };
   const vtkDICOMValue& pixel = meta->Get(0, DC::PixelSpacing);
   const double pixelMm = pixel.GetNumberOfValues() == 2 ? std::min(pixel.GetDouble(0), pixel.GetDouble(1)) : 0.0;
@@ -253,7 +257,7 @@ void checkInPlaneShifts(const std::string& path, vtkDICOMMetaData* meta, const V
       char m[260];
       std::snprintf(m, sizeof m, "slice %s is %.3g mm off the line the other slices' positions follow within their "
                     "plane (slices of different series, or wrong positions)",
-                    f < int(files.size()) ? fs::path(files[std::size_t(f)]).filename().string().c_str() : "?", off);
+                    sliceFileName(files, f).c_str(), off);
       throw InputError(path, m);
     }
   }
@@ -273,6 +277,7 @@ void checkSlices(const std::string& path, vtkDICOMMetaData* meta, const std::vec
   const Vec3 normal = crossOf(iop0, iop0 + 3);
   const int rows0 = meta->Get(0, DC::Rows).AsInt(), cols0 = meta->Get(0, DC::Columns).AsInt();
   std::vector<std::pair<double, int>> pos;
+  std::vector<Vec3> positions;
   for (int f = 0; f < n; ++f) {
     const std::string& file = f < int(files.size()) ? files[std::size_t(f)] : path;
     const vtkDICOMValue& o = meta->Get(f, DC::ImageOrientationPatient);
@@ -284,19 +289,17 @@ void checkSlices(const std::string& path, vtkDICOMMetaData* meta, const std::vec
         throw InputError(file, "slice orientation differs from the rest of the series");
     if (meta->Get(f, DC::Rows).AsInt() != rows0 || meta->Get(f, DC::Columns).AsInt() != cols0)
       throw InputError(file, "slice size differs from the rest of the series");
-    pos.emplace_back(dot(normal, Vec3{p.GetDouble(0), p.GetDouble(1), p.GetDouble(2)}), f);
+    positions.push_back({p.GetDouble(0), p.GetDouble(1), p.GetDouble(2)});
+    pos.emplace_back(dot(normal, positions.back()), f);
   }
   std::sort(pos.begin(), pos.end());
-  checkInPlaneShifts(path, meta, normalized(normal), pos, files);
+  checkInPlaneShifts(path, meta, normalized(normal), positions, pos, files);
   std::vector<double> gaps;
   for (std::size_t i = 1; i < pos.size(); ++i) gaps.push_back(pos[i].first - pos[i - 1].first);
   std::vector<double> sorted = gaps;
   std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
   const double spacing = sorted[sorted.size() / 2];
-  const auto fileOf = [&](std::size_t i) {
-    const int f = pos[i].second;
-    return f < int(files.size()) ? fs::path(files[std::size_t(f)]).filename().string() : std::string("?");
-  };
+  const auto fileOf = [&](std::size_t i) { return sliceFileName(files, pos[i].second); };
   for (std::size_t i = 0; i < gaps.size(); ++i) {
     if (gaps[i] < 1e-3)
       throw InputError(path, "slices " + fileOf(i) + " and " + fileOf(i + 1) + " are at the same position " +

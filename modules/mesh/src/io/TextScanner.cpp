@@ -17,9 +17,10 @@ std::string_view stripPlus(std::string_view tok) {
   return tok;
 }
 
+// A line's text without the spaces around it (lines hold no '\n').
 std::string_view trimmed(std::string_view t) {
-  while (!t.empty() && (isSpace(t.front()) || t.front() == '\n')) t.remove_prefix(1);
-  while (!t.empty() && (isSpace(t.back()) || t.back() == '\n')) t.remove_suffix(1);
+  while (!t.empty() && isSpace(t.front())) t.remove_prefix(1);
+  while (!t.empty() && isSpace(t.back())) t.remove_suffix(1);
   return t;
 }
 
@@ -77,7 +78,7 @@ bool TextScanner::nextLine() {
   if (comment_ != '\0') {
     const std::size_t c = lineText_.find(comment_);
     if (c != std::string_view::npos) {
-      if (commentLines_ && lineText_.find_first_not_of(" \t\r\v\f") == c)
+      if (commentLines_ && trimmed(lineText_).front() == comment_)  // the line is only a comment
         commentLines_->emplace_back(trimmed(lineText_.substr(c + 1)));
       lineText_ = lineText_.substr(0, c);
     }
@@ -124,9 +125,7 @@ void TextScanner::expectLineEnd(const char* what) {
 }
 
 std::string_view TextScanner::restOfLine() {
-  atLineEnd();
-  std::string_view rest = lineText_.substr(pos_);
-  while (!rest.empty() && isSpace(rest.back())) rest.remove_suffix(1);
+  const std::string_view rest = trimmed(lineText_.substr(pos_));
   pos_ = lineText_.size();
   return rest;
 }
