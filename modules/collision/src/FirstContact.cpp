@@ -139,8 +139,7 @@ class ToiSearch {
   bool run(double& sHit) {
     heap_.clear();
     if (hull_) {
-      const Item root = boneItem(bone_.root());
-      if (promising(root.slb)) push(root);
+      pushSubtreesInBallReach();
     } else {
       pushNodes(bone_.root(), rtree_.root());
     }
@@ -364,6 +363,39 @@ class ToiSearch {
       }
     }
     return best;
+  }
+
+  // The search's first items: the bone subtrees whose box meets the box the moving ball sweeps, found by box
+  // tests alone down to nodes of about the ball's size (half its radius across), each then queued with its
+  // hull bound. Above that size the hull bounds of a node and of its children barely differ, and both
+  // children are opened: a box test there costs a tenth of a hull bound (session 34, no-contact motions at
+  // 405k: ~150 -> ~120 hull bounds and ~67 box tests each, median -15 to -19 % over alternating runs; the
+  // hull bounds of nodes larger than that are what a search from the root paid first).
+  void pushSubtreesInBallReach() {
+    Vec3 lo, hi;
+    for (int i = 0; i < 3; ++i) {
+      const double a = ball_.c0[i], b = ball_.c0[i] + ball_.d[i];
+      const double pad = 1e-9 * (1 + std::abs(a) + std::abs(b) + ball_.radius);
+      lo[i] = std::min(a, b) - ball_.radius - pad;
+      hi[i] = std::max(a, b) + ball_.radius + pad;
+    }
+    const double smallEnough = 0.5 * ball_.radius;
+    const auto& bn = bone_.nodes();
+    std::vector<std::int32_t>& stack = sc_.rstack;  // free until the search's first window
+    stack.assign(1, bone_.root());
+    while (!stack.empty()) {
+      const std::int32_t b = stack.back();
+      stack.pop_back();
+      const BvhNode& B = bn[b];
+      if (!boxesOverlap(B.lo, B.hi, lo, hi)) continue;
+      if (B.isLeaf() || std::max({B.hi.x - B.lo.x, B.hi.y - B.lo.y, B.hi.z - B.lo.z}) <= smallEnough) {
+        const Item it = boneItem(b);
+        if (promising(it.slb)) push(it);
+        continue;
+      }
+      stack.push_back(B.left);
+      stack.push_back(B.right);
+    }
   }
 
   // Bone node b with its bound, its children's nodes and slabs fetched ahead when it is worth opening: when
