@@ -366,11 +366,11 @@ class ToiSearch {
   }
 
   // The search's first items: the bone subtrees whose box meets the box the moving ball sweeps, found by box
-  // tests alone down to nodes of about the ball's size (half its radius across), each then queued with its
-  // hull bound. Above that size the hull bounds of a node and of its children barely differ, and both
-  // children are opened: a box test there costs a tenth of a hull bound (session 34, no-contact motions at
-  // 405k: ~150 -> ~120 hull bounds and ~67 box tests each, median -15 to -19 % over alternating runs; the
-  // hull bounds of nodes larger than that are what a search from the root paid first).
+  // tests alone down to nodes no wider than half the ball's radius, each then queued with its hull bound.
+  // Above that size the hull bounds of a node and of its children barely differ and both children are
+  // opened, so the hull bounds a search from the root paid there bought nothing a box test does not
+  // (session 34, no-contact motions at 405k: ~150 -> ~120 hull bounds and ~67 box tests each, median
+  // -15 to -19 % over alternating runs in one process).
   void pushSubtreesInBallReach() {
     Vec3 lo, hi;
     for (int i = 0; i < 3; ++i) {
