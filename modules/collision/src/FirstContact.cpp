@@ -370,7 +370,7 @@ class ToiSearch {
   // Above that size the hull bounds of a node and of its children barely differ and both children are
   // opened, so the hull bounds a search from the root paid there bought nothing a box test does not
   // (session 34, no-contact motions at 405k: ~150 -> ~120 hull bounds and ~67 box tests each, median
-  // -15 to -19 % over alternating runs in one process).
+  // -15 to -16 % over alternating runs in one process).
   void pushSubtreesInBallReach() {
     Vec3 lo, hi;
     for (int i = 0; i < 3; ++i) {
