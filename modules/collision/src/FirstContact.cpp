@@ -368,8 +368,8 @@ class ToiSearch {
   // The search's first items: the bone subtrees whose box meets the box the moving ball sweeps, found by box
   // tests alone down to nodes no wider than half the ball's radius, each then queued with its hull bound.
   // Above that size the hull bounds of a node and of its children barely differ and both children are
-  // opened, so the hull bounds a search from the root paid there bought nothing a box test does not
-  // (session 34, no-contact motions at 405k: ~150 -> ~120 hull bounds and ~67 box tests each, median
+  // nearly always opened, so the hull bounds a search from the root paid there pruned little more than a
+  // box test does, at several times its cost (session 34, no-contact motions at 405k: ~150 -> ~120 hull bounds and ~67 box tests each, median
   // -15 to -16 % over alternating runs in one process).
   void pushSubtreesInBallReach() {
     Vec3 lo, hi;
