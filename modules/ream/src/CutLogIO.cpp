@@ -18,7 +18,6 @@ std::string num(double v, const char* fmt = "%.6f") {
   return buf;
 }
 nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-// A point's three CSV fields (each after a comma), empty when there is none.
 // A text field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
 std::string csvField(const std::string& text) {
   if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
@@ -26,7 +25,7 @@ std::string csvField(const std::string& text) {
   for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
 }
-
+// A point's three CSV fields (each after a comma), empty when there is none.
 std::string pointCsv(const std::optional<Vec3>& p) {
   return p ? "," + num(p->x) + "," + num(p->y) + "," + num(p->z) : std::string(",,,");
 }
