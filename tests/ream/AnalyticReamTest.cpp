@@ -64,7 +64,7 @@ TEST(AnalyticReam, SphericalReamerWithinTheCap) {
   spec.diameterMm = 36;
   spec.sphereRadiusMm = 30;
   // Within the cap the removed volume is dominated by the facets near the apex: 36 rings keep the
-  // faceting under 0.1 % (the default 12 rings give -0.56 %, see docs/BENCHMARKS.md).
+  // faceting under 0.1 % (the test prints the measured error; docs/BENCHMARKS.md quotes it).
   spec.segments = 128;
   spec.rings = 36;
   const double depth = 3.0;  // cap height is 6 mm
