@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "ContactEvents.h"
@@ -174,7 +175,8 @@ class ToiSearch {
           untestedStart_ = nullptr;
         } else if (it.kind == Item::BoneOnly && bn[it.b].isLeaf()) {
           detail::TouchPair touch;
-          if (detail::restTouchesSubtree(bone_, it.b, reamer_, *untestedStart_, &touch)) {
+          if (!restAtStart_) restAtStart_.emplace(bone_, reamer_, *untestedStart_);
+          if (restAtStart_->touchesSubtree(it.b, &touch)) {
             out_ = touchAtStart(bone_, touch);
             sHit = 0;
             return true;
@@ -603,6 +605,7 @@ class ToiSearch {
   const TriangleBvh& bone_;
   const ReamerModel& reamer_;
   const RigidTransform* untestedStart_;
+  std::optional<detail::RestTouchSearch> restAtStart_;  // made at the first leaf tested at s = 0
   const TriangleBvh& rtree_;
   const std::vector<double>& radius_;
   const std::vector<ReamerModel::NodeSlab>& slabs_;

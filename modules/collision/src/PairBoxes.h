@@ -19,6 +19,15 @@ class PairBoxes {
   PairBoxes(const TriangleBvh& bone, const TriangleBvh& reamer, const PoseFrame& frame)
       : bone_(bone), reamer_(reamer), frame_(frame), c_(cache()) {
     c_.begin(reamer.nodes().size(), reamer.slotCapacity());
+    stamp_ = c_.stamp;
+  }
+
+  // Another PairBoxes made on this thread since (the cache is per thread) invalidates what this one
+  // cached: call before using an object that outlived others.
+  void resume() {
+    if (c_.stamp == stamp_) return;
+    c_.begin(reamer_.nodes().size(), reamer_.slotCapacity());
+    stamp_ = c_.stamp;
   }
 
   // Reamer node box in world coordinates (conservative).
@@ -88,6 +97,7 @@ class PairBoxes {
   const TriangleBvh& reamer_;
   const PoseFrame& frame_;
   Cache& c_;
+  std::uint32_t stamp_ = 0;
 };
 
 }  // namespace reamsim::detail

@@ -3,7 +3,6 @@
 #include <utility>
 #include <vector>
 
-#include "PairBoxes.h"
 #include "reamsim/collision/TriangleGeometry.h"
 
 namespace reamsim::detail {
@@ -15,16 +14,18 @@ bool surfacesTouch(const TriangleBvh& bone, const ReamerModel& reamer, const Rig
 
 bool restTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where) {
   if (bone.empty()) return false;
-  return restTouchesSubtree(bone, bone.root(), reamer, pose, where);
+  return RestTouchSearch(bone, reamer, pose).touchesSubtree(bone.root(), where);
 }
 
-bool restTouchesSubtree(const TriangleBvh& bone, std::int32_t node, const ReamerModel& reamer, const RigidTransform& pose,
-                        TouchPair* where) {
+bool RestTouchSearch::touchesSubtree(std::int32_t node, TouchPair* where) {
+  const TriangleBvh& bone = bone_;
+  const ReamerModel& reamer = reamer_;
   const TriangleBvh& rest = reamer.restBvh();
   if (rest.empty()) return false;
-  const PoseFrame frame(pose);
-  PairBoxes boxes(bone, rest, frame);
-  std::vector<std::pair<std::int32_t, std::int32_t>> stack{{node, rest.root()}};
+  PairBoxes& boxes = boxes_;
+  boxes.resume();
+  std::vector<std::pair<std::int32_t, std::int32_t>>& stack = stack_;
+  stack.assign(1, {node, rest.root()});
   const auto& bn = bone.nodes();
   const auto& rn = rest.nodes();
   while (!stack.empty()) {

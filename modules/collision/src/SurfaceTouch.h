@@ -3,7 +3,11 @@
 // The cutting face is searched first through its thin region (DistanceQuery.cpp), then the body and back
 // through a plain two-frame BVH-vs-BVH traversal. First hit wins. Each half is also callable alone.
 #include <cstdint>
+#include <utility>
+#include <vector>
 
+#include "PairBoxes.h"
+#include "PoseFrame.h"
 #include "reamsim/collision/ReamerModel.h"
 #include "reamsim/collision/TriangleBvh.h"
 #include "reamsim/core/Pose.h"
@@ -20,9 +24,22 @@ bool faceTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const R
 // The body and back alone.
 bool restTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);
 bool surfacesTouch(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);
-// The body and back against the bone subtree under `node` only (first contact asks it of each bone leaf its
-// sweep finds the ideal solid reaching at the start, FirstContact.cpp).
-bool restTouchesSubtree(const TriangleBvh& bone, std::int32_t node, const ReamerModel& reamer, const RigidTransform& pose,
-                        TouchPair* where);
+// The body and back against bone subtrees one at a time, at one pose (first contact asks it of each bone leaf
+// its sweep finds the ideal solid reaching at the start, FirstContact.cpp). One object serves all of a
+// query's subtrees, so the reamer's boxes and triangles mapped to world are computed once per query, not
+// once per leaf (the rest-touching motions of the collision bench at 405k: median 72 -> 60 us).
+class RestTouchSearch {
+ public:
+  RestTouchSearch(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose)
+      : bone_(bone), reamer_(reamer), frame_(pose), boxes_(bone, reamer.restBvh(), frame_) {}
+  bool touchesSubtree(std::int32_t node, TouchPair* where);
+
+ private:
+  const TriangleBvh& bone_;
+  const ReamerModel& reamer_;
+  PoseFrame frame_;
+  PairBoxes boxes_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> stack_;
+};
 
 }  // namespace reamsim::detail
