@@ -79,6 +79,9 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   });
   connect(&importWatcher_, &QFutureWatcher<ImportOutcome>::finished, this, &MainWindow::importFinished);
   alertSubscription_ = session_->document().observeNode(session_->alerts()->id(), [this] { updateStatus(); });
+  // The title's [*] marks unsaved changes: the undo history away from the point where the bone was opened
+  // or last saved.
+  connect(session_->undoStack(), &QUndoStack::cleanChanged, this, [this](bool clean) { setWindowModified(!clean); });
   updateStatus();
   updateTitle();
   resize(1280, 800);
@@ -125,18 +128,22 @@ void MainWindow::buildMenus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
   add(file, "open", tr("&Open bone…"), QKeySequence::Open, [this] {
     if (!plugins_.meshImport()) return showError(tr("Open"), tr("No mesh import plugin is loaded (Help → Plugins)."));
+    if (!confirmDiscardChanges(tr("open another bone"))) return;
     const QString path = QFileDialog::getOpenFileName(this, tr("Open bone mesh"), {},
                                                       plugins_.meshImport()->nameFilters().join(";;"));
     if (!path.isEmpty()) openFile(path, true);
   })->setEnabled(plugins_.meshImport() != nullptr);
   add(file, "open_no_repair", tr("Open &without repair (view only)…"), {}, [this] {
+    if (!confirmDiscardChanges(tr("open another bone"))) return;
     const QString path = QFileDialog::getOpenFileName(this, tr("Open bone mesh (no repair, no cutting)"), {},
                                                       plugins_.meshImport()->nameFilters().join(";;"));
     if (!path.isEmpty()) openFile(path, false);
   })->setEnabled(plugins_.meshImport() != nullptr);
   recentMenu_ = file->addMenu(tr("Open &recent"));
   connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::rebuildRecentMenu);
-  add(file, "load_default", tr("Load the &default case"), {}, [this] { loadDefaultCase(); });
+  add(file, "load_default", tr("Load the &default case"), {}, [this] {
+    if (confirmDiscardChanges(tr("load the default case"))) loadDefaultCase();
+  });
   add(file, "save", tr("&Save bone as…"), QKeySequence::SaveAs, [this] {
     if (!plugins_.meshImport()) return showError(tr("Save"), tr("No mesh import plugin is loaded (Help → Plugins)."));
     const QString path = QFileDialog::getSaveFileName(this, tr("Save bone mesh"), "bone.ply",
@@ -292,7 +299,8 @@ QString MainWindow::statusAlertText() const { return alertLabel_->text(); }
 QString MainWindow::statusDistanceText() const { return distanceLabel_->text(); }
 
 void MainWindow::updateTitle() {
-  setWindowTitle(boneName_.isEmpty() ? tr("ReamSim") : tr("ReamSim — %1").arg(boneName_));
+  setWindowTitle(boneName_.isEmpty() ? tr("ReamSim[*]") : tr("ReamSim — %1[*]").arg(boneName_));
+  setWindowModified(hasUnsavedChanges());
 }
 
 void MainWindow::showError(const QString& title, const QString& message) {

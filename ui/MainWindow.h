@@ -62,7 +62,9 @@ class MainWindow : public QMainWindow {
   bool importRunning() const { return importWatcher_.isRunning(); }
   void waitImport();
   void cancelImport();  // the window is free at once; the worker's result is discarded
-  void saveBoneAs(const QString& path);
+  bool saveBoneAs(const QString& path);  // true when written; the bone is then "saved" (no unsaved changes)
+  // Changes since the bone was opened or last saved (the undo history is away from its saved point).
+  bool hasUnsavedChanges() const;
   // Depth below the first contact along the axis (searched on a worker, then fed in feed steps).
   void reamToDepth(double depthMm);
   bool contactSearchRunning() const { return pendingDepth_.has_value(); }
@@ -86,6 +88,7 @@ class MainWindow : public QMainWindow {
   const OtherBonesLayer* otherBones() const { return otherBones_.get(); }
 
  protected:
+  void closeEvent(QCloseEvent* e) override;  // asks before unsaved changes are lost (confirmDiscardChanges)
   void dragEnterEvent(QDragEnterEvent* e) override;
   void dropEvent(QDropEvent* e) override;
 
@@ -95,6 +98,11 @@ class MainWindow : public QMainWindow {
   void buildDocks();
   void buildStatusBar();
   void installBone(ImportedBone bone, const QString& name, const QString& recentPath);
+  // Before the bone is closed or replaced by the user (quit, open, recent, drop, default case): with unsaved
+  // changes, asks Save / Discard / Cancel; true to go on. A running step is stopped first. Programmatic
+  // calls (openFile, loadDefaultCase: tests, demo) do not ask.
+  bool confirmDiscardChanges(const QString& action);
+  bool saveBoneAndCutLogInteractive();  // "Save" in that question: the bone, and its cut log beside it
   void importFinished();
   void updateStatus();
   void updateTitle();

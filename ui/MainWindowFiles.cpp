@@ -1,9 +1,14 @@
-// MainWindow: bones in and out — default case, open (off the UI thread), save, recent files, drag and drop.
+// MainWindow: bones in and out — default case, open (off the UI thread), save, recent files, drag and drop,
+// and the question before unsaved changes would be lost.
 #include <QCoreApplication>
 #include <QDragEnterEvent>
+#include <QCloseEvent>
+#include <QDir>
 #include <QDropEvent>
+#include <QFileDialog>
 #include <QFileInfo>
 #include <QMenu>
+#include <QMessageBox>
 #include <QMimeData>
 #include <QProgressBar>
 #include <QPushButton>
@@ -15,6 +20,7 @@
 #include "BonePlacement.h"
 #include "MainWindow.h"
 #include "PluginHost.h"
+#include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/tools/ReamerPresets.h"
@@ -133,18 +139,76 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
   updateStatus();
 }
 
-void MainWindow::saveBoneAs(const QString& path) {
+bool MainWindow::saveBoneAs(const QString& path) {
   if (!plugins_.meshImport()) {
     showError(tr("Save"), tr("Cannot save %1: no mesh import plugin is loaded (Help → Plugins).").arg(path));
-    return;
+    return false;
   }
   try {
     plugins_.meshImport()->exportMesh(session_->bone()->current().toMesh(), path.toStdString(),
                                       session_->bone()->patientFrame());
-    statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
   } catch (const std::exception& e) {
     showError(tr("Cannot save %1").arg(QFileInfo(path).fileName()), QString::fromStdString(e.what()));
+    return false;
   }
+  session_->undoStack()->setClean();
+  statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+  return true;
+}
+
+bool MainWindow::hasUnsavedChanges() const { return !session_->undoStack()->isClean(); }
+
+void MainWindow::closeEvent(QCloseEvent* e) {
+  if (confirmDiscardChanges(tr("close ReamSim")))
+    e->accept();
+  else
+    e->ignore();
+}
+
+bool MainWindow::confirmDiscardChanges(const QString& action) {
+  if (session_->busy()) {  // the step in flight would change the bone after the answer
+    session_->cancelQueued();
+    session_->waitIdle(60000);
+  }
+  if (!hasUnsavedChanges()) return true;
+  const QString name = boneName_.isEmpty() ? tr("The bone") : tr("The bone (%1)").arg(boneName_);
+  QMessageBox box(QMessageBox::Warning, tr("Unsaved changes"),
+                  tr("%1 has changed since it was opened or last saved: %2 cut steps in its log.")
+                      .arg(name)
+                      .arg(session_->log()->entries().size()),
+                  QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, this);
+  box.setObjectName("UnsavedChangesDialog");
+  box.setInformativeText(tr("Save the bone, and its cut log beside it, before you %1?").arg(action));
+  box.setDefaultButton(QMessageBox::Save);
+  switch (box.exec()) {
+    case QMessageBox::Save:
+      return saveBoneAndCutLogInteractive();
+    case QMessageBox::Discard:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The bone where the user says, the cut log as NAME.cut_log.csv beside it. Anything that fails (or a
+// cancelled file dialog) answers false, so the window stays as it is and nothing is lost.
+bool MainWindow::saveBoneAndCutLogInteractive() {
+  if (!plugins_.meshImport()) {
+    showError(tr("Save"), tr("No mesh import plugin is loaded (Help → Plugins): the bone cannot be saved."));
+    return false;
+  }
+  const QString path = QFileDialog::getSaveFileName(this, tr("Save bone mesh"), "bone.ply",
+                                                    plugins_.meshImport()->nameFilters().join(";;"));
+  if (path.isEmpty() || !saveBoneAs(path)) return false;
+  const QFileInfo info(path);
+  const QString logPath = info.dir().filePath(info.completeBaseName() + ".cut_log.csv");
+  try {
+    writeTextFile(logPath.toStdString(), cutLogCsv(session_->log()->entries()));
+  } catch (const std::exception& e) {
+    showError(tr("Cannot save the cut log %1").arg(QFileInfo(logPath).fileName()), QString::fromStdString(e.what()));
+    return false;
+  }
+  return true;
 }
 
 void MainWindow::addRecent(const QString& path) {
@@ -159,7 +223,9 @@ void MainWindow::rebuildRecentMenu() {
   recentMenu_->clear();
   for (const QString& path : recent_) {
     QAction* a = recentMenu_->addAction(path);
-    connect(a, &QAction::triggered, this, [this, path] { openFile(path, true); });
+    connect(a, &QAction::triggered, this, [this, path] {
+      if (confirmDiscardChanges(tr("open another bone"))) openFile(path, true);
+    });
   }
   if (recent_.isEmpty()) recentMenu_->addAction(tr("(none)"))->setEnabled(false);
 }
@@ -173,7 +239,7 @@ void MainWindow::dropEvent(QDropEvent* e) {
   const QList<QUrl> urls = e->mimeData()->urls();
   if (urls.isEmpty() || !urls.front().isLocalFile()) return;
   e->acceptProposedAction();
-  openFile(urls.front().toLocalFile(), true);
+  if (confirmDiscardChanges(tr("open another bone"))) openFile(urls.front().toLocalFile(), true);
 }
 
 }  // namespace reamsim::ui

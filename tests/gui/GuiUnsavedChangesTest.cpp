@@ -1,0 +1,206 @@
+// The user's work is not lost by a click: closing the window, or opening another bone through the menu,
+// with cuts not yet saved asks Save / Discard / Cancel first; Save writes the bone and its cut log, and a
+// save that fails (or a cancelled file dialog) keeps the window as it was. The questions are answered
+// through the real modal dialogs, as a user would.
+#include <QAbstractButton>
+#include <QAction>
+#include <QApplication>
+#include <QFile>
+#include <QFileDialog>
+#include <QMessageBox>
+#include <QTemporaryDir>
+#include <QTimer>
+#include <QUndoStack>
+#include <QtTest/QTest>
+#include <deque>
+#include <functional>
+
+#include "GuiEnvironment.h"
+#include "reamsim/mesh/MeshIO.h"
+#include "reamsim/ream/Approach.h"
+
+namespace reamsim::ui::test {
+namespace {
+
+// Answers the modal dialogs as they open, one answer each, in order; counts those it saw.
+class ModalAnswers {
+ public:
+  using Answer = std::function<void(QWidget*)>;
+  explicit ModalAnswers(std::deque<Answer> answers) : answers_(std::move(answers)) {
+    timer_.setInterval(20);
+    QObject::connect(&timer_, &QTimer::timeout, [this] {
+      QWidget* modal = QApplication::activeModalWidget();
+      if (!modal || modal == last_) return;
+      last_ = modal;
+      ++seen_;
+      if (answers_.empty()) return;
+      Answer a = std::move(answers_.front());
+      answers_.pop_front();
+      a(modal);
+    });
+    timer_.start();
+  }
+  int seen() const { return seen_; }
+
+  static Answer button(QMessageBox::StandardButton which, QString* text = nullptr) {
+    return [which, text](QWidget* w) {
+      auto* box = qobject_cast<QMessageBox*>(w);
+      ASSERT_NE(box, nullptr) << "expected the unsaved-changes question, got " << w->metaObject()->className();
+      EXPECT_EQ(box->objectName(), "UnsavedChangesDialog");
+      if (text) *text = box->text() + "\n" + box->informativeText();
+      box->button(which)->click();
+    };
+  }
+  static Answer file(const QString& path) {
+    return [path](QWidget* w) {
+      auto* dialog = qobject_cast<QFileDialog*>(w);
+      ASSERT_NE(dialog, nullptr) << "expected the save dialog, got " << w->metaObject()->className();
+      dialog->selectFile(path);
+      static_cast<QDialog*>(dialog)->accept();  // as the dialog's Save button (QFileDialog's own is protected)
+    };
+  }
+  static Answer cancelFile() {
+    return [](QWidget* w) {
+      auto* dialog = qobject_cast<QFileDialog*>(w);
+      ASSERT_NE(dialog, nullptr);
+      dialog->reject();
+    };
+  }
+
+ private:
+  std::deque<Answer> answers_;
+  QTimer timer_;
+  QWidget* last_ = nullptr;
+  int seen_ = 0;
+};
+
+// One cut: the reamer placed 0.5 mm past where it first touches the glenoid.
+void cutOnce(ReamSession& s) {
+  const Pose start = s.plan()->poses().front();
+  const double approach = *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100);
+  s.moveReamer(advancedAlongAxis(start, approach + 0.5));
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.cutsCommitted(), 1u);
+}
+
+TEST(GuiUnsavedChanges, AnUnchangedBoneClosesWithoutAsking) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  EXPECT_FALSE(w.isWindowModified());
+  ModalAnswers answers({});
+  EXPECT_TRUE(w.close());
+  EXPECT_EQ(answers.seen(), 0);
+}
+
+TEST(GuiUnsavedChanges, CancelKeepsTheWindowAndTheCutsDiscardCloses) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  EXPECT_TRUE(w.isWindowModified());  // the title's [*]
+  const std::uint64_t revision = s.bone()->currentRevision();
+  {
+    QString text;
+    ModalAnswers answers({ModalAnswers::button(QMessageBox::Cancel, &text)});
+    EXPECT_FALSE(w.close());
+    EXPECT_EQ(answers.seen(), 1);
+    EXPECT_TRUE(text.contains("1 cut")) << text.toStdString();
+    EXPECT_TRUE(text.contains("close ReamSim")) << text.toStdString();
+  }
+  EXPECT_TRUE(w.isVisible());
+  EXPECT_EQ(s.bone()->currentRevision(), revision);
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  // Loading the default case through the menu asks too; Cancel leaves the cut bone.
+  {
+    ModalAnswers answers({ModalAnswers::button(QMessageBox::Cancel)});
+    w.action("load_default")->trigger();
+    EXPECT_EQ(answers.seen(), 1);
+  }
+  EXPECT_EQ(s.bone()->currentRevision(), revision);
+  EXPECT_EQ(s.cutsCommitted(), 1u);
+  {
+    ModalAnswers answers({ModalAnswers::button(QMessageBox::Discard)});
+    EXPECT_TRUE(w.close());
+    EXPECT_EQ(answers.seen(), 1);
+  }
+  EXPECT_FALSE(w.isVisible());
+}
+
+TEST(GuiUnsavedChanges, SaveWritesTheBoneAndItsCutLogThenCloses) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  QTemporaryDir out;
+  const QString path = out.filePath("reamed.ply");
+  {
+    ModalAnswers answers({ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(path)});
+    EXPECT_TRUE(w.close()) << w.lastError().toStdString();
+    EXPECT_EQ(answers.seen(), 2);
+  }
+  EXPECT_FALSE(w.isVisible());
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  ASSERT_TRUE(QFile::exists(path));
+  const TriangleMesh saved = readMesh(path.toStdString()).mesh;
+  const BoneState& bone = s.bone()->current();
+  EXPECT_EQ(saved.triangles.size(), bone.liveTriangleCount());
+  EXPECT_NEAR(BoneState::fromMesh(saved).volume(), bone.volume(), 1e-6 * bone.volume());
+  QFile csv(out.filePath("reamed.cut_log.csv"));
+  ASSERT_TRUE(csv.open(QIODevice::ReadOnly));
+  EXPECT_EQ(csv.readAll().count('\n'), 2);  // the header and the one cut
+}
+
+TEST(GuiUnsavedChanges, AFailedOrCancelledSaveKeepsTheWindowOpen) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  cutOnce(f.session());
+  QTemporaryDir out;
+  {
+    // A format no writer knows: the save is refused with the writer's message, the window stays.
+    ModalAnswers answers({ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("bone.unknownformat"))});
+    EXPECT_FALSE(w.close());
+    EXPECT_EQ(answers.seen(), 2);
+  }
+  EXPECT_TRUE(w.lastError().contains("bone.unknownformat")) << w.lastError().toStdString();
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
+  EXPECT_TRUE(w.isVisible());
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  {
+    ModalAnswers answers({ModalAnswers::button(QMessageBox::Save), ModalAnswers::cancelFile()});
+    EXPECT_FALSE(w.close());
+    EXPECT_EQ(answers.seen(), 2);
+  }
+  EXPECT_TRUE(w.isVisible());
+  EXPECT_TRUE(w.hasUnsavedChanges());
+}
+
+TEST(GuiUnsavedChanges, SavingMarksTheBoneSavedUntilTheHistoryMovesAway) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  QTemporaryDir out;
+  ASSERT_TRUE(w.saveBoneAs(out.filePath("bone.ply"))) << w.lastError().toStdString();
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  EXPECT_FALSE(w.isWindowModified());
+  w.action("undo")->trigger();  // the bone is no longer the one saved
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  EXPECT_TRUE(w.isWindowModified());
+  w.action("redo")->trigger();  // back to it
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  ModalAnswers answers({});
+  EXPECT_TRUE(w.close());
+  EXPECT_EQ(answers.seen(), 0);
+}
+
+}  // namespace
+}  // namespace reamsim::ui::test
