@@ -12,6 +12,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSettings>
+#include <QStandardPaths>
 #include <QStatusBar>
 #include <QToolBar>
 #include <QUndoView>
@@ -19,6 +20,7 @@
 
 #include "OtherBonesLayer.h"
 #include "PluginHost.h"
+#include "RecoveryFiles.h"
 
 namespace reamsim::ui {
 
@@ -85,9 +87,15 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   updateStatus();
   updateTitle();
   resize(1280, 800);
+  // A user's window keeps a crash-recovery copy of unsaved work (tests, demo and benchmarks turn it on
+  // themselves, with a folder of their own).
+  if (persistent_)
+    enableRecovery(QStandardPaths::writableLocation(QStandardPaths::AppLocalDataLocation) + "/recovery", kRecoveryDelayMs);
 }
 
 MainWindow::~MainWindow() {
+  recoveryTimer_.stop();
+  if (recoveryWrite_.isRunning()) recoveryWrite_.waitForFinished();  // it reads recovery_
   // Views and panels observe the session's document: they go first.
   alertSubscription_.reset();
   boneFrameSubscription_.reset();

@@ -4,6 +4,7 @@
 // drag and drop, recent files, the plugin panels (log) and Help → Plugins.
 #include <QFutureWatcher>
 #include <QMainWindow>
+#include <QTimer>
 #include <QMap>
 #include <QStringList>
 #include <memory>
@@ -26,6 +27,7 @@ namespace reamsim::ui {
 
 class OtherBonesLayer;
 class PluginHost;
+class RecoveryFiles;
 
 struct ImportOutcome {
   ImportedBone bone;
@@ -82,6 +84,14 @@ class MainWindow : public QMainWindow {
   void placeImportedVolume(VolumeImportResult result);
   void removeOtherBones();  // undoable
   void showBoneInfo();
+  // Crash recovery (MainWindowRecovery.cpp, RecoveryFiles.h): while there are unsaved changes, a copy of
+  // the bone and its cut log is kept in `dir`, rewritten `delayMs` after the last change; a copy left by a
+  // session that did not end normally is offered at once (Restore / Discard). On in a user's window (the
+  // folder in the app's data location); tests turn it on with a folder of their own.
+  void enableRecovery(const QString& dir, int delayMs);
+  const RecoveryFiles* recovery() const { return recovery_.get(); }
+  bool recoveryWriteRunning() const { return recoveryWrite_.isRunning(); }
+  const QString& recoveredLogPath() const { return recoveredLogPath_; }  // where a restored bone's log went
 
  public:
   QString boneFrameText() const;  // the status bar's patient frame and source of the bone
@@ -117,6 +127,9 @@ class MainWindow : public QMainWindow {
   Pose targetPose() const;
   void buildVolumeImport();  // menu actions, status label, other bones (MainWindowCtImport.cpp)
   void updateBoneFrame();
+  void offerRecovery();
+  void writeRecoveryCopy();  // or removes the copy when nothing is unsaved
+  void endRecovery();        // a normal close: no copy is left behind
 
   const PluginHost& plugins_;
   const bool persistent_;
@@ -142,6 +155,7 @@ class MainWindow : public QMainWindow {
   QPushButton* importCancel_ = nullptr;
   bool importCancelled_ = false;
   static constexpr double kContactSearchMm = 100;
+  static constexpr int kRecoveryDelayMs = 3000;  // after the last change (a feed's steps write one copy)
   static constexpr std::size_t kMaxQueuedFeedSteps = 4;  // feed key presses beyond this are ignored
   struct PendingDepth {
     Pose start;
@@ -156,6 +170,12 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<OtherBonesLayer> otherBones_;
   QLabel* frameLabel_ = nullptr;
   Subscription boneFrameSubscription_;
+  // Crash recovery (MainWindowRecovery.cpp)
+  std::unique_ptr<RecoveryFiles> recovery_;
+  QTimer recoveryTimer_;
+  QFutureWatcher<QString> recoveryWrite_;  // the error, empty when the copy was written
+  bool recoveryOfferPending_ = false;      // a found copy not yet answered: nothing is written or removed
+  QString recoveredLogPath_;
 };
 
 }  // namespace reamsim::ui

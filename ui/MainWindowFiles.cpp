@@ -1,8 +1,8 @@
 // MainWindow: bones in and out — default case, open (off the UI thread), save, recent files, drag and drop,
 // and the question before unsaved changes would be lost.
 #include <QCoreApplication>
-#include <QDragEnterEvent>
 #include <QCloseEvent>
+#include <QDragEnterEvent>
 #include <QDir>
 #include <QDropEvent>
 #include <QFileDialog>
@@ -159,10 +159,12 @@ bool MainWindow::saveBoneAs(const QString& path) {
 bool MainWindow::hasUnsavedChanges() const { return !session_->undoStack()->isClean(); }
 
 void MainWindow::closeEvent(QCloseEvent* e) {
-  if (confirmDiscardChanges(tr("close ReamSim")))
-    e->accept();
-  else
+  if (!confirmDiscardChanges(tr("close ReamSim"))) {
     e->ignore();
+    return;
+  }
+  endRecovery();  // a normal close: no copy to offer next time
+  e->accept();
 }
 
 bool MainWindow::confirmDiscardChanges(const QString& action) {

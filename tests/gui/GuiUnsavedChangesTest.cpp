@@ -2,86 +2,19 @@
 // with cuts not yet saved asks Save / Discard / Cancel first; Save writes the bone and its cut log, and a
 // save that fails (or a cancelled file dialog) keeps the window as it was. The questions are answered
 // through the real modal dialogs, as a user would.
-#include <QAbstractButton>
 #include <QAction>
-#include <QApplication>
 #include <QFile>
-#include <QFileDialog>
 #include <QMessageBox>
 #include <QTemporaryDir>
-#include <QTimer>
 #include <QUndoStack>
 #include <QtTest/QTest>
-#include <deque>
-#include <functional>
 
 #include "GuiEnvironment.h"
+#include "GuiHelpers.h"
 #include "reamsim/mesh/MeshIO.h"
-#include "reamsim/ream/Approach.h"
 
 namespace reamsim::ui::test {
 namespace {
-
-// Answers the modal dialogs as they open, one answer each, in order; counts those it saw.
-class ModalAnswers {
- public:
-  using Answer = std::function<void(QWidget*)>;
-  explicit ModalAnswers(std::deque<Answer> answers) : answers_(std::move(answers)) {
-    timer_.setInterval(20);
-    QObject::connect(&timer_, &QTimer::timeout, [this] {
-      QWidget* modal = QApplication::activeModalWidget();
-      if (!modal || modal == last_) return;
-      last_ = modal;
-      ++seen_;
-      if (answers_.empty()) return;
-      Answer a = std::move(answers_.front());
-      answers_.pop_front();
-      a(modal);
-    });
-    timer_.start();
-  }
-  int seen() const { return seen_; }
-
-  static Answer button(QMessageBox::StandardButton which, QString* text = nullptr) {
-    return [which, text](QWidget* w) {
-      auto* box = qobject_cast<QMessageBox*>(w);
-      ASSERT_NE(box, nullptr) << "expected the unsaved-changes question, got " << w->metaObject()->className();
-      EXPECT_EQ(box->objectName(), "UnsavedChangesDialog");
-      if (text) *text = box->text() + "\n" + box->informativeText();
-      box->button(which)->click();
-    };
-  }
-  static Answer file(const QString& path) {
-    return [path](QWidget* w) {
-      auto* dialog = qobject_cast<QFileDialog*>(w);
-      ASSERT_NE(dialog, nullptr) << "expected the save dialog, got " << w->metaObject()->className();
-      dialog->selectFile(path);
-      static_cast<QDialog*>(dialog)->accept();  // as the dialog's Save button (QFileDialog's own is protected)
-    };
-  }
-  static Answer cancelFile() {
-    return [](QWidget* w) {
-      auto* dialog = qobject_cast<QFileDialog*>(w);
-      ASSERT_NE(dialog, nullptr);
-      dialog->reject();
-    };
-  }
-
- private:
-  std::deque<Answer> answers_;
-  QTimer timer_;
-  QWidget* last_ = nullptr;
-  int seen_ = 0;
-};
-
-// One cut: the reamer placed 0.5 mm past where it first touches the glenoid.
-void cutOnce(ReamSession& s) {
-  const Pose start = s.plan()->poses().front();
-  const double approach = *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100);
-  s.moveReamer(advancedAlongAxis(start, approach + 0.5));
-  ASSERT_TRUE(s.waitIdle(60000));
-  ASSERT_EQ(s.cutsCommitted(), 1u);
-}
 
 TEST(GuiUnsavedChanges, AnUnchangedBoneClosesWithoutAsking) {
   REAMSIM_REQUIRE_DISPLAY();

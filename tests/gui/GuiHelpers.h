@@ -1,0 +1,94 @@
+#pragma once
+// GUI test helpers: answering the real modal dialogs as a user would, and making a cut.
+#include <gtest/gtest.h>
+
+#include <QAbstractButton>
+#include <QApplication>
+#include <QFileDialog>
+#include <QMessageBox>
+#include <QTimer>
+#include <deque>
+#include <functional>
+
+#include "ReamSession.h"
+#include "reamsim/ream/Approach.h"
+
+namespace reamsim::ui::test {
+
+// Answers the modal dialogs as they open, one answer each, in order; counts those it saw.
+class ModalAnswers {
+ public:
+  using Answer = std::function<void(QWidget*)>;
+  explicit ModalAnswers(std::deque<Answer> answers) : answers_(std::move(answers)) {
+    timer_.setInterval(20);
+    QObject::connect(&timer_, &QTimer::timeout, [this] {
+      QWidget* modal = QApplication::activeModalWidget();
+      if (!modal) last_ = nullptr;  // the next dialog may reuse the last one's address
+      if (!modal || modal == last_) return;
+      last_ = modal;
+      ++seen_;
+      if (answers_.empty()) return;
+      Answer a = std::move(answers_.front());
+      answers_.pop_front();
+      a(modal);
+    });
+    timer_.start();
+  }
+  int seen() const { return seen_; }
+
+  static Answer button(QMessageBox::StandardButton which, QString* text = nullptr) {
+    return [which, text](QWidget* w) {
+      auto* box = qobject_cast<QMessageBox*>(w);
+      ASSERT_NE(box, nullptr) << "expected the unsaved-changes question, got " << w->metaObject()->className();
+      EXPECT_EQ(box->objectName(), "UnsavedChangesDialog");
+      if (text) *text = box->text() + "\n" + box->informativeText();
+      box->button(which)->click();
+    };
+  }
+  // A message box `dialogName`: its button labelled `buttonText`.
+  static Answer click(const QString& dialogName, const QString& buttonText) {
+    return [dialogName, buttonText](QWidget* w) {
+      auto* box = qobject_cast<QMessageBox*>(w);
+      ASSERT_NE(box, nullptr) << "expected " << dialogName.toStdString() << ", got " << w->metaObject()->className();
+      EXPECT_EQ(box->objectName(), dialogName);
+      for (QAbstractButton* b : box->buttons())
+        if (b->text().remove('&') == buttonText) return b->click();
+      ADD_FAILURE() << "no button " << buttonText.toStdString() << " in " << dialogName.toStdString();
+      box->reject();
+    };
+  }
+  static Answer file(const QString& path) {
+    return [path](QWidget* w) {
+      auto* dialog = qobject_cast<QFileDialog*>(w);
+      ASSERT_NE(dialog, nullptr) << "expected the save dialog, got " << w->metaObject()->className();
+      dialog->selectFile(path);
+      static_cast<QDialog*>(dialog)->accept();  // as the dialog's Save button (QFileDialog's own is protected)
+    };
+  }
+  static Answer cancelFile() {
+    return [](QWidget* w) {
+      auto* dialog = qobject_cast<QFileDialog*>(w);
+      ASSERT_NE(dialog, nullptr);
+      dialog->reject();
+    };
+  }
+
+ private:
+  std::deque<Answer> answers_;
+  QTimer timer_;
+  QWidget* last_ = nullptr;
+  int seen_ = 0;
+};
+
+// One more cut: the reamer placed `depthMm` past where it first touches the glenoid from the default plan's
+// start (deeper than any cut before, or nothing is cut).
+inline void cutOnce(ReamSession& s, double depthMm = 0.5) {
+  const std::size_t before = s.cutsCommitted();
+  const Pose start = s.plan()->poses().front();
+  const double approach = *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100);
+  s.moveReamer(advancedAlongAxis(start, approach + depthMm));
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.cutsCommitted(), before + 1);
+}
+
+}  // namespace reamsim::ui::test

@@ -1,0 +1,131 @@
+// Crash recovery: while cuts are unsaved a copy of the bone and its cut log is kept on disk (written off the
+// UI thread a moment after each change); a save or a normal close removes it; a copy left behind (the window
+// went away without a close, as in a crash) is offered by the next window, which restores the bone exactly
+// or deletes the copy, as the user answers; a second window does not touch the first one's copy.
+#include <QFile>
+#include <QTemporaryDir>
+#include <QtTest/QTest>
+
+#include "GuiEnvironment.h"
+#include "GuiHelpers.h"
+#include "RecoveryFiles.h"
+#include "reamsim/mesh/MeshIO.h"
+
+namespace reamsim::ui::test {
+namespace {
+
+int lines(const QString& path) {
+  QFile f(path);
+  return f.open(QIODevice::ReadOnly) ? static_cast<int>(f.readAll().count('\n')) : -1;
+}
+
+// The window's copy, once its writer has caught up with the last change.
+std::optional<RecoveredBone> settledCopy(MainWindow& w) {
+  QTest::qWait(50);  // the timer (0 ms here) starts the writer from the event loop
+  EXPECT_TRUE(QTest::qWaitFor([&] { return !w.recoveryWriteRunning(); }, 30000));
+  QTest::qWait(50);
+  return w.recovery()->found();
+}
+
+TEST(GuiRecovery, UnsavedCutsAreCopiedASaveOrACloseRemovesTheCopy) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_NE(w.recovery(), nullptr);
+  EXPECT_TRUE(w.recovery()->owns());
+  EXPECT_FALSE(settledCopy(w));  // nothing unsaved
+
+  cutOnce(f.session());
+  std::optional<RecoveredBone> copy = settledCopy(w);
+  ASSERT_TRUE(copy);
+  EXPECT_EQ(copy->cuts, 1);
+  EXPECT_EQ(copy->name, "default scapula");
+  const BoneState& bone = f.session().bone()->current();
+  const TriangleMesh copied = readMesh(copy->bonePath.toStdString()).mesh;
+  EXPECT_EQ(copied.triangles.size(), bone.liveTriangleCount());
+  EXPECT_NEAR(BoneState::fromMesh(copied).volume(), bone.volume(), 1e-9 * bone.volume());
+  EXPECT_EQ(lines(copy->logPath), 2);  // header and the cut
+
+  QTemporaryDir out;
+  ASSERT_TRUE(w.saveBoneAs(out.filePath("bone.ply")));
+  EXPECT_FALSE(settledCopy(w));  // saved: nothing to recover
+
+  cutOnce(f.session(), 1.0);
+  copy = settledCopy(w);
+  ASSERT_TRUE(copy);
+  EXPECT_EQ(copy->cuts, 2);  // the log since the bone was opened
+  ModalAnswers answers({ModalAnswers::button(QMessageBox::Discard)});
+  EXPECT_TRUE(w.close());
+  EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());  // a normal close leaves no copy
+}
+
+TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  std::size_t faces = 0;
+  double volume = 0;
+  {
+    GuiFixture crashed;
+    crashed.window->enableRecovery(dir.filePath("recovery"), 0);
+    cutOnce(crashed.session());
+    ASSERT_TRUE(settledCopy(*crashed.window));
+    faces = crashed.session().bone()->current().liveTriangleCount();
+    volume = crashed.session().bone()->current().volume();
+  }  // gone without a close
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ASSERT_FALSE(w.hasUnsavedChanges());
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
+  EXPECT_EQ(answers.seen(), 1);
+  const BoneState& bone = f.session().bone()->current();
+  EXPECT_EQ(bone.liveTriangleCount(), faces);
+  EXPECT_NEAR(bone.volume(), volume, 1e-9 * volume);
+  EXPECT_TRUE(f.session().canCut()) << f.session().cuttingStatus().toStdString();
+  EXPECT_TRUE(w.hasUnsavedChanges());  // kept nowhere but in the recovery copy
+  EXPECT_EQ(lines(w.recoveredLogPath()), 2);  // the log up to the crash, kept as a file
+  ASSERT_TRUE(settledCopy(w));                // and the copy is kept up to date again
+  ModalAnswers closing({ModalAnswers::button(QMessageBox::Discard)});
+  EXPECT_TRUE(w.close());
+  EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());
+}
+
+TEST(GuiRecovery, DiscardingTheOfferDeletesTheCopy) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  {
+    GuiFixture crashed;
+    crashed.window->enableRecovery(dir.filePath("recovery"), 0);
+    cutOnce(crashed.session());
+    ASSERT_TRUE(settledCopy(*crashed.window));
+  }
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  const std::uint64_t revision = f.session().bone()->currentRevision();
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Discard")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return answers.seen() == 1 && !QApplication::activeModalWidget(); }, 30000));
+  EXPECT_FALSE(w.recovery()->found());
+  EXPECT_EQ(f.session().bone()->currentRevision(), revision);  // the default case stays
+  EXPECT_FALSE(w.hasUnsavedChanges());
+}
+
+TEST(GuiRecovery, ASecondWindowLeavesTheFirstOnesCopyAlone) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  GuiFixture first;
+  first.window->enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_NE(first.window->recovery(), nullptr);
+  GuiFixture second;
+  second.window->enableRecovery(dir.filePath("recovery"), 0);
+  EXPECT_EQ(second.window->recovery(), nullptr);  // the folder is the first window's
+  cutOnce(second.session());
+  QTest::qWait(100);
+  EXPECT_FALSE(first.window->recovery()->found());
+}
+
+}  // namespace
+}  // namespace reamsim::ui::test

@@ -1,0 +1,149 @@
+// MainWindow: crash recovery — a copy of the unsaved bone and its cut log on disk, written off the UI thread
+// a moment after each change, removed by a save or a normal close, offered at the next start after a crash
+// (RecoveryFiles.h; docs/GUI.md "Unsaved changes").
+#include <QDateTime>
+#include <QDir>
+#include <QFile>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QStatusBar>
+#include <QtConcurrent/QtConcurrentRun>
+#include <utility>
+
+#include "BonePlacement.h"
+#include "MainWindow.h"
+#include "PluginHost.h"
+#include "RecoveryFiles.h"
+#include "reamsim/ream/CutLogIO.h"
+#include "reamsim/ream/DefaultCase.h"
+#include "reamsim/tools/ReamerPresets.h"
+
+namespace reamsim::ui {
+
+void MainWindow::enableRecovery(const QString& dir, int delayMs) {
+  if (recovery_) return;
+  recovery_ = std::make_unique<RecoveryFiles>(dir);
+  if (!recovery_->owns()) {  // another ReamSim window keeps its copy there
+    recovery_.reset();
+    return;
+  }
+  recoveryTimer_.setSingleShot(true);
+  recoveryTimer_.setInterval(delayMs);
+  connect(&recoveryTimer_, &QTimer::timeout, this, &MainWindow::writeRecoveryCopy);
+  // At most one copy per delay while the user keeps cutting (restarting the timer on every change would
+  // write none during a long feed).
+  const auto schedule = [this] {
+    if (!recoveryOfferPending_ && !recoveryTimer_.isActive()) recoveryTimer_.start();
+  };
+  connect(session_->undoStack(), &QUndoStack::indexChanged, this, schedule);
+  connect(session_->undoStack(), &QUndoStack::cleanChanged, this, schedule);
+  connect(&recoveryWrite_, &QFutureWatcher<QString>::finished, this, [this] {
+    const QString error = recoveryWrite_.result();
+    if (!error.isEmpty()) statusBar()->showMessage(tr("No crash-recovery copy: %1").arg(error), 10000);
+  });
+  if (recovery_->found()) {
+    recoveryOfferPending_ = true;
+    QTimer::singleShot(0, this, &MainWindow::offerRecovery);
+  } else if (hasUnsavedChanges()) {
+    schedule();
+  }
+}
+
+void MainWindow::writeRecoveryCopy() {
+  if (!recovery_ || recoveryOfferPending_) return;
+  if (recoveryWrite_.isRunning()) {  // the next copy once this one is written
+    recoveryTimer_.start();
+    return;
+  }
+  if (!hasUnsavedChanges()) {
+    recovery_->remove();
+    return;
+  }
+  const MeshImportInterface* writer = plugins_.meshImport();
+  if (!writer) return;  // nothing here writes meshes
+  // The snapshot on the UI thread (the document's thread; a bone state is an immutable value, cheap to
+  // copy), the mesh and the files on a worker.
+  BoneState state = session_->bone()->current();
+  std::string csv = cutLogCsv(session_->log()->entries());
+  const PatientFrame frame = session_->bone()->patientFrame();
+  const QString name = boneName_;
+  const int cuts = static_cast<int>(session_->log()->entries().size());
+  const RecoveryFiles* files = recovery_.get();
+  recoveryWrite_.setFuture(
+      QtConcurrent::run([writer, files, frame, name, cuts, state = std::move(state), csv = std::move(csv)]() -> QString {
+        try {
+          writer->exportMesh(state.toMesh(), files->nextBonePath().toStdString(), frame);
+          writeTextFile(files->nextLogPath().toStdString(), csv);
+        } catch (const std::exception& e) {
+          return QString::fromStdString(e.what());
+        }
+        QString error;
+        files->commit(name, cuts, error);
+        return error;
+      }));
+}
+
+void MainWindow::endRecovery() {
+  if (!recovery_) return;
+  recoveryTimer_.stop();
+  if (recoveryWrite_.isRunning()) recoveryWrite_.waitForFinished();
+  if (!recoveryOfferPending_) recovery_->remove();
+}
+
+void MainWindow::offerRecovery() {
+  const std::optional<RecoveredBone> found = recovery_ ? recovery_->found() : std::nullopt;
+  if (!found) {
+    recoveryOfferPending_ = false;
+    return;
+  }
+  const QString name = found->name.isEmpty() ? tr("the bone") : found->name;
+  QMessageBox box(QMessageBox::Question, tr("Recover unsaved work"),
+                  tr("ReamSim did not close normally last time. A copy of %1 with %2 cuts, written %3, was kept.")
+                      .arg(name)
+                      .arg(found->cuts)
+                      .arg(QLocale().toString(found->written, QLocale::ShortFormat)),
+                  QMessageBox::NoButton, this);
+  box.setObjectName("RecoveryDialog");
+  box.setInformativeText(tr("Restore it in place of the bone now open? Discard deletes the copy."));
+  QPushButton* restore = box.addButton(tr("Restore"), QMessageBox::AcceptRole);
+  box.addButton(QMessageBox::Discard);
+  box.setDefaultButton(restore);
+  box.exec();
+  recoveryOfferPending_ = false;
+  if (box.clickedButton() != restore) {
+    recovery_->remove();
+    if (hasUnsavedChanges()) recoveryTimer_.start();
+    return;
+  }
+  ImportedBone bone;
+  try {
+    if (!plugins_.meshImport()) throw std::runtime_error("no mesh import plugin is loaded (Help → Plugins)");
+    bone = plugins_.meshImport()->importBone(found->bonePath.toStdString(), false);
+    if (bone.mesh.triangles.empty()) throw std::runtime_error(found->bonePath.toStdString() + ": the mesh has no triangles");
+    if (!session_->reamer()->cuttingVolume()) session_->setReamer(loadPreset(kDefaultReamerPreset, reamerPresetsPath()));
+  } catch (const std::exception& e) {
+    // The copy stays where it is for the user to open by hand; this window stops managing the folder.
+    showError(tr("Cannot restore the recovered bone"),
+              tr("%1\n\nThe copy is kept in %2.").arg(QString::fromStdString(e.what()), recovery_->dir()));
+    recovery_.reset();
+    return;
+  }
+  // The log up to the crash is not read back into the log panel: it is kept as a file, named in the status bar.
+  if (!found->logPath.isEmpty()) {
+    const QString kept = QDir(recovery_->dir()).filePath("restored");
+    QDir().mkpath(kept);
+    recoveredLogPath_ =
+        QDir(kept).filePath("cut_log_" + QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss") + ".csv");
+    QFile::copy(found->logPath, recoveredLogPath_);
+  }
+  const Bounds b = BoneState::fromMesh(bone.mesh).bounds();
+  session_->plan()->setPoses({});
+  installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
+  session_->moveReamer(startPoseFor(b));
+  session_->undoStack()->resetClean();  // saved nowhere but in the recovery copy
+  statusBar()->showMessage(recoveredLogPath_.isEmpty() ? tr("Restored %1").arg(name)
+                                                       : tr("Restored %1; its cut log up to then: %2").arg(name, recoveredLogPath_),
+                           20000);
+}
+
+}  // namespace reamsim::ui

@@ -1,0 +1,78 @@
+#include "RecoveryFiles.h"
+
+#include <QDir>
+#include <QFile>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QLockFile>
+#include <QSaveFile>
+
+namespace reamsim::ui {
+namespace {
+
+constexpr const char* kDescription = "recovery.json";
+
+QJsonObject readDescription(const QString& file) {
+  QFile f(file);
+  if (!f.open(QIODevice::ReadOnly)) return {};
+  return QJsonDocument::fromJson(f.readAll()).object();
+}
+
+}  // namespace
+
+RecoveryFiles::RecoveryFiles(const QString& dir) : dir_(dir) {
+  QDir().mkpath(dir_);
+  lock_ = std::make_unique<QLockFile>(path("lock"));
+  lock_->setStaleLockTime(0);  // held as long as its process lives (a dead holder's lock is stale at once)
+  lock_->tryLock(0);
+}
+
+RecoveryFiles::~RecoveryFiles() = default;  // QLockFile unlocks
+
+bool RecoveryFiles::owns() const { return lock_->isLocked(); }
+
+QString RecoveryFiles::path(const QString& file) const { return QDir(dir_).filePath(file); }
+
+QString RecoveryFiles::currentSlot() const {
+  const QString slot = readDescription(path(kDescription)).value("slot").toString();
+  return slot == "a" || slot == "b" ? slot : QString();
+}
+
+QString RecoveryFiles::nextBonePath() const { return path("bone." + nextSlot() + ".ply"); }
+QString RecoveryFiles::nextLogPath() const { return path("cut_log." + nextSlot() + ".csv"); }
+
+std::optional<RecoveredBone> RecoveryFiles::found() const {
+  const QJsonObject d = readDescription(path(kDescription));
+  const QString slot = d.value("slot").toString();
+  if (slot != "a" && slot != "b") return std::nullopt;
+  RecoveredBone r;
+  r.bonePath = path("bone." + slot + ".ply");
+  if (!QFile::exists(r.bonePath)) return std::nullopt;
+  r.logPath = path("cut_log." + slot + ".csv");
+  if (!QFile::exists(r.logPath)) r.logPath.clear();
+  r.name = d.value("name").toString();
+  r.cuts = d.value("cuts").toInt();
+  r.written = QDateTime::fromString(d.value("written").toString(), Qt::ISODate).toLocalTime();
+  return r;
+}
+
+bool RecoveryFiles::commit(const QString& name, int cuts, QString& error) const {
+  QJsonObject d;
+  d.insert("slot", nextSlot());
+  d.insert("name", name);
+  d.insert("cuts", cuts);
+  d.insert("written", QDateTime::currentDateTimeUtc().toString(Qt::ISODate));
+  QSaveFile f(path(kDescription));
+  if (!f.open(QIODevice::WriteOnly) || f.write(QJsonDocument(d).toJson()) < 0 || !f.commit()) {
+    error = path(kDescription) + ": cannot write it (" + f.errorString() + ")";
+    return false;
+  }
+  return true;
+}
+
+void RecoveryFiles::remove() const {
+  QFile::remove(path(kDescription));
+  for (const char* f : {"bone.a.ply", "bone.b.ply", "cut_log.a.csv", "cut_log.b.csv"}) QFile::remove(path(f));
+}
+
+}  // namespace reamsim::ui

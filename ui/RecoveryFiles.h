@@ -1,0 +1,51 @@
+#pragma once
+// Crash recovery on disk: while the bone has unsaved changes, a copy of it (PLY, with its patient frame) and
+// of its cut log (CSV) is kept in one folder with a short description (recovery.json). A normal close or a
+// save removes it; a copy found when a window starts means the last session ended without either (a crash,
+// a kill, a power cut), and the window offers to restore it. One window at a time owns the folder
+// (QLockFile, freed when its process dies): a second ReamSim running beside it keeps no copy.
+//
+// Files only; when and what to write is MainWindow's (MainWindowRecovery.cpp).
+#include <QDateTime>
+#include <QString>
+#include <memory>
+#include <optional>
+
+class QLockFile;
+
+namespace reamsim::ui {
+
+struct RecoveredBone {
+  QString bonePath, logPath;
+  QString name;       // the bone's name as the window's title showed it
+  QDateTime written;  // when the copy was complete
+  int cuts = 0;
+};
+
+class RecoveryFiles {
+ public:
+  explicit RecoveryFiles(const QString& dir);  // creates the folder and tries its lock
+  ~RecoveryFiles();
+  bool owns() const;  // this window holds the lock: it may write, offer and remove the copy
+  const QString& dir() const { return dir_; }
+
+  std::optional<RecoveredBone> found() const;  // a complete copy (description written last)
+
+  // Writing a copy so that a crash at any point leaves a complete one (the previous or the new): two slots,
+  // a and b; the new files go to the slot the description does not name, then commit() points the
+  // description at it (written whole or not at all: QSaveFile). Safe on a worker thread (files only).
+  QString nextBonePath() const;  // "bone.a.ply" or "bone.b.ply": the writer picks the format from the suffix
+  QString nextLogPath() const;
+  // False (with `error` naming the file) when the description cannot be written; the previous copy stays.
+  bool commit(const QString& name, int cuts, QString& error) const;
+  void remove() const;  // the description first, so a half-removed copy is never offered
+
+ private:
+  QString path(const QString& file) const;
+  QString currentSlot() const;  // "a", "b", or "" without a description
+  QString nextSlot() const { return currentSlot() == "a" ? "b" : "a"; }
+  QString dir_;
+  std::unique_ptr<QLockFile> lock_;
+};
+
+}  // namespace reamsim::ui
