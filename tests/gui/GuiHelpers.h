@@ -80,6 +80,14 @@ class ModalAnswers {
   int seen_ = 0;
 };
 
+// Closes `w`, answering the dialogs the close opens; true when it closed. Expects `dialogs` of them.
+inline bool closeAnswering(QWidget& w, std::deque<ModalAnswers::Answer> answers, int dialogs) {
+  ModalAnswers modal(std::move(answers));
+  const bool closed = w.close();
+  EXPECT_EQ(modal.seen(), dialogs);
+  return closed;
+}
+
 // One more cut: the reamer placed `depthMm` past where it first touches the glenoid from the default plan's
 // start (deeper than any cut before, or nothing is cut).
 inline void cutOnce(ReamSession& s, double depthMm = 0.5) {

@@ -56,8 +56,7 @@ TEST(GuiRecovery, UnsavedCutsAreCopiedASaveOrACloseRemovesTheCopy) {
   copy = settledCopy(w);
   ASSERT_TRUE(copy);
   EXPECT_EQ(copy->cuts, 2);  // the log since the bone was opened
-  ModalAnswers answers({ModalAnswers::button(QMessageBox::Discard)});
-  EXPECT_TRUE(w.close());
+  EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
   EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());  // a normal close leaves no copy
 }
 
@@ -88,8 +87,7 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   EXPECT_TRUE(w.hasUnsavedChanges());  // kept nowhere but in the recovery copy
   EXPECT_EQ(lines(w.recoveredLogPath()), 2);  // the log up to the crash, kept as a file
   ASSERT_TRUE(settledCopy(w));                // and the copy is kept up to date again
-  ModalAnswers closing({ModalAnswers::button(QMessageBox::Discard)});
-  EXPECT_TRUE(w.close());
+  EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
   EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());
 }
 

@@ -22,9 +22,7 @@ TEST(GuiUnsavedChanges, AnUnchangedBoneClosesWithoutAsking) {
   MainWindow& w = *f.window;
   EXPECT_FALSE(w.hasUnsavedChanges());
   EXPECT_FALSE(w.isWindowModified());
-  ModalAnswers answers({});
-  EXPECT_TRUE(w.close());
-  EXPECT_EQ(answers.seen(), 0);
+  EXPECT_TRUE(closeAnswering(w, {}, 0));
 }
 
 TEST(GuiUnsavedChanges, CancelKeepsTheWindowAndTheCutsDiscardCloses) {
@@ -36,14 +34,10 @@ TEST(GuiUnsavedChanges, CancelKeepsTheWindowAndTheCutsDiscardCloses) {
   EXPECT_TRUE(w.hasUnsavedChanges());
   EXPECT_TRUE(w.isWindowModified());  // the title's [*]
   const std::uint64_t revision = s.bone()->currentRevision();
-  {
-    QString text;
-    ModalAnswers answers({ModalAnswers::button(QMessageBox::Cancel, &text)});
-    EXPECT_FALSE(w.close());
-    EXPECT_EQ(answers.seen(), 1);
-    EXPECT_TRUE(text.contains("1 cut")) << text.toStdString();
-    EXPECT_TRUE(text.contains("close ReamSim")) << text.toStdString();
-  }
+  QString text;
+  EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Cancel, &text)}, 1));
+  EXPECT_TRUE(text.contains("1 cut")) << text.toStdString();
+  EXPECT_TRUE(text.contains("close ReamSim")) << text.toStdString();
   EXPECT_TRUE(w.isVisible());
   EXPECT_EQ(s.bone()->currentRevision(), revision);
   EXPECT_TRUE(w.hasUnsavedChanges());
@@ -55,11 +49,7 @@ TEST(GuiUnsavedChanges, CancelKeepsTheWindowAndTheCutsDiscardCloses) {
   }
   EXPECT_EQ(s.bone()->currentRevision(), revision);
   EXPECT_EQ(s.cutsCommitted(), 1u);
-  {
-    ModalAnswers answers({ModalAnswers::button(QMessageBox::Discard)});
-    EXPECT_TRUE(w.close());
-    EXPECT_EQ(answers.seen(), 1);
-  }
+  EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
   EXPECT_FALSE(w.isVisible());
 }
 
@@ -71,11 +61,8 @@ TEST(GuiUnsavedChanges, SaveWritesTheBoneAndItsCutLogThenCloses) {
   cutOnce(s);
   QTemporaryDir out;
   const QString path = out.filePath("reamed.ply");
-  {
-    ModalAnswers answers({ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(path)});
-    EXPECT_TRUE(w.close()) << w.lastError().toStdString();
-    EXPECT_EQ(answers.seen(), 2);
-  }
+  EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(path)}, 2))
+      << w.lastError().toStdString();
   EXPECT_FALSE(w.isVisible());
   EXPECT_FALSE(w.hasUnsavedChanges());
   ASSERT_TRUE(QFile::exists(path));
@@ -94,21 +81,13 @@ TEST(GuiUnsavedChanges, AFailedOrCancelledSaveKeepsTheWindowOpen) {
   MainWindow& w = *f.window;
   cutOnce(f.session());
   QTemporaryDir out;
-  {
-    // A format no writer knows: the save is refused with the writer's message, the window stays.
-    ModalAnswers answers({ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("bone.unknownformat"))});
-    EXPECT_FALSE(w.close());
-    EXPECT_EQ(answers.seen(), 2);
-  }
+  // A format no writer knows: the save is refused with the writer's message, the window stays.
+  EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("bone.unknownformat"))}, 2));
   EXPECT_TRUE(w.lastError().contains("bone.unknownformat")) << w.lastError().toStdString();
   for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
   EXPECT_TRUE(w.isVisible());
   EXPECT_TRUE(w.hasUnsavedChanges());
-  {
-    ModalAnswers answers({ModalAnswers::button(QMessageBox::Save), ModalAnswers::cancelFile()});
-    EXPECT_FALSE(w.close());
-    EXPECT_EQ(answers.seen(), 2);
-  }
+  EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::cancelFile()}, 2));
   EXPECT_TRUE(w.isVisible());
   EXPECT_TRUE(w.hasUnsavedChanges());
 }
@@ -130,9 +109,7 @@ TEST(GuiUnsavedChanges, SavingMarksTheBoneSavedUntilTheHistoryMovesAway) {
   w.action("redo")->trigger();  // back to it
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_FALSE(w.hasUnsavedChanges());
-  ModalAnswers answers({});
-  EXPECT_TRUE(w.close());
-  EXPECT_EQ(answers.seen(), 0);
+  EXPECT_TRUE(closeAnswering(w, {}, 0));
 }
 
 }  // namespace
