@@ -2,6 +2,7 @@
 // UI thread a moment after each change); a save or a normal close removes it; a copy left behind (the window
 // went away without a close, as in a crash) is offered by the next window, which restores the bone exactly
 // or deletes the copy, as the user answers; a second window does not touch the first one's copy.
+#include <QDir>
 #include <QFile>
 #include <QTemporaryDir>
 #include <QtTest/QTest>
@@ -109,6 +110,33 @@ TEST(GuiRecovery, DiscardingTheOfferDeletesTheCopy) {
   EXPECT_FALSE(w.recovery()->found());
   EXPECT_EQ(f.session().bone()->currentRevision(), revision);  // the default case stays
   EXPECT_FALSE(w.hasUnsavedChanges());
+}
+
+TEST(GuiRecovery, ACorruptCopyIsReportedAndKept) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  const QString folder = dir.filePath("recovery");
+  ASSERT_TRUE(QDir().mkpath(folder));
+  auto write = [&](const QString& name, const QByteArray& bytes) {
+    QFile file(QDir(folder).filePath(name));
+    ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+    file.write(bytes);
+  };
+  write("recovery.json", R"({"slot": "a", "name": "scapula", "cuts": 3, "written": "2026-11-28T10:00:00Z"})");
+  write("bone.a.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1 2\n");  // cut short
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  const std::uint64_t revision = f.session().bone()->currentRevision();
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(folder, 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !w.lastError().isEmpty(); }, 30000));
+  EXPECT_EQ(answers.seen(), 1);
+  EXPECT_TRUE(w.lastError().contains("bone.a.ply")) << w.lastError().toStdString();  // names the file
+  EXPECT_TRUE(w.lastError().contains(folder)) << w.lastError().toStdString();        // and where the copy stays
+  EXPECT_EQ(f.session().bone()->currentRevision(), revision);  // the bone open before is still there
+  EXPECT_EQ(w.recovery(), nullptr);                            // the window leaves the folder alone
+  EXPECT_TRUE(RecoveryFiles(folder).found());                  // the copy is kept for the user
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
 }
 
 TEST(GuiRecovery, ASecondWindowLeavesTheFirstOnesCopyAlone) {
