@@ -32,6 +32,8 @@ class RestTouchSearch {
  public:
   RestTouchSearch(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose)
       : bone_(bone), reamer_(reamer), frame_(pose), boxes_(bone, reamer.restBvh(), frame_) {}
+  RestTouchSearch(const RestTouchSearch&) = delete;  // boxes_ refers to frame_
+  RestTouchSearch& operator=(const RestTouchSearch&) = delete;
   bool touchesSubtree(std::int32_t node, TouchPair* where);
 
  private:
