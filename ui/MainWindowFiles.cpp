@@ -174,10 +174,10 @@ bool MainWindow::confirmDiscardChanges(const QString& action) {
   }
   if (!hasUnsavedChanges()) return true;
   const QString name = boneName_.isEmpty() ? tr("The bone") : tr("The bone (%1)").arg(boneName_);
+  const std::size_t cuts = session_->log()->entries().size();
   QMessageBox box(QMessageBox::Warning, tr("Unsaved changes"),
-                  tr("%1 has changed since it was opened or last saved: %2 cut steps in its log.")
-                      .arg(name)
-                      .arg(session_->log()->entries().size()),
+                  tr("%1 has changed since it was opened or last saved (its cut log holds %2).")
+                      .arg(name, cuts == 1 ? tr("1 cut") : tr("%1 cuts").arg(cuts)),
                   QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, this);
   box.setObjectName("UnsavedChangesDialog");
   box.setInformativeText(tr("Save the bone, and its cut log beside it, before you %1?").arg(action));
