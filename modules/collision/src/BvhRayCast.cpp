@@ -70,8 +70,9 @@ std::optional<MeshHit> firstHit(const TriangleBvh& bvh, const Vec3& origin, cons
     const BvhNode& n = nodes[it.node];
     if (n.isLeaf()) {
       const std::uint32_t* slots = bvh.leafSlots(n);
+      const BvhTriangle* tris = bvh.leafTriangles(n);
       for (int i = 0; i < n.count; ++i) {
-        const BvhTriangle& t = bvh.triangle(slots[i]);
+        const BvhTriangle& t = tris[i];
         const auto h = intersectRayTriangle(origin, dir, t.a, t.b, t.c, culling);
         if (!h || h->t > bestT) continue;
         if (!best || h->t < best->t || (h->t == best->t && slots[i] < best->triangle)) {
@@ -113,8 +114,9 @@ std::vector<MeshHit> allHits(const TriangleBvh& bvh, const Vec3& origin, const V
     if (!ray.clip(n.lo, n.hi, kStart, kInf, enter)) continue;
     if (n.isLeaf()) {
       const std::uint32_t* slots = bvh.leafSlots(n);
+      const BvhTriangle* tris = bvh.leafTriangles(n);
       for (int i = 0; i < n.count; ++i) {
-        const BvhTriangle& t = bvh.triangle(slots[i]);
+        const BvhTriangle& t = tris[i];
         if (const auto h = intersectRayTriangle(origin, dir, t.a, t.b, t.c, culling))
           raw.push_back(toMeshHit(*h, slots[i], origin, dir));
       }

@@ -35,6 +35,7 @@ class FaceDistanceSearch {
   // does not open (bounds above 0) and the triangles it tested are kept: they are where phase 2 starts.
   bool findCrossing(bool keepFrontier) {
     crossing_ = true;
+    keysArePositions_ = true;
     keepFrontier_ = keepFrontier;
     frontier_.clear();
     heap_.clear();
@@ -67,13 +68,14 @@ class FaceDistanceSearch {
     // The reach only fell as the search went: what was popped beyond its final value is left out.
     collected.clear();
     for (const Item& it : popped_)
-      if (it.lb < reach2_) collected.push_back(static_cast<std::uint32_t>(it.b));
+      if (it.lb < reach2_) collected.push_back(bone_.slotAt(static_cast<std::uint32_t>(it.b)));
   }
   double reachMm() const { return std::sqrt(reach2_); }  // after nearestCollecting: d + margin
 
   // The given bone triangles only (no tree), nearest first: FaceDistanceTracker's query between searches.
   // The caller has proved that none of them crosses the face.
   void nearestAmong(const std::vector<std::uint32_t>& slots) {
+    keysArePositions_ = false;
     heap_.clear();  // used as a plain list here, sorted by bound
     for (std::uint32_t s : slots) heap_.push_back({triangleBound(bone_.triangle(s)), static_cast<std::int32_t>(s), true});
     std::sort(heap_.begin(), heap_.end(), [](const Item& a, const Item& b) { return a.lb < b.lb; });
@@ -86,6 +88,7 @@ class FaceDistanceSearch {
   // Does bone triangle `slot` cross face triangle `faceSlot` (face BVH slot)? If so the result is that
   // pair at distance 0. FaceDistanceTracker's first try while the face stays in the bone.
   bool crossesAt(std::uint32_t slot, std::uint32_t faceSlot) {
+    keysArePositions_ = false;
     ++out_.trianglePairs;
     return recordIfCrossing(slot, faceSlot, face_.triangle(faceSlot), localTriangle(bone_.triangle(slot)));
   }
@@ -165,14 +168,16 @@ class FaceDistanceSearch {
           popped_.push_back(it);
           if (skip(it.lb)) continue;  // within reach, not nearer than the best: collected, not measured
         }
-        measure(static_cast<std::uint32_t>(it.b), bone_.triangle(static_cast<std::uint32_t>(it.b)));
+        measure(static_cast<std::uint32_t>(it.b), bone_.triangleAt(static_cast<std::uint32_t>(it.b)));
         if (found_ && best2_ == 0) return;
         continue;
       }
       const BvhNode& B = bn[it.b];
       if (B.isLeaf()) {
-        const std::uint32_t* bs = bone_.leafSlots(B);
-        for (int i = 0; i < B.count; ++i) push(static_cast<std::int32_t>(bs[i]), triangleBound(bone_.triangle(bs[i])), true);
+        // Queued by leaf position, not slot: the leaf's triangles lie side by side (TriangleBvh::leafTriangles).
+        const std::uint32_t first = TriangleBvh::leafPosition(B);
+        const BvhTriangle* bt = bone_.leafTriangles(B);
+        for (int i = 0; i < B.count; ++i) push(static_cast<std::int32_t>(first + i), triangleBound(bt[i]), true);
         continue;
       }
       double lbL, lbR;
@@ -221,14 +226,14 @@ class FaceDistanceSearch {
 
   // Bone triangle l (reamer frame) against face triangle rt: if they touch or cross, the pair is recorded at
   // distance 0.
-  bool recordIfCrossing(std::uint32_t slot, std::uint32_t faceSlot, const BvhTriangle& rt, const BvhTriangle& l) {
+  bool recordIfCrossing(std::uint32_t key, std::uint32_t faceSlot, const BvhTriangle& rt, const BvhTriangle& l) {
     if (!trianglesIntersect(rt.a, rt.b, rt.c, l.a, l.b, l.c)) return false;
-    record(slot, faceSlot, closestTriangleTriangle(rt.a, rt.b, rt.c, l.a, l.b, l.c), true);
+    record(key, faceSlot, closestTriangleTriangle(rt.a, rt.b, rt.c, l.a, l.b, l.c), true);
     return true;
   }
 
   // One bone triangle against the face BVH (reamer frame).
-  void measure(std::uint32_t slot, const BvhTriangle& bt) {
+  void measure(std::uint32_t key, const BvhTriangle& bt) {
     const BvhTriangle l = localTriangle(bt);
     Vec3 llo, lhi;
     TriangleBvh::paddedBox(l, llo, lhi);
@@ -267,16 +272,16 @@ class FaceDistanceSearch {
         if (skip(sq(planeGap(dot(n, l.a) - o, dot(n, l.b) - o, dot(n, l.c) - o)))) continue;
         ++out_.trianglePairs;
         if (crossing_) {
-          if (recordIfCrossing(slot, rs[j], rt, l)) return;
+          if (recordIfCrossing(key, rs[j], rt, l)) return;
           continue;
         }
-        if (record(slot, rs[j], closestDisjointTriangles(rt.a, rt.b, rt.c, l.a, l.b, l.c), false) && best2_ == 0) return;
+        if (record(key, rs[j], closestDisjointTriangles(rt.a, rt.b, rt.c, l.a, l.b, l.c), false) && best2_ == 0) return;
       }
     }
   }
 
   // Keeps the pair (reamer frame) if it beats the best; a crossing pair is at distance 0.
-  bool record(std::uint32_t slot, std::uint32_t faceSlot, ClosestPair cp, bool crossing) {
+  bool record(std::uint32_t key, std::uint32_t faceSlot, ClosestPair cp, bool crossing) {
     if (crossing) cp.squaredDistance = 0;
     if (!(cp.squaredDistance < best2_ || (!found_ && cp.squaredDistance <= best2_))) return false;
     best2_ = cp.squaredDistance;
@@ -284,7 +289,7 @@ class FaceDistanceSearch {
     updateReach();
     out_.onReamer = frame_.toWorld(cp.onA);
     out_.onBone = frame_.toWorld(cp.onB);
-    out_.boneSlot = slot;
+    out_.boneSlot = keysArePositions_ ? bone_.slotAt(key) : key;
     out_.reamerTriangle = reamer_.faceTriangles()[faceSlot];
     bestFaceSlot_ = faceSlot;
     return true;
@@ -301,7 +306,9 @@ class FaceDistanceSearch {
 
   struct Item {
     double lb;
-    std::int32_t b;  // node, or bone slot when `triangle`
+    // Node, or bone triangle when `triangle`: its leaf position in the tree searches, its slot in
+    // nearestAmong (keysArePositions_).
+    std::int32_t b;
     bool triangle;
     bool operator<(const Item& o) const { return lb > o.lb; }  // min-heap
   };
@@ -313,6 +320,7 @@ class FaceDistanceSearch {
   Vec3 faceLo_, faceHi_;
   double best2_;
   bool found_ = false, crossing_ = false, keepFrontier_ = false;
+  bool keysArePositions_ = true;  // what a bone triangle's key is: a leaf position (tree searches) or a slot
   DistanceResult& out_;
   std::vector<Item> heap_, frontier_;  // frontier_: phase 1's unopened nodes and tested triangles
   std::vector<std::int32_t> fstack_;

@@ -27,8 +27,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct ToiItem {
   enum Kind : std::uint8_t { Nodes, Triangles, BoneOnly, BoneTriangle };
   double slb;
-  // Nodes: (bone node, reamer node); Triangles: (bone slot, reamer slot); BoneOnly: bone node;
-  // BoneTriangle: (bone slot, -1 for its first window, else its bitset of offered reamer slots).
+  // Nodes: (bone node, reamer node); Triangles: (bone position, reamer slot); BoneOnly: bone node;
+  // BoneTriangle: (bone position, -1 for its first window, else its bitset of offered reamer slots).
+  // A bone triangle is named by its leaf position (TriangleBvh::leafPosition), where the tree keeps the
+  // leaf's triangles side by side, not by its slot: read again later, it is still near its neighbours.
   std::int32_t b, r;
   Kind kind;
   // Min-heap on slb; on ties (many items start at 0 when the reamer starts near bone) bone triangles first,
@@ -190,10 +192,11 @@ class ToiSearch {
       if (it.kind == Item::BoneOnly) {
         const BvhNode& B = bn[it.b];
         if (B.isLeaf()) {
-          const std::uint32_t* bs = bone_.leafSlots(B);
+          const std::uint32_t first = TriangleBvh::leafPosition(B);
+          const BvhTriangle* bt = bone_.leafTriangles(B);
           for (int i = 0; i < B.count; ++i) {
-            const double t = std::max(it.slb, triangleHullTime(bone_.triangle(bs[i])));
-            if (promising(t)) push({t, static_cast<std::int32_t>(bs[i]), -1, Item::BoneTriangle});
+            const double t = std::max(it.slb, triangleHullTime(bt[i]));
+            if (promising(t)) push({t, static_cast<std::int32_t>(first + i), -1, Item::BoneTriangle});
           }
         } else {
           // The child that comes first is taken next without the queue when nothing queued comes before
@@ -259,10 +262,10 @@ class ToiSearch {
     if (!promising(ts) || !B.isLeaf()) return ts;
     // A bone leaf: its triangles' own extent along the axis, much thinner than its box's when the patch
     // is tilted against the bone's axes (the near-contact case, where most pairs are leaves).
-    const std::uint32_t* slots = bone_.leafSlots(B);
+    const BvhTriangle* tris = bone_.leafTriangles(B);
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (int i = 0; i < B.count; ++i) {
-      const BvhTriangle& bt = bone_.triangle(slots[i]);
+      const BvhTriangle& bt = tris[i];
       for (const Vec3* v : {&bt.a, &bt.b, &bt.c}) {
         const double d = dot(slab.axis, *v);
         lo = std::min(lo, d);
@@ -418,10 +421,10 @@ class ToiSearch {
 
   // Triangle pairs of two leaves, queued by their own bounds so the exact events run earliest-first.
   void leafPair(const BvhNode& B, const BvhNode& R) {
-    const std::uint32_t* bs = bone_.leafSlots(B);
+    const std::uint32_t first = TriangleBvh::leafPosition(B);
     const std::uint32_t* rs = rtree_.leafSlots(R);
     for (int j = 0; j < R.count; ++j)
-      for (int i = 0; i < B.count; ++i) pushTrianglePair(bs[i], rs[j], 0);
+      for (int i = 0; i < B.count; ++i) pushTrianglePair(first + std::uint32_t(i), rs[j], 0);
   }
 
   // The reamer triangle at s = 0 (its box) and how fast its box's faces can move (cached per query).
@@ -439,14 +442,14 @@ class ToiSearch {
 
   // One (bone triangle, reamer triangle) pair, queued for the exact events unless a bound shows it cannot
   // meet before the best contact so far; `floor` is a lower bound already known for the pair.
-  void pushTrianglePair(std::uint32_t boneSlot, std::uint32_t reamerSlot, double floor) {
+  void pushTrianglePair(std::uint32_t bonePos, std::uint32_t reamerSlot, double floor) {
     Vec3 blo, bhi;
-    TriangleBvh::paddedBox(bone_.triangle(boneSlot), blo, bhi);
-    pushTrianglePair(boneSlot, blo, bhi, reamerSlot, floor);
+    TriangleBvh::paddedBox(bone_.triangleAt(bonePos), blo, bhi);
+    pushTrianglePair(bonePos, blo, bhi, reamerSlot, floor);
   }
   // The same with the bone triangle's padded box already at hand.
-  void pushTrianglePair(std::uint32_t boneSlot, const Vec3& blo, const Vec3& bhi, std::uint32_t reamerSlot, double floor) {
-    const BvhTriangle& bt = bone_.triangle(boneSlot);
+  void pushTrianglePair(std::uint32_t bonePos, const Vec3& blo, const Vec3& bhi, std::uint32_t reamerSlot, double floor) {
+    const BvhTriangle& bt = bone_.triangleAt(bonePos);
     const ToiScratch::Moving& mv = moving(reamerSlot);
     double t = std::max(floor, detail::sweptBoxTime(mv.lo, mv.hi, mv.rateLo, mv.rateHi, blo, bhi, best_));
     if (!promising(t)) return;
@@ -471,7 +474,7 @@ class ToiSearch {
       t = std::max(t, tp);
       if (!promising(t)) return;
     }
-    push({t, static_cast<std::int32_t>(boneSlot), static_cast<std::int32_t>(reamerSlot), Item::Triangles});
+    push({t, static_cast<std::int32_t>(bonePos), static_cast<std::int32_t>(reamerSlot), Item::Triangles});
   }
 
   // A long window would gather much of the reamer: the window is cut to what moves the triangle by about
@@ -479,9 +482,9 @@ class ToiSearch {
   // only looked at if no contact is found first. A reamer triangle offered once is not offered again: its
   // pair's bounds and exact events cover the rest of the segment. `offered` is the triangle's bitset of
   // reamer slots offered so far, -1 in its first window (nothing offered yet).
-  void pairWithinWindow(std::uint32_t boneSlot, double s0, std::int32_t offered) {
+  void pairWithinWindow(std::uint32_t bonePos, double s0, std::int32_t offered) {
     constexpr double kWindowReachMm = 0.5;
-    const BvhTriangle& bt = bone_.triangle(boneSlot);
+    const BvhTriangle& bt = bone_.triangleAt(bonePos);
     const Mat3 R = m_.rotationAt(s0), Rt = R.transposed();
     const Vec3 tip = m_.tipAt(s0);
     const Vec3 p[3] = {Rt * (bt.a - tip), Rt * (bt.b - tip), Rt * (bt.c - tip)};
@@ -495,7 +498,7 @@ class ToiSearch {
         offered = static_cast<std::int32_t>(sc_.offered.size() / sc_.offeredWords);
         sc_.offered.resize(sc_.offered.size() + sc_.offeredWords, 0);
       }
-      push({s1, static_cast<std::int32_t>(boneSlot), offered, Item::BoneTriangle});
+      push({s1, static_cast<std::int32_t>(bonePos), offered, Item::BoneTriangle});
     }
     std::uint64_t* bits = offered < 0 ? nullptr : sc_.offered.data() + std::size_t(offered) * sc_.offeredWords;
     const double ds = s1 - s0;
@@ -523,7 +526,7 @@ class ToiSearch {
             if (word & bit) continue;
             word |= bit;
           }
-          pushTrianglePair(boneSlot, boneLo, boneHi, rs[j], s0);
+          pushTrianglePair(bonePos, boneLo, boneHi, rs[j], s0);
         }
       } else {
         rstack_.push_back(N.left);
@@ -581,21 +584,21 @@ class ToiSearch {
     return sc_.plane[slot];
   }
 
-  void exact(std::int32_t boneSlot, std::int32_t reamerSlot, double slb) {
+  void exact(std::int32_t bonePos, std::int32_t reamerSlot, double slb) {
     const BvhTriangle& lt = rtree_.triangle(static_cast<std::uint32_t>(reamerSlot));
     const auto& qa = rotatedTriangle(static_cast<std::uint32_t>(reamerSlot));
     const Vec3 p[3] = {lt.a, lt.b, lt.c};
     const Vec3 q[3] = {qa[0], qa[1], qa[2]};
     ++out_.trianglePairs;
     const PairContact c =
-        detail::pairFirstContact(m_, p, q, bone_.triangle(static_cast<std::uint32_t>(boneSlot)), best_, false, slb);
+        detail::pairFirstContact(m_, p, q, bone_.triangleAt(static_cast<std::uint32_t>(bonePos)), best_, false, slb);
     if (!c.hit || (found_ && c.s >= best_)) return;
     found_ = true;
     best_ = c.s;
     out_.point = c.point;
     out_.normal = c.normal;
     out_.feature = c.feature;
-    out_.boneSlot = static_cast<std::uint32_t>(boneSlot);
+    out_.boneSlot = bone_.slotAt(static_cast<std::uint32_t>(bonePos));
     out_.reamerTriangle = static_cast<std::uint32_t>(reamerSlot);
   }
 

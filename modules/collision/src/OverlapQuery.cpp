@@ -83,13 +83,13 @@ class OverlapSearch {
       visit(bn.right, mine, end);
     } else {
       const std::uint32_t* slots = bone_.leafSlots(bn);
-      for (int i = 0; i < bn.count && !done(); ++i) testTriangle(slots[i], mine, end);
+      const BvhTriangle* tris = bone_.leafTriangles(bn);
+      for (int i = 0; i < bn.count && !done(); ++i) testTriangle(slots[i], tris[i], mine, end);
     }
     active_.resize(mine);
   }
 
-  void testTriangle(std::uint32_t slot, std::size_t from, std::size_t to) {
-    const BvhTriangle& w = bone_.triangle(slot);
+  void testTriangle(std::uint32_t slot, const BvhTriangle& w, std::size_t from, std::size_t to) {
     const Vec3 a = frame_.toLocal(w.a), b = frame_.toLocal(w.b), c = frame_.toLocal(w.c);
     BvhTriangle local{a, b, c};
     Vec3 lo, hi;

@@ -260,7 +260,7 @@ class AxialSweep {
       const auto& xt = sc_.tri[rs[j]];
       const Vec3 x[3] = {xt[0], xt[1], xt[2]};
       for (int i = 0; i < B.count; ++i) {
-        const BvhTriangle& bt = bone_.triangle(bs[i]);
+        const BvhTriangle& bt = bone_.leafTriangles(B)[i];
         Vec3 blo, bhi;
         TriangleBvh::paddedBox(bt, blo, bhi);
         double dlo, dhi;

@@ -35,18 +35,18 @@ bool RestTouchSearch::touchesSubtree(std::int32_t node, TouchPair* where) {
     const BvhNode& B = bn[b];
     const BvhNode& R = rn[r];
     if (B.isLeaf() && R.isLeaf()) {
-      const std::uint32_t* bs = bone.leafSlots(B);
+      const BvhTriangle* bts = bone.leafTriangles(B);
       const std::uint32_t* rs = rest.leafSlots(R);
       for (int j = 0; j < R.count; ++j) {
         const Vec3 *rlo, *rhi;
         const BvhTriangle& rt = boxes.reamerTriangle(rs[j], rlo, rhi);
         for (int i = 0; i < B.count; ++i) {
-          const BvhTriangle& bt = bone.triangle(bs[i]);
+          const BvhTriangle& bt = bts[i];
           Vec3 blo, bhi;
           TriangleBvh::paddedBox(bt, blo, bhi);
           if (!boxesOverlap(blo, bhi, *rlo, *rhi) || !trianglesIntersect(rt.a, rt.b, rt.c, bt.a, bt.b, bt.c)) continue;
           if (where) {
-            where->boneSlot = bs[i];
+            where->boneSlot = bone.leafSlots(B)[i];
             where->reamerTriangle = reamer.restTriangles()[rs[j]];
             where->point = closestTriangleTriangle(rt.a, rt.b, rt.c, bt.a, bt.b, bt.c).onB;
           }

@@ -24,7 +24,8 @@ Bounds TriangleBvh::bounds() const {
 std::size_t TriangleBvh::hugePageBytes() const {
   return hugePageBytesIn({{nodes_.data(), nodes_.size() * sizeof(BvhNode)},
                           {slabs_.data(), slabs_.size() * sizeof(BvhSlab)},
-                          {tris_.data(), tris_.size() * sizeof(BvhTriangle)}});
+                          {tris_.data(), tris_.size() * sizeof(BvhTriangle)},
+                          {leafTris_.data(), leafTris_.size() * sizeof(BvhTriangle)}});
 }
 
 BvhQuality TriangleBvh::quality() const {
@@ -74,8 +75,12 @@ std::string TriangleBvh::validate() const {
       if (n.count < 1 || n.count > kLeafCapacity) return "leaf " + std::to_string(i) + " has count " + std::to_string(n.count);
       if (book_[i].size != n.count) return "leaf " + std::to_string(i) + " size counter mismatch";
       const std::uint32_t* s = leafSlots(n);
+      const BvhTriangle* copies = leafTriangles(n);
       for (int k = 0; k < n.count; ++k) {
         if (s[k] >= leafOf_.size() || leafOf_[s[k]] != i) return "slot " + std::to_string(s[k]) + " not mapped to its leaf";
+        const BvhTriangle& t = tris_[s[k]];
+        if (!(copies[k].a == t.a && copies[k].b == t.b && copies[k].c == t.c))
+          return "leaf " + std::to_string(i) + " holds a stale copy of slot " + std::to_string(s[k]);
         Vec3 lo, hi;
         paddedBox(tris_[s[k]], lo, hi);
         if (!encloses(n, lo, hi)) return "leaf " + std::to_string(i) + " does not enclose slot " + std::to_string(s[k]);

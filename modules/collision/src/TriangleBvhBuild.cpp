@@ -94,6 +94,7 @@ void TriangleBvh::rebuild() {
   book_.clear();
   touched_.clear();
   blocks_.clear();
+  leafTris_.clear();
   freeNodes_.clear();
   freeBlocks_.clear();
   const std::size_t expectNodes = refs.size() + 16;  // ~2 n / leaf size, with room for later edits
@@ -101,6 +102,7 @@ void TriangleBvh::rebuild() {
   slabs_.reserve(expectNodes);
   book_.reserve(expectNodes);
   blocks_.reserve(std::size_t(kLeafCapacity) * (refs.size() / 2 + 16));
+  leafTris_.reserve(blocks_.capacity());
   triangleCount_ = refs.size();
   root_ = refs.empty() ? -1 : buildSubtree(refs, 0, refs.size(), -1);
   layOutInPairBlocks();
@@ -196,6 +198,7 @@ std::int32_t TriangleBvh::allocBlock() {
     return b;
   }
   blocks_.resize(blocks_.size() + kLeafCapacity);
+  leafTris_.resize(blocks_.size());
   return static_cast<std::int32_t>(blocks_.size() / kLeafCapacity - 1);
 }
 
@@ -204,8 +207,10 @@ std::int32_t TriangleBvh::makeLeaf(const BuildRef* refs, std::size_t n, std::int
   const std::int32_t block = allocBlock();
   Vec3 lo = kEmptyLo, hi = kEmptyHi;
   std::uint32_t* out = &blocks_[std::size_t(block) * kLeafCapacity];
+  BvhTriangle* outTris = &leafTris_[std::size_t(block) * kLeafCapacity];
   for (std::size_t i = 0; i < n; ++i) {
     out[i] = refs[i].slot;
+    outTris[i] = tris_[refs[i].slot];
     leafOf_[refs[i].slot] = node;
     grow(lo, hi, refs[i].lo, refs[i].hi);
   }
@@ -398,10 +403,10 @@ std::int32_t TriangleBvh::mortonRange(const BuildRef* refs, const std::uint32_t*
 void TriangleBvh::recomputeLeafBox(std::int32_t leaf) {
   BvhNode& l = nodes_[leaf];
   Vec3 lo = kEmptyLo, hi = kEmptyHi;
-  const std::uint32_t* s = leafSlots(l);
+  const BvhTriangle* t = leafTriangles(l);
   for (int i = 0; i < l.count; ++i) {
     Vec3 tlo, thi;
-    paddedBox(tris_[s[i]], tlo, thi);
+    paddedBox(t[i], tlo, thi);
     grow(lo, hi, tlo, thi);
   }
   l.lo = lo;
@@ -412,10 +417,10 @@ void TriangleBvh::recomputeLeafBox(std::int32_t leaf) {
 void TriangleBvh::fitLeafSlab(std::int32_t leaf) {
   const BvhNode& l = nodes_[leaf];
   BvhSlab& sl = slabs_[leaf];
-  const std::uint32_t* s = leafSlots(l);
+  const BvhTriangle* tris = leafTriangles(l);
   Vec3 sum;
   for (int i = 0; i < l.count; ++i) {
-    const BvhTriangle& t = tris_[s[i]];
+    const BvhTriangle& t = tris[i];
     sum += cross(t.b - t.a, t.c - t.a);
   }
   const double len = norm(sum);
@@ -423,7 +428,7 @@ void TriangleBvh::fitLeafSlab(std::int32_t leaf) {
   sl.axis = len > 1e-300 ? sum / len : Vec3{0, 0, 1};
   double lo = kInf, hi = -kInf;
   for (int i = 0; i < l.count; ++i) {
-    const BvhTriangle& t = tris_[s[i]];
+    const BvhTriangle& t = tris[i];
     for (const Vec3* v : {&t.a, &t.b, &t.c}) {
       const double d = dot(sl.axis, *v);
       lo = mn(lo, d);

@@ -58,9 +58,11 @@ void TriangleBvh::removeSlot(std::uint32_t slot) {
   const std::int32_t leaf = leafOf_[slot];
   BvhNode& l = nodes_[leaf];
   std::uint32_t* s = &blocks_[std::size_t(l.left) * kLeafCapacity];
+  BvhTriangle* t = &leafTris_[std::size_t(l.left) * kLeafCapacity];
   for (int i = 0; i < l.count; ++i)
     if (s[i] == slot) {
       s[i] = s[l.count - 1];
+      t[i] = t[l.count - 1];
       --l.count;
       break;
     }

@@ -153,6 +153,14 @@ class TriangleBvh {
     if (withSlab) __builtin_prefetch(&slabs_[std::size_t(node)]);
   }
   const std::uint32_t* leafSlots(const BvhNode& leaf) const { return &blocks_[std::size_t(leaf.left) * kLeafCapacity]; }
+  // A leaf's triangles side by side, in the order of leafSlots (a copy the tree keeps: by slot they lie
+  // scattered in the mesh's face order, one or two cache misses each on a large bone).
+  const BvhTriangle* leafTriangles(const BvhNode& leaf) const { return &leafTris_[std::size_t(leaf.left) * kLeafCapacity]; }
+  // Positions: leaf entries as one index (leafPosition(leaf) + i is the leaf's i-th), for searches that queue
+  // a bone triangle and read it again later; valid until the tree changes.
+  static std::uint32_t leafPosition(const BvhNode& leaf) { return std::uint32_t(leaf.left) * kLeafCapacity; }
+  std::uint32_t slotAt(std::uint32_t position) const { return blocks_[position]; }
+  const BvhTriangle& triangleAt(std::uint32_t position) const { return leafTris_[position]; }
   bool contains(std::uint32_t slot) const { return slot < leafOf_.size() && leafOf_[slot] >= 0; }
   const BvhTriangle& triangle(std::uint32_t slot) const { return tris_[slot]; }
   std::size_t triangleCount() const { return triangleCount_; }
@@ -229,6 +237,7 @@ class TriangleBvh {
   std::vector<std::int32_t> touched_;
   std::uint32_t epoch_ = 0;
   HugePageVector<std::uint32_t> blocks_;  // leaf slot blocks, kLeafCapacity each
+  HugePageVector<BvhTriangle> leafTris_;  // parallel to blocks_: the slots' triangles (leafTriangles)
   std::vector<std::int32_t> freeNodes_, freeBlocks_;
   HugePageVector<BvhTriangle> tris_;     // by slot
   HugePageVector<std::int32_t> leafOf_;  // by slot; -1 when the slot is not in the tree
