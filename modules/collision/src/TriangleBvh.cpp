@@ -72,7 +72,8 @@ std::string TriangleBvh::validate() const {
     if (n.right == -2) return "reachable node " + std::to_string(i) + " is freed";
     if (book_[i].dirty) return "node " + std::to_string(i) + " left dirty";
     if (n.isLeaf()) {
-      if (n.count < 1 || n.count > kLeafCapacity) return "leaf " + std::to_string(i) + " has count " + std::to_string(n.count);
+      const int capacity = largeBlock_[std::size_t(n.left) / kBuildLeafSize] ? kLeafCapacity : kBuildLeafSize;
+      if (n.count < 1 || n.count > capacity) return "leaf " + std::to_string(i) + " has count " + std::to_string(n.count);
       if (book_[i].size != n.count) return "leaf " + std::to_string(i) + " size counter mismatch";
       const std::uint32_t* s = leafSlots(n);
       const BvhTriangle* copies = leafTriangles(n);

@@ -95,13 +95,15 @@ void TriangleBvh::rebuild() {
   touched_.clear();
   blocks_.clear();
   leafTris_.clear();
+  largeBlock_.clear();
   freeNodes_.clear();
-  freeBlocks_.clear();
+  freeSmallBlocks_.clear();
+  freeLargeBlocks_.clear();
   const std::size_t expectNodes = refs.size() + 16;  // ~2 n / leaf size, with room for later edits
   nodes_.reserve(expectNodes);
   slabs_.reserve(expectNodes);
   book_.reserve(expectNodes);
-  blocks_.reserve(std::size_t(kLeafCapacity) * (refs.size() / 2 + 16));
+  blocks_.reserve(refs.size() + refs.size() / 4 + 64);  // a build's leaves hold ~3 of their 4
   leafTris_.reserve(blocks_.capacity());
   triangleCount_ = refs.size();
   root_ = refs.empty() ? -1 : buildSubtree(refs, 0, refs.size(), -1);
@@ -191,23 +193,33 @@ std::int32_t TriangleBvh::allocNode() {
   return static_cast<std::int32_t>(nodes_.size() - 1);
 }
 
-std::int32_t TriangleBvh::allocBlock() {
-  if (!freeBlocks_.empty()) {
-    const std::int32_t b = freeBlocks_.back();
-    freeBlocks_.pop_back();
+// The start of a free block of kBuildLeafSize entries (entries <= kBuildLeafSize) or kLeafCapacity.
+std::int32_t TriangleBvh::allocBlock(std::size_t entries) {
+  const bool large = entries > std::size_t(kBuildLeafSize);
+  std::vector<std::int32_t>& freeList = large ? freeLargeBlocks_ : freeSmallBlocks_;
+  if (!freeList.empty()) {
+    const std::int32_t b = freeList.back();
+    freeList.pop_back();
     return b;
   }
-  blocks_.resize(blocks_.size() + kLeafCapacity);
+  const std::size_t start = blocks_.size();
+  blocks_.resize(start + (large ? kLeafCapacity : kBuildLeafSize));
   leafTris_.resize(blocks_.size());
-  return static_cast<std::int32_t>(blocks_.size() / kLeafCapacity - 1);
+  largeBlock_.resize(blocks_.size() / kBuildLeafSize, 0);
+  largeBlock_[start / kBuildLeafSize] = large;
+  return static_cast<std::int32_t>(start);
+}
+
+void TriangleBvh::freeBlock(std::int32_t start) {
+  (largeBlock_[std::size_t(start) / kBuildLeafSize] ? freeLargeBlocks_ : freeSmallBlocks_).push_back(start);
 }
 
 std::int32_t TriangleBvh::makeLeaf(const BuildRef* refs, std::size_t n, std::int32_t parent) {
   const std::int32_t node = allocNode();
-  const std::int32_t block = allocBlock();
+  const std::int32_t block = allocBlock(n);
   Vec3 lo = kEmptyLo, hi = kEmptyHi;
-  std::uint32_t* out = &blocks_[std::size_t(block) * kLeafCapacity];
-  BvhTriangle* outTris = &leafTris_[std::size_t(block) * kLeafCapacity];
+  std::uint32_t* out = &blocks_[std::size_t(block)];
+  BvhTriangle* outTris = &leafTris_[std::size_t(block)];
   for (std::size_t i = 0; i < n; ++i) {
     out[i] = refs[i].slot;
     outTris[i] = tris_[refs[i].slot];

@@ -35,7 +35,7 @@ void TriangleBvh::freeSubtree(std::int32_t node, std::vector<std::uint32_t>* slo
         const std::uint32_t* s = leafSlots(n);
         slotsOut->insert(slotsOut->end(), s, s + n.count);
       }
-      freeBlocks_.push_back(n.left);
+      freeBlock(n.left);
     } else {
       stack.push_back(n.left);
       stack.push_back(n.right);
@@ -53,21 +53,37 @@ void TriangleBvh::markDirty(std::int32_t node) {
 }
 
 // Takes the slot out of its leaf; sizes, edit counts, emptied subtrees and boxes are settled afterwards by
-// one pass over the dirty paths (settle), so a cut that empties whole subtrees costs O(nodes touched).
+// one pass over the dirty paths (settle), so a cut that empties whole subtrees costs O(nodes touched). The
+// slot leaves a hole (kRemovedEntry) that settle closes: most leaves a cut touches lose all their slots and
+// are freed whole, and their triangle copies are then never written.
 void TriangleBvh::removeSlot(std::uint32_t slot) {
   const std::int32_t leaf = leafOf_[slot];
   BvhNode& l = nodes_[leaf];
-  std::uint32_t* s = &blocks_[std::size_t(l.left) * kLeafCapacity];
-  BvhTriangle* t = &leafTris_[std::size_t(l.left) * kLeafCapacity];
-  for (int i = 0; i < l.count; ++i)
+  std::uint32_t* s = &blocks_[std::size_t(l.left)];
+  const int entries = book_[leaf].size;  // the leaf's entries when this update began, holes included
+  for (int i = 0; i < entries; ++i)
     if (s[i] == slot) {
-      s[i] = s[l.count - 1];
-      t[i] = t[l.count - 1];
+      s[i] = kRemovedEntry;
       --l.count;
       break;
     }
   leafOf_[slot] = -1;
   markDirty(leaf);
+}
+
+// Closes the holes removeSlot left in a leaf's block (`entries` of them were used), keeping the order.
+void TriangleBvh::closeLeafHoles(const BvhNode& leaf, int entries) {
+  std::uint32_t* s = &blocks_[std::size_t(leaf.left)];
+  BvhTriangle* t = &leafTris_[std::size_t(leaf.left)];
+  int kept = 0;
+  for (int i = 0; i < entries; ++i) {
+    if (s[i] == kRemovedEntry) continue;
+    if (kept != i) {
+      s[kept] = s[i];
+      t[kept] = t[i];
+    }
+    ++kept;
+  }
 }
 
 // Post-order over dirty nodes: leaf sizes from their counts, internal sizes from their children, edit counts
@@ -80,10 +96,11 @@ std::int32_t TriangleBvh::settle(std::int32_t n, std::int32_t& removedBelow, Bvh
   BvhNode& N = nodes_[n];
   if (N.isLeaf()) {
     removedBelow = book_[n].size - N.count;
+    if (removedBelow > 0 && N.count > 0) closeLeafHoles(N, book_[n].size);
     book_[n].edits += removedBelow;
     book_[n].size = N.count;
     if (N.count == 0) {
-      freeBlocks_.push_back(N.left);
+      freeBlock(N.left);
       N.right = -2;
       freeNodes_.push_back(n);
       return -1;
@@ -267,6 +284,7 @@ BvhUpdateStats TriangleBvh::update(const std::vector<std::uint32_t>& removedSlot
   for (std::uint32_t s : removedSlots) largest = std::max(largest, s);
   for (std::uint32_t s : addedSlots) largestAdded = std::max(largestAdded, s);
   largest = std::max(largest, largestAdded);
+  if (largest == kRemovedEntry) throw std::invalid_argument("TriangleBvh::update: slot 4294967295 is reserved");
   if (slotMark_.size() <= largest) {
     const std::size_t need = std::size_t(largest) + 1;
     if (need > slotMark_.capacity()) slotMark_.reserve(need + need / 4);  // as tris_ grows below

@@ -35,8 +35,8 @@ struct BvhTriangle {
   Vec3 a, b, c;
 };
 
-// One node, 64 bytes. Internal: `left`/`right` are child node indices. Leaf: right == -1, `left` is the
-// index of its slot block (kLeafCapacity slots in blocks()), `count` the number of slots used.
+// One node, 64 bytes. Internal: `left`/`right` are child node indices. Leaf: right == -1, `left` is where
+// its block of slots starts (leafSlots: kBuildLeafSize or kLeafCapacity entries), `count` the number used.
 struct BvhNode {
   Vec3 lo, hi;
   std::int32_t parent = -1;
@@ -117,7 +117,8 @@ struct BvhQuality {
 
 class TriangleBvh {
  public:
-  static constexpr int kLeafCapacity = 8;   // slots per leaf block (room for inserts before a split)
+  static constexpr int kLeafCapacity = 8;   // the most slots a leaf holds (a build makes leaves this large
+                                            // only where the SAH finds splitting them dearer)
   static constexpr int kBuildLeafSize = 4;  // leaves made by a build hold at most this many
   static constexpr double kBoxPadRelative = 1e-7;
   static constexpr double kRebuildFraction = 0.5;  // rebuild a subtree once edits exceed this share of it
@@ -152,13 +153,13 @@ class TriangleBvh {
     __builtin_prefetch(&nodes_[std::size_t(node)]);
     if (withSlab) __builtin_prefetch(&slabs_[std::size_t(node)]);
   }
-  const std::uint32_t* leafSlots(const BvhNode& leaf) const { return &blocks_[std::size_t(leaf.left) * kLeafCapacity]; }
+  const std::uint32_t* leafSlots(const BvhNode& leaf) const { return &blocks_[std::size_t(leaf.left)]; }
   // A leaf's triangles side by side, in the order of leafSlots (a copy the tree keeps: by slot they lie
   // scattered in the mesh's face order, one or two cache misses each on a large bone).
-  const BvhTriangle* leafTriangles(const BvhNode& leaf) const { return &leafTris_[std::size_t(leaf.left) * kLeafCapacity]; }
+  const BvhTriangle* leafTriangles(const BvhNode& leaf) const { return &leafTris_[std::size_t(leaf.left)]; }
   // Positions: leaf entries as one index (leafPosition(leaf) + i is the leaf's i-th), for searches that queue
   // a bone triangle and read it again later; valid until the tree changes.
-  static std::uint32_t leafPosition(const BvhNode& leaf) { return std::uint32_t(leaf.left) * kLeafCapacity; }
+  static std::uint32_t leafPosition(const BvhNode& leaf) { return std::uint32_t(leaf.left); }
   std::uint32_t slotAt(std::uint32_t position) const { return blocks_[position]; }
   const BvhTriangle& triangleAt(std::uint32_t position) const { return leafTris_[position]; }
   bool contains(std::uint32_t slot) const { return slot < leafOf_.size() && leafOf_[slot] >= 0; }
@@ -205,10 +206,13 @@ class TriangleBvh {
   std::int32_t mortonRange(const BuildRef* refs, const std::uint32_t* codes, std::size_t n, std::int32_t parent);
   std::int32_t allocNode();
   void layOutInPairBlocks();
-  std::int32_t allocBlock();
+  std::int32_t allocBlock(std::size_t entries);
+  void freeBlock(std::int32_t start);
   void freeSubtree(std::int32_t node, std::vector<std::uint32_t>* slotsOut);
   void replaceChild(std::int32_t parent, std::int32_t oldChild, std::int32_t newChild);
   void removeSlot(std::uint32_t slot);
+  void closeLeafHoles(const BvhNode& leaf, int entries);
+  static constexpr std::uint32_t kRemovedEntry = 0xFFFFFFFFu;  // a hole in a leaf block during an update
   std::int32_t settle(std::int32_t node, std::int32_t& removedBelow, BvhUpdateStats& stats);
   void touch(std::int32_t node);
   std::int32_t bestSibling(const Vec3& lo, const Vec3& hi) const;
@@ -236,9 +240,12 @@ class TriangleBvh {
   HugePageVector<NodeBook> book_;
   std::vector<std::int32_t> touched_;
   std::uint32_t epoch_ = 0;
-  HugePageVector<std::uint32_t> blocks_;  // leaf slot blocks, kLeafCapacity each
+  // Leaf blocks in two sizes: kBuildLeafSize entries for a leaf built with at most that many (nearly all),
+  // kLeafCapacity for the rest; a leaf never grows (updates graft new subtrees), so it keeps its block.
+  HugePageVector<std::uint32_t> blocks_;  // leaf slot blocks
   HugePageVector<BvhTriangle> leafTris_;  // parallel to blocks_: the slots' triangles (leafTriangles)
-  std::vector<std::int32_t> freeNodes_, freeBlocks_;
+  std::vector<std::uint8_t> largeBlock_;  // by block start / kBuildLeafSize: a kLeafCapacity block
+  std::vector<std::int32_t> freeNodes_, freeSmallBlocks_, freeLargeBlocks_;
   HugePageVector<BvhTriangle> tris_;     // by slot
   HugePageVector<std::int32_t> leafOf_;  // by slot; -1 when the slot is not in the tree
   HugePageVector<std::uint32_t> slotMark_;  // by slot: update()'s duplicate checks (stamped, never cleared)
