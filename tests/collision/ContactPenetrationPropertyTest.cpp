@@ -95,6 +95,13 @@ Counts checkFirstContact(const TriangleMesh& bone, std::size_t n, std::size_t in
       EXPECT_NEAR(norm(got.normal), 1.0, 1e-9);
       EXPECT_GE(got.t, 0.0);
       EXPECT_LE(got.t, 1.0);
+      // The contact point lies on the bone triangle reported (the search names triangles by their place in
+      // the tree's leaves and must turn that back into the slot).
+      EXPECT_LT(got.boneSlot, bone.triangles.size()) << "query " << i;
+      if (got.boneSlot >= bone.triangles.size()) return c;
+      const Triangle& bt = bone.triangles[got.boneSlot];
+      const Vec3 onTriangle = closestPointOnTriangle(got.point, bone.vertices[bt[0]], bone.vertices[bt[1]], bone.vertices[bt[2]]);
+      EXPECT_LE(norm(got.point - onTriangle), 1e-7 * (1 + norm(got.point))) << "query " << i << " t " << got.t;
     }
     if (i % independentEvery == 0) {
       // Independent of the event solver: touching at t, and (when t > 0) apart a little earlier; no contact:
