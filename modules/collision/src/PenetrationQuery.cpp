@@ -254,13 +254,14 @@ class AxialSweep {
       return;
     }
     const std::uint32_t* bs = bone_.leafSlots(B);
+    const BvhTriangle* bts = bone_.leafTriangles(B);
     const std::uint32_t* rs = rtree_.leafSlots(R);
     for (int j = 0; j < R.count; ++j) {
       worldTri(rs[j]);
       const auto& xt = sc_.tri[rs[j]];
       const Vec3 x[3] = {xt[0], xt[1], xt[2]};
       for (int i = 0; i < B.count; ++i) {
-        const BvhTriangle& bt = bone_.leafTriangles(B)[i];
+        const BvhTriangle& bt = bts[i];
         Vec3 blo, bhi;
         TriangleBvh::paddedBox(bt, blo, bhi);
         double dlo, dhi;

@@ -83,12 +83,12 @@ std::string TriangleBvh::validate() const {
         if (!(copies[k].a == t.a && copies[k].b == t.b && copies[k].c == t.c))
           return "leaf " + std::to_string(i) + " holds a stale copy of slot " + std::to_string(s[k]);
         Vec3 lo, hi;
-        paddedBox(tris_[s[k]], lo, hi);
+        paddedBox(t, lo, hi);
         if (!encloses(n, lo, hi)) return "leaf " + std::to_string(i) + " does not enclose slot " + std::to_string(s[k]);
         // Every slab on the path to the root holds the triangle's corners.
         for (std::int32_t a = i; a >= 0; a = nodes_[a].parent) {
           const BvhSlab& sl = slabs_[a];
-          for (const Vec3* v : {&tris_[s[k]].a, &tris_[s[k]].b, &tris_[s[k]].c}) {
+          for (const Vec3* v : {&t.a, &t.b, &t.c}) {
             const double dv = dot(sl.axis, *v);
             if (!(dv >= sl.lo && dv <= sl.hi))
               return "slab of node " + std::to_string(a) + " does not hold slot " + std::to_string(s[k]);
