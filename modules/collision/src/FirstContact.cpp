@@ -139,6 +139,58 @@ class ToiSearch {
     initHull(reamer);
   }
 
+  // Whether a bone triangle may lie within the ideal solid's sweep at some s in [0, 1]: run()'s hull tests
+  // with nothing found yet, asked as yes or no. No means nothing can meet the reamer on this segment, nor
+  // touch it at s = 0 (the solid holds the whole reamer at every s), and the search need not run. Answered
+  // depth first, nearer the solid's middle first, for kDepthFirstNodes nodes (a motion whose reamer starts
+  // in or on the bone finds a triangle within them), then breadth first: proving "no" visits every node in
+  // reach in any order, and taking them level by level fetches a level's nodes ahead of their tests, so
+  // their cache misses overlap, where a depth-first or best-first search waits for each in turn (session
+  // 38: no-contact motions at 405k ~25 % faster than the search itself). Only for a parametric reamer (true
+  // otherwise).
+  bool hullMayReachBone() {
+    if (!hull_) return true;
+    constexpr int kDepthFirstNodes = 24;
+    Vec3 lo, hi;
+    ballSweptBox(lo, hi);
+    const double smallEnough = 0.5 * ball_.radius;
+    const auto& bn = bone_.nodes();
+    std::vector<std::int32_t>& nodes = sc_.rstack;  // a stack, then a queue; free until the search runs
+    nodes.assign(1, bone_.root());
+    for (int visits = 0; !nodes.empty() && visits < kDepthFirstNodes; ++visits) {
+      const std::int32_t b = nodes.back();
+      nodes.pop_back();
+      const BvhNode& B = bn[b];
+      if (!nodeInReach(B, b, lo, hi, smallEnough)) continue;
+      if (B.isLeaf()) {
+        if (leafInReach(B)) return true;
+        continue;
+      }
+      bone_.prefetchNode(B.left, true);
+      bone_.prefetchNode(B.right, true);
+      const BvhNode& L = bn[B.left];
+      const BvhNode& R = bn[B.right];
+      const bool leftFirst =
+          squaredNorm((L.lo + L.hi) * 0.5 - solidMiddle0_) <= squaredNorm((R.lo + R.hi) * 0.5 - solidMiddle0_);
+      nodes.push_back(leftFirst ? B.right : B.left);
+      nodes.push_back(leftFirst ? B.left : B.right);
+    }
+    for (std::size_t head = 0; head < nodes.size(); ++head) {  // the stack's nodes are still untested
+      const std::int32_t b = nodes[head];
+      const BvhNode& B = bn[b];
+      if (!nodeInReach(B, b, lo, hi, smallEnough)) continue;
+      if (B.isLeaf()) {
+        if (leafInReach(B)) return true;
+        continue;
+      }
+      bone_.prefetchNode(B.left, true);
+      bone_.prefetchNode(B.right, true);
+      nodes.push_back(B.left);
+      nodes.push_back(B.right);
+    }
+    return false;
+  }
+
   bool run(double& sHit) {
     heap_.clear();
     if (hull_) {
@@ -313,6 +365,7 @@ class ToiSearch {
     const double reach = id.flat ? std::hypot(id.radius, 0.5 * id.zBack)
                                  : std::max(id.sphereRadius, std::hypot(id.radius, id.zBack - id.sphereCentreZ));
     ball_ = detail::ballSweep(m_, centre, reach + pad);
+    solidMiddle0_ = m_.tip0 + m_.R0 * Vec3{0, 0, 0.5 * (id.zBack + zTop)};
     const BvhNode& root = rtree_.nodes()[rtree_.root()];
     const double r = reamer.radius();
     hullSlabs_[0] = detail::axisSweep(m_, Vec3{0, 0, 1}, id.zBack - pad, zTop + pad, root.lo, root.hi, r);
@@ -378,12 +431,7 @@ class ToiSearch {
   // -15 to -16 % over alternating runs in one process).
   void pushSubtreesInBallReach() {
     Vec3 lo, hi;
-    for (int i = 0; i < 3; ++i) {
-      const double a = ball_.c0[i], b = ball_.c0[i] + ball_.d[i];
-      const double pad = 1e-9 * (1 + std::abs(a) + std::abs(b) + ball_.radius);
-      lo[i] = std::min(a, b) - ball_.radius - pad;
-      hi[i] = std::max(a, b) + ball_.radius + pad;
-    }
+    ballSweptBox(lo, hi);
     const double smallEnough = 0.5 * ball_.radius;
     const auto& bn = bone_.nodes();
     std::vector<std::int32_t>& stack = sc_.rstack;  // free until the search's first window
@@ -401,6 +449,56 @@ class ToiSearch {
       stack.push_back(B.left);
       stack.push_back(B.right);
     }
+  }
+
+  // The box the moving ball sweeps over the segment.
+  void ballSweptBox(Vec3& lo, Vec3& hi) const {
+    for (int i = 0; i < 3; ++i) {
+      const double a = ball_.c0[i], b = ball_.c0[i] + ball_.d[i];
+      const double pad = 1e-9 * (1 + std::abs(a) + std::abs(b) + ball_.radius);
+      lo[i] = std::min(a, b) - ball_.radius - pad;
+      hi[i] = std::max(a, b) + ball_.radius + pad;
+    }
+  }
+
+  // For hullMayReachBone: node B (index b) against the ball's swept box [lo, hi], and once it is no wider
+  // than smallEnough (as in pushSubtreesInBallReach) against the hull too.
+  bool nodeInReach(const BvhNode& B, std::int32_t b, const Vec3& lo, const Vec3& hi, double smallEnough) const {
+    if (!boxesOverlap(B.lo, B.hi, lo, hi)) return false;
+    const bool small = std::max({B.hi.x - B.lo.x, B.hi.y - B.lo.y, B.hi.z - B.lo.z}) <= smallEnough;
+    return !(small || B.isLeaf()) || hullReachesNode(b);
+  }
+
+  bool leafInReach(const BvhNode& leaf) const {
+    const BvhTriangle* bt = bone_.leafTriangles(leaf);
+    for (int i = 0; i < leaf.count; ++i)
+      if (promising(triangleHullTime(bt[i]))) return true;
+    return false;
+  }
+
+  // hullTime(b) <= 1 asked as yes or no, by the same tests: each sweep's span over the whole segment
+  // against the node's range (an interval moving linearly meets a fixed one at some s in [0, 1] exactly when
+  // the span it covers does), so no time is divided out.
+  bool hullReachesNode(std::int32_t b) const {
+    const BvhNode& B = bone_.nodes()[b];
+    const BvhSlab& slab = bone_.slab(b);
+    if (!spanMeets(detail::ballAlong(ball_, slab.axis), slab.lo, slab.hi)) return false;
+    const BoxSlabRegion region(B.lo, B.hi, slab);
+    Vec3 u;
+    double lo, hi;
+    if (region.rangeFrom(ball_.c0, u, lo, hi) && !spanMeets(detail::ballAlong(ball_, u), lo, hi)) return false;
+    region.range(hullSlabs_[0].axis, lo, hi);
+    if (!spanMeets(hullSlabs_[0], lo, hi)) return false;
+    const std::size_t j = acrossFacing(region.c);
+    region.range(hullSlabs_[j].axis, lo, hi);
+    return spanMeets(hullSlabs_[j], lo, hi);
+  }
+
+  // Whether the sweep's span over s in [0, 1] meets [blo, bhi] (padded for the rounding of its sums).
+  static bool spanMeets(const detail::AxisSweep& a, double blo, double bhi) {
+    const double lo = std::min(a.lo0, a.lo0 + a.rateLo), hi = std::max(a.hi0, a.hi0 + a.rateHi);
+    const double pad = 1e-12 * (std::abs(a.lo0) + std::abs(a.hi0) + std::abs(a.rateLo) + std::abs(a.rateHi)) + 1e-300;
+    return lo - pad <= bhi && blo <= hi + pad;
   }
 
   // Bone node b with its bound, its children's nodes and slabs fetched ahead when it is worth opening: when
@@ -619,6 +717,7 @@ class ToiSearch {
   double best_ = 1;
   bool hull_ = false;
   detail::BallSweep ball_;
+  Vec3 solidMiddle0_;  // the ideal solid's middle on its axis at s = 0 (hullMayReachBone looks there first)
   std::array<detail::AxisSweep, 5> hullSlabs_;
   std::vector<Item>& heap_ = sc_.heap;
   std::vector<std::int32_t>& rstack_ = sc_.rstack;
@@ -638,7 +737,16 @@ FirstContactResult queryFirstContact(const TriangleBvh& bone, const ReamerModel&
   if (sweepTestsRest ? detail::faceTouchesBone(bone, reamer, from, &touch) : detail::surfacesTouch(bone, reamer, from, &touch))
     return touchAtStart(bone, touch);
   const MotionPlan plan = MotionPlan::between(from, to);
-  for (int i = 0; i < plan.segments; ++i) {
+  // Segments whose sweep of the ideal solid reaches no bone triangle are skipped without a search; most
+  // motions that meet nothing end here. (After the start tests: this pass would find bone at once under a
+  // reamer touching at the start, and that motion would pay for it on top, session 38.)
+  int first = 0;
+  while (first < plan.segments) {
+    FirstContactResult unused;
+    if (ToiSearch(bone, reamer, plan.segment(first), unused).hullMayReachBone()) break;
+    ++first;
+  }
+  for (int i = first; i < plan.segments; ++i) {
     double s;
     FirstContactResult seg;
     if (ToiSearch(bone, reamer, plan.segment(i), seg, i == 0 && sweepTestsRest ? &from : nullptr).run(s)) {
