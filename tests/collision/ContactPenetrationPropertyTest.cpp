@@ -281,6 +281,35 @@ TEST(collisionFirstContactProperty, ApproachingAParallelBone) {
   EXPECT_LT(hits, 350u);
 }
 
+// A turn of more than 90 degrees is searched in segments (MotionPlan). Here the first segment's sweep stays
+// far above a slab and reaches no bone, so the query skips it without a search (and without the start
+// tests), and the contact comes in the second: the time must still be the brute force's, past the middle.
+TEST(collisionFirstContact, TurnMeetingTheBoneOnlyInItsSecondSegment) {
+  for (const bool flat : {false, true}) {
+    const ReamerModel reamer = ReamerModel::fromSpec(test::smallSpec(flat));
+    const TriangleMesh slab = test::makeBox({-60, -60, -20}, {60, 60, -0.05});
+    RigidTransform from;
+    from.translation = {0, 0, 200};
+    RigidTransform to;  // at the origin, turned by 170 degrees about x
+    const double angle = 170 * kPi / 180;
+    for (int c = 0; c < 3; ++c) {
+      const Vec3 r = test::rotate({from.rotation[c], from.rotation[3 + c], from.rotation[6 + c]}, {1, 0, 0}, angle);
+      to.rotation[c] = r.x;
+      to.rotation[3 + c] = r.y;
+      to.rotation[6 + c] = r.z;
+    }
+    const FirstContactResult ref = bruteForceFirstContact(slab, reamer, from, to);
+    ASSERT_TRUE(ref.hit) << "flat " << flat;
+    ASSERT_GT(ref.t, 0.5) << "flat " << flat;
+    const FirstContactResult got = queryFirstContact(TriangleBvh::fromMesh(slab), reamer, from, to);
+    EXPECT_TRUE(got.hit) << "flat " << flat;
+    EXPECT_NEAR(got.t, ref.t, 1e-9) << "flat " << flat;
+    // Stopped halfway, the same motion meets nothing.
+    const RigidTransform half = interpolateMotion(from, to, 0.5);
+    EXPECT_FALSE(queryFirstContact(TriangleBvh::fromMesh(slab), reamer, from, half).hit) << "flat " << flat;
+  }
+}
+
 // The reamer's body (not its cutting face) already in the bone: a box through the cylinder wall, below the
 // cap. A parametric reamer tests the body and back at the start only when its sweep meets bone its ideal
 // solid reaches there (FirstContact.cpp), so this is the case where that test has to fire: time 0, whatever
