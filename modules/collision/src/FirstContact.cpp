@@ -156,38 +156,32 @@ class ToiSearch {
     const double smallEnough = 0.5 * ball_.radius;
     const auto& bn = bone_.nodes();
     std::vector<std::int32_t>& nodes = sc_.rstack;  // a stack, then a queue; free until the search runs
+    // Node b: a leaf in reach answers; an internal node in reach has its children queued (with
+    // `nearerLast`, the one nearer the solid's middle last: the depth-first part takes it next).
+    const auto take = [&](std::int32_t b, bool nearerLast) {
+      const BvhNode& B = bn[b];
+      if (!nodeInReach(B, b, lo, hi, smallEnough)) return false;
+      if (B.isLeaf()) return leafInReach(B);
+      bone_.prefetchNode(B.left, true);
+      bone_.prefetchNode(B.right, true);
+      bool leftLast = false;
+      if (nearerLast) {
+        const BvhNode& L = bn[B.left];
+        const BvhNode& R = bn[B.right];
+        leftLast = squaredNorm((L.lo + L.hi) * 0.5 - solidMiddle0_) <= squaredNorm((R.lo + R.hi) * 0.5 - solidMiddle0_);
+      }
+      nodes.push_back(leftLast ? B.right : B.left);
+      nodes.push_back(leftLast ? B.left : B.right);
+      return false;
+    };
     nodes.assign(1, bone_.root());
     for (int visits = 0; !nodes.empty() && visits < kDepthFirstNodes; ++visits) {
       const std::int32_t b = nodes.back();
       nodes.pop_back();
-      const BvhNode& B = bn[b];
-      if (!nodeInReach(B, b, lo, hi, smallEnough)) continue;
-      if (B.isLeaf()) {
-        if (leafInReach(B)) return true;
-        continue;
-      }
-      bone_.prefetchNode(B.left, true);
-      bone_.prefetchNode(B.right, true);
-      const BvhNode& L = bn[B.left];
-      const BvhNode& R = bn[B.right];
-      const bool leftFirst =
-          squaredNorm((L.lo + L.hi) * 0.5 - solidMiddle0_) <= squaredNorm((R.lo + R.hi) * 0.5 - solidMiddle0_);
-      nodes.push_back(leftFirst ? B.right : B.left);
-      nodes.push_back(leftFirst ? B.left : B.right);
+      if (take(b, true)) return true;
     }
-    for (std::size_t head = 0; head < nodes.size(); ++head) {  // the stack's nodes are still untested
-      const std::int32_t b = nodes[head];
-      const BvhNode& B = bn[b];
-      if (!nodeInReach(B, b, lo, hi, smallEnough)) continue;
-      if (B.isLeaf()) {
-        if (leafInReach(B)) return true;
-        continue;
-      }
-      bone_.prefetchNode(B.left, true);
-      bone_.prefetchNode(B.right, true);
-      nodes.push_back(B.left);
-      nodes.push_back(B.right);
-    }
+    for (std::size_t head = 0; head < nodes.size(); ++head)  // the stack's nodes are still untested
+      if (take(nodes[head], false)) return true;
     return false;
   }
 
