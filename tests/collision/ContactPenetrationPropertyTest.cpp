@@ -282,8 +282,8 @@ TEST(collisionFirstContactProperty, ApproachingAParallelBone) {
 }
 
 // A turn of more than 90 degrees is searched in segments (MotionPlan). Here the first segment's sweep stays
-// far above a slab and reaches no bone, so the query skips it without a search (and without the start
-// tests), and the contact comes in the second: the time must still be the brute force's, past the middle.
+// far above a slab and reaches no bone, so the query skips its search, and the contact comes in the second:
+// the time must still be the brute force's, past the middle.
 TEST(collisionFirstContact, TurnMeetingTheBoneOnlyInItsSecondSegment) {
   for (const bool flat : {false, true}) {
     const ReamerModel reamer = ReamerModel::fromSpec(test::smallSpec(flat));
@@ -301,12 +301,13 @@ TEST(collisionFirstContact, TurnMeetingTheBoneOnlyInItsSecondSegment) {
     const FirstContactResult ref = bruteForceFirstContact(slab, reamer, from, to);
     ASSERT_TRUE(ref.hit) << "flat " << flat;
     ASSERT_GT(ref.t, 0.5) << "flat " << flat;
-    const FirstContactResult got = queryFirstContact(TriangleBvh::fromMesh(slab), reamer, from, to);
+    const TriangleBvh bvh = TriangleBvh::fromMesh(slab);
+    const FirstContactResult got = queryFirstContact(bvh, reamer, from, to);
     EXPECT_TRUE(got.hit) << "flat " << flat;
     EXPECT_NEAR(got.t, ref.t, 1e-9) << "flat " << flat;
     // Stopped halfway, the same motion meets nothing.
     const RigidTransform half = interpolateMotion(from, to, 0.5);
-    EXPECT_FALSE(queryFirstContact(TriangleBvh::fromMesh(slab), reamer, from, half).hit) << "flat " << flat;
+    EXPECT_FALSE(queryFirstContact(bvh, reamer, from, half).hit) << "flat " << flat;
   }
 }
 

@@ -731,19 +731,15 @@ FirstContactResult queryFirstContact(const TriangleBvh& bone, const ReamerModel&
   if (sweepTestsRest ? detail::faceTouchesBone(bone, reamer, from, &touch) : detail::surfacesTouch(bone, reamer, from, &touch))
     return touchAtStart(bone, touch);
   const MotionPlan plan = MotionPlan::between(from, to);
-  // Segments whose sweep of the ideal solid reaches no bone triangle are skipped without a search; most
-  // motions that meet nothing end here. (After the start tests: this pass would find bone at once under a
-  // reamer touching at the start, and that motion would pay for it on top, session 38.)
-  int first = 0;
-  while (first < plan.segments) {
-    FirstContactResult unused;
-    if (ToiSearch(bone, reamer, plan.segment(first), unused).hullMayReachBone()) break;
-    ++first;
-  }
-  for (int i = first; i < plan.segments; ++i) {
+  for (int i = 0; i < plan.segments; ++i) {
     double s;
     FirstContactResult seg;
-    if (ToiSearch(bone, reamer, plan.segment(i), seg, i == 0 && sweepTestsRest ? &from : nullptr).run(s)) {
+    ToiSearch search(bone, reamer, plan.segment(i), seg, i == 0 && sweepTestsRest ? &from : nullptr);
+    // A segment whose sweep of the ideal solid reaches no bone triangle is skipped without the search; most
+    // motions that meet nothing end here. (After the start tests: this pass would find bone at once under a
+    // reamer touching at the start, and that motion would pay for it on top, session 38.)
+    if (!search.hullMayReachBone()) continue;
+    if (search.run(s)) {
       seg.hit = true;
       seg.t = std::min(1.0, (i + s) / plan.segments);
       seg.trianglePairs += out.trianglePairs;
