@@ -11,6 +11,10 @@
 #include "reamsim/collision/MeshRayCast.h"
 #include "reamsim/tools/ReamerGeometry.h"
 
+#include <limits>
+#include <string>
+#include <vector>
+
 using namespace reamsim;
 
 namespace {
@@ -138,4 +142,37 @@ TEST(collisionReamerModel, InsideTestAgreesWithCrossingParity) {
     EXPECT_TRUE(m.containsLocal(c - n * 1e-7));
     EXPECT_FALSE(m.containsLocal(c + n * 1e-7));
   }
+}
+
+// A pose with a NaN or an infinity, or a rotation that is not one, has no answer: every pose query refuses it
+// naming itself and the pose, rather than answering "no contact" (which would let a reamer driven by a
+// faulty device pass through the bone).
+TEST(collisionBoneCollider, QueriesRefuseNonFiniteOrNonRigidPoses) {
+  const BoneCollider bone(test::defaultScapula());
+  const ReamerModel reamer = ReamerModel::fromSpec(test::smallSpec(false, 24, 6));
+  const RigidTransform good = above({0, 0, 5000});  // far from the bone
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  std::vector<RigidTransform> bad(4, good);
+  bad[0].translation.y = nan;
+  bad[1].rotation[4] = nan;
+  bad[2].translation.z = -inf;
+  bad[3].rotation[0] = 2.0;  // a scaling, not a rotation
+  for (const RigidTransform& p : bad) {
+    EXPECT_THROW(bone.overlap(reamer, p), std::invalid_argument);
+    EXPECT_THROW(bone.overlap(reamer, p, OverlapMode::AnyContact), std::invalid_argument);
+    EXPECT_THROW(bone.faceDistance(reamer, p), std::invalid_argument);
+    EXPECT_THROW(bone.firstContact(reamer, p, good), std::invalid_argument);
+    EXPECT_THROW(bone.firstContact(reamer, good, p), std::invalid_argument);
+    EXPECT_THROW(bone.axialPenetration(reamer, p), std::invalid_argument);
+    EXPECT_THROW(FaceDistanceTracker().query(bone.bvh(), reamer, p), std::invalid_argument);
+  }
+  try {
+    bone.firstContact(reamer, good, bad[0]);
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("queryFirstContact"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("end pose"), std::string::npos) << e.what();
+  }
+  // The good pose still answers.
+  EXPECT_FALSE(bone.firstContact(reamer, good, good).hit);
+  EXPECT_NO_THROW(bone.faceDistance(reamer, good));
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "FaceDistanceSearch.h"
+#include "PoseArgument.h"
 #include "SurfaceTouch.h"
 
 namespace reamsim {
@@ -22,6 +23,7 @@ bool faceTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const R
 
 DistanceResult queryFaceDistance(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose,
                                  double maxDistanceMm) {
+  detail::requireRigidPose(pose, "queryFaceDistance", "pose");
   DistanceResult out;
   if (bone.empty() || reamer.faceBvh().empty()) return out;
   const double max2 = maxDistanceMm < FaceDistanceSearch::kInf ? maxDistanceMm * maxDistanceMm : FaceDistanceSearch::kInf;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "FaceDistanceSearch.h"
+#include "PoseArgument.h"
 #include "reamsim/collision/DistanceQuery.h"
 
 namespace reamsim {
@@ -33,6 +34,7 @@ double movementBound(const RigidTransform& a, const RigidTransform& b, double ra
 FaceDistanceTracker::FaceDistanceTracker(double marginMm) : margin_(marginMm > 0 ? marginMm : kDefaultMarginMm) {}
 
 DistanceResult FaceDistanceTracker::query(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose) {
+  detail::requireRigidPose(pose, "FaceDistanceTracker::query", "pose");
   ++stats_.queries;
   DistanceResult out;
   if (bone.empty() || reamer.faceBvh().empty()) {

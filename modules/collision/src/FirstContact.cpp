@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ContactEvents.h"
+#include "PoseArgument.h"
 #include "RationalMotion.h"
 #include "SurfaceTouch.h"
 #include "reamsim/collision/TriangleGeometry.h"
@@ -721,6 +722,8 @@ class ToiSearch {
 
 FirstContactResult queryFirstContact(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& from,
                                      const RigidTransform& to) {
+  detail::requireRigidPose(from, "queryFirstContact", "start pose");
+  detail::requireRigidPose(to, "queryFirstContact", "end pose");
   FirstContactResult out;
   if (bone.empty()) return out;
   // Touching at the start: time 0 (the search below then knows the surfaces start apart). The cutting face

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "PoseArgument.h"
 #include "PoseFrame.h"
 #include "SurfaceTouch.h"
 #include "reamsim/collision/BvhRayCast.h"
@@ -140,6 +141,7 @@ class OverlapSearch {
 
 OverlapResult queryOverlap(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose,
                            OverlapMode mode, bool boneClosed) {
+  detail::requireRigidPose(pose, "queryOverlap", "pose");
   OverlapResult out;
   detail::TouchPair touch;
   if (mode == OverlapMode::AnyContact && detail::surfacesTouch(bone, reamer, pose, &touch)) {

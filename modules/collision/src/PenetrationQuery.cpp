@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "AxialEvents.h"
+#include "PoseArgument.h"
 #include "PoseFrame.h"
 #include "SurfaceTouch.h"
 #include "reamsim/collision/OverlapQuery.h"
@@ -293,6 +294,7 @@ class AxialSweep {
 
 PenetrationResult queryAxialPenetration(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose,
                                         bool boneClosed) {
+  detail::requireRigidPose(pose, "queryAxialPenetration", "pose");
   PenetrationResult out;
   const PoseFrame frame(pose);
   const Vec3 u = normalized(frame.R * Vec3{0, 0, 1});
