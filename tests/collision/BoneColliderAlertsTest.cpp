@@ -9,10 +9,12 @@
 #include "reamsim/core/Document.h"
 #include "reamsim/core/ReamerNode.h"
 #include "reamsim/collision/MeshRayCast.h"
+#include "reamsim/collision/RayTriangle.h"
 #include "reamsim/tools/ReamerGeometry.h"
 
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace reamsim;
@@ -175,4 +177,28 @@ TEST(collisionBoneCollider, QueriesRefuseNonFiniteOrNonRigidPoses) {
   // The good pose still answers.
   EXPECT_FALSE(bone.firstContact(reamer, good, good).hit);
   EXPECT_NO_THROW(bone.faceDistance(reamer, good));
+}
+
+// Rays likewise (query 4, the tree's and the thesis's brute force alike): a NaN origin made every triangle a
+// "hit" at t = NaN before (Moeller-Trumbore's tests passed NaNs), a zero direction answered "no hit".
+TEST(collisionBoneCollider, RaysRefuseNonFiniteOriginsAndDirections) {
+  const TriangleMesh mesh = test::defaultScapula();
+  const BoneCollider bone(mesh);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const std::pair<Vec3, Vec3> bad[] = {{{0, nan, 0}, {0, 0, 1}}, {{0, 0, 0}, {0, 0, inf}}, {{0, 0, 0}, {nan, 0, 1}},
+                                       {{0, 0, -inf}, {0, 0, 1}}, {{0, 0, 0}, {0, 0, 0}}};
+  for (const auto& [o, d] : bad) {
+    EXPECT_THROW(bone.firstHit(o, d), std::invalid_argument);
+    EXPECT_THROW(bone.allHits(o, d, Culling::BackFaces), std::invalid_argument);
+    EXPECT_THROW(firstHit(mesh, o, d), std::invalid_argument);
+    EXPECT_THROW(allHits(mesh, o, d), std::invalid_argument);
+  }
+  // The per-triangle test itself answers no hit to a NaN ray.
+  EXPECT_FALSE(intersectRayTriangle({0.2, nan, 1}, {0, 0, -1}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}).has_value());
+  EXPECT_TRUE(intersectRayTriangle({0.2, 0.2, 1}, {0, 0, -1}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}).has_value());
+  try {
+    bone.allHits({0, nan, 0}, {0, 0, 1});
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("allHits"), std::string::npos) << e.what();
+  }
 }

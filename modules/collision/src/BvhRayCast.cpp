@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "QueryArguments.h"
+
 namespace reamsim {
 
 namespace {
@@ -48,6 +50,7 @@ MeshHit toMeshHit(const RayHit& h, std::uint32_t slot, const Vec3& origin, const
 
 std::optional<MeshHit> firstHit(const TriangleBvh& bvh, const Vec3& origin, const Vec3& dir, Culling culling,
                                  double tMax) {
+  detail::requireRay(origin, dir, "firstHit");
   std::optional<MeshHit> best;
   if (bvh.empty()) return best;
   const RaySlabs ray(origin, dir);
@@ -101,6 +104,7 @@ std::optional<MeshHit> firstHit(const TriangleBvh& bvh, const Vec3& origin, cons
 }
 
 std::vector<MeshHit> allHits(const TriangleBvh& bvh, const Vec3& origin, const Vec3& dir, Culling culling) {
+  detail::requireRay(origin, dir, "allHits");
   std::vector<MeshHit> raw;
   if (bvh.empty()) return raw;
   const RaySlabs ray(origin, dir);

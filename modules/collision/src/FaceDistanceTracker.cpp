@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "FaceDistanceSearch.h"
-#include "PoseArgument.h"
+#include "QueryArguments.h"
 #include "reamsim/collision/DistanceQuery.h"
 
 namespace reamsim {

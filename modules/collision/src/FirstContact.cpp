@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "ContactEvents.h"
-#include "PoseArgument.h"
+#include "QueryArguments.h"
 #include "RationalMotion.h"
 #include "SurfaceTouch.h"
 #include "reamsim/collision/TriangleGeometry.h"

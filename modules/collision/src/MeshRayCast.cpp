@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "QueryArguments.h"
+
 namespace reamsim {
 
 namespace {
@@ -12,6 +14,7 @@ MeshHit toMeshHit(const RayHit& h, std::size_t triangle, const Vec3& origin, con
 }  // namespace
 
 std::optional<MeshHit> firstHit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir, Culling culling) {
+  detail::requireRay(origin, dir, "firstHit");
   std::optional<MeshHit> best;
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
     const Triangle& tri = mesh.triangles[i];
@@ -23,6 +26,7 @@ std::optional<MeshHit> firstHit(const TriangleMesh& mesh, const Vec3& origin, co
 }
 
 std::vector<MeshHit> allHits(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir, Culling culling) {
+  detail::requireRay(origin, dir, "allHits");
   std::vector<MeshHit> raw;
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
     const Triangle& tri = mesh.triangles[i];

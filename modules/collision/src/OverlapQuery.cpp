@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "PoseArgument.h"
+#include "QueryArguments.h"
 #include "PoseFrame.h"
 #include "SurfaceTouch.h"
 #include "reamsim/collision/BvhRayCast.h"

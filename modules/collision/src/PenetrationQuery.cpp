@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "AxialEvents.h"
-#include "PoseArgument.h"
+#include "QueryArguments.h"
 #include "PoseFrame.h"
 #include "SurfaceTouch.h"
 #include "reamsim/collision/OverlapQuery.h"

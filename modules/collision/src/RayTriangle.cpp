@@ -16,13 +16,14 @@ std::optional<RayHit> intersectRayTriangle(const Vec3& origin, const Vec3& dir, 
 
   const double invDet = 1.0 / det;
   const Vec3 s = origin - a;
+  // Written so that a NaN (a non-finite ray) fails each test rather than passing it.
   const double u = dot(s, p) * invDet;
-  if (u < -kBarycentricEpsilon || u > 1 + kBarycentricEpsilon) return std::nullopt;
+  if (!(u >= -kBarycentricEpsilon && u <= 1 + kBarycentricEpsilon)) return std::nullopt;
   const Vec3 q = cross(s, e1);
   const double v = dot(dir, q) * invDet;
-  if (v < -kBarycentricEpsilon || u + v > 1 + kBarycentricEpsilon) return std::nullopt;
+  if (!(v >= -kBarycentricEpsilon && u + v <= 1 + kBarycentricEpsilon)) return std::nullopt;
   const double t = dot(e2, q) * invDet;
-  if (t < -kRayStartEpsilon) return std::nullopt;
+  if (!(t >= -kRayStartEpsilon)) return std::nullopt;
   return RayHit{std::max(t, 0.0), u, v, det > 0};
 }
 

@@ -1,13 +1,15 @@
 #pragma once
-// Internal: the precondition every pose query checks first. A pose with a NaN or an infinity, or whose
-// rotation part is not a rotation, has no answer; without this check the bounds compare false and a query
-// would answer "no contact", which would let a reamer driven by a faulty device pass through the bone.
+// Internal: the preconditions the queries check first. A pose with a NaN or an infinity, or whose rotation
+// part is not a rotation, has no answer; without this check the bounds compare false and a query would
+// answer "no contact", which would let a reamer driven by a faulty device pass through the bone. A ray with
+// a NaN or an infinity, or no direction, has none either (a NaN origin made every triangle a "hit").
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "reamsim/core/Pose.h"
+#include "reamsim/mesh/Vec3.h"
 
 namespace reamsim::detail {
 
@@ -29,6 +31,16 @@ inline void requireRigidPose(const RigidTransform& pose, const char* query, cons
   const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) + r[2] * (r[3] * r[7] - r[4] * r[6]);
   if (!(off <= 1e-6) || !(det > 0))
     throw std::invalid_argument(std::string(query) + ": the " + which + "'s rotation is not a rotation (not orthonormal, or a reflection)");
+}
+
+// Throws std::invalid_argument naming `query` unless the ray's origin and direction are finite and the
+// direction is not zero.
+inline void requireRay(const Vec3& origin, const Vec3& dir, const char* query) {
+  const bool finite = std::isfinite(origin.x) && std::isfinite(origin.y) && std::isfinite(origin.z) &&
+                      std::isfinite(dir.x) && std::isfinite(dir.y) && std::isfinite(dir.z);
+  if (!finite)
+    throw std::invalid_argument(std::string(query) + ": the ray's origin or direction is not finite (NaN or infinity in it)");
+  if (dir.x == 0 && dir.y == 0 && dir.z == 0) throw std::invalid_argument(std::string(query) + ": the ray has no direction (zero vector)");
 }
 
 }  // namespace reamsim::detail
