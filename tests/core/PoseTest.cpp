@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <stdexcept>
 
 #include "reamsim/core/Pose.h"
@@ -64,4 +65,14 @@ TEST(Pose, AdvancedAlongAxis) {
 TEST(Pose, ZeroAxisIsRejected) {
   EXPECT_THROW(toTransform(Pose{{0, 0, 0}, {0, 0, 0}, 0}), std::invalid_argument);
   EXPECT_THROW(advancedAlongAxis(Pose{{0, 0, 0}, {0, 0, 0}, 0}, 1), std::invalid_argument);
+}
+
+// A NaN or an infinity in the tip or the roll has no transform (it would reach every query as "no contact").
+TEST(Pose, NonFiniteTipOrRollIsRejected) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(toTransform(Pose{{0, nan, 0}, {0, 0, -1}, 0}), std::invalid_argument);
+  EXPECT_THROW(toTransform(Pose{{inf, 0, 0}, {0, 0, -1}, 0}), std::invalid_argument);
+  EXPECT_THROW(toTransform(Pose{{0, 0, 0}, {0, 0, -1}, nan}), std::invalid_argument);
+  EXPECT_THROW(toTransform(Pose{{0, 0, 0}, {nan, 0, -1}, 0}), std::invalid_argument);
+  EXPECT_NO_THROW(toTransform(Pose{{1e6, -1e6, 0}, {0, 0, -1}, 720}));
 }
