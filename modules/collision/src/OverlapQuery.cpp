@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "QueryArguments.h"
 #include "PoseFrame.h"
+#include "QueryArguments.h"
 #include "SurfaceTouch.h"
 #include "reamsim/collision/BvhRayCast.h"
 #include "reamsim/collision/TriangleGeometry.h"

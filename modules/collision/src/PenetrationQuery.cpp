@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "AxialEvents.h"
-#include "QueryArguments.h"
 #include "PoseFrame.h"
+#include "QueryArguments.h"
 #include "SurfaceTouch.h"
 #include "reamsim/collision/OverlapQuery.h"
 #include "reamsim/collision/TriangleGeometry.h"

@@ -18,7 +18,7 @@ namespace reamsim::detail {
 // toTransform or interpolated along a motion are so to rounding).
 inline void requireRigidPose(const RigidTransform& pose, const char* query, const char* which) {
   const auto& r = pose.rotation;
-  bool finite = std::isfinite(pose.translation.x) && std::isfinite(pose.translation.y) && std::isfinite(pose.translation.z);
+  bool finite = isFinite(pose.translation);
   for (double v : r) finite = finite && std::isfinite(v);
   if (!finite)
     throw std::invalid_argument(std::string(query) + ": the " + which + " is not finite (NaN or infinity in it)");
@@ -36,9 +36,7 @@ inline void requireRigidPose(const RigidTransform& pose, const char* query, cons
 // Throws std::invalid_argument naming `query` unless the ray's origin and direction are finite and the
 // direction is not zero.
 inline void requireRay(const Vec3& origin, const Vec3& dir, const char* query) {
-  const bool finite = std::isfinite(origin.x) && std::isfinite(origin.y) && std::isfinite(origin.z) &&
-                      std::isfinite(dir.x) && std::isfinite(dir.y) && std::isfinite(dir.z);
-  if (!finite)
+  if (!isFinite(origin) || !isFinite(dir))
     throw std::invalid_argument(std::string(query) + ": the ray's origin or direction is not finite (NaN or infinity in it)");
   if (dir.x == 0 && dir.y == 0 && dir.z == 0) throw std::invalid_argument(std::string(query) + ": the ray has no direction (zero vector)");
 }

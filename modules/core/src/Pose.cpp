@@ -17,8 +17,7 @@ Vec3 unitAxis(const Pose& pose) {
 
 RigidTransform toTransform(const Pose& pose) {
   const Vec3 z = unitAxis(pose);
-  if (!std::isfinite(pose.tip.x) || !std::isfinite(pose.tip.y) || !std::isfinite(pose.tip.z))
-    throw std::invalid_argument("Pose tip must be finite (NaN or infinity in it)");
+  if (!isFinite(pose.tip)) throw std::invalid_argument("Pose tip must be finite (NaN or infinity in it)");
   if (!std::isfinite(pose.rollDeg)) throw std::invalid_argument("Pose roll must be a finite angle");
   // Reference: the world axis least aligned with z, so the projection below never degenerates and
   // the same axis always yields the same frame (identity for +Z).
