@@ -175,21 +175,37 @@ Vec3 sidewaysKeyMove(const Vec3& axis) {
 }
 
 nlohmann::json sweptHulls(const TriangleMesh& tool, const std::vector<Pose>& poses) {
-  std::vector<double> ms, faces;
+  // What the reaming loop builds (sweptByTranslation: the silhouette sweep, else the hull) and, alternating
+  // with it pose by pose, the hull alone (hullOfPlacements, its fallback), so their ratio is of one moment.
+  std::vector<double> ms, hullMs, faces;
+  std::size_t silhouette = 0;
+  auto timed = [](auto&& build) {
+    const auto t0 = std::chrono::steady_clock::now();
+    TriangleMesh m = build();
+    return std::make_pair(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
+                          std::move(m));
+  };
   for (std::size_t i = 0; i < std::min<std::size_t>(poses.size(), 50); ++i) {
     const RigidTransform from = toTransform(poses[i]);
     RigidTransform to = from;
     to.translation = from.translation + sidewaysKeyMove(poses[i].axis);
-    const auto t0 = std::chrono::steady_clock::now();
-    const TriangleMesh hull = sweptByTranslation(tool, from, to);
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    faces.push_back(double(hull.triangles.size()));
+    auto [sweptMs, swept] = timed([&] { return sweptByTranslation(tool, from, to); });
+    auto [hullOnlyMs, hull] = timed([&] { return hullOfPlacements(tool, from, to); });
+    ms.push_back(sweptMs);
+    hullMs.push_back(hullOnlyMs);
+    faces.push_back(double(swept.triangles.size()));
+    if (sweptBySilhouette(tool, from, to)) ++silhouette;
   }
-  return {{"what", "convex hull of the reamer at a path pose and 0.5 mm across its axis (a sideways key move), per hull"},
+  const double median = percentile(ms, 0.5), hullMedian = percentile(hullMs, 0.5);
+  return {{"what", "volume the reamer sweeps from a path pose to 0.5 mm across its axis (a sideways key move), per move: "
+                   "sweptByTranslation as the reaming loop builds it"},
           {"hulls", ms.size()},
-          {"median_ms", percentile(ms, 0.5)},
+          {"median_ms", median},
           {"p95_ms", percentile(ms, 0.95)},
-          {"median_faces", percentile(faces, 0.5)}};
+          {"median_faces", percentile(faces, 0.5)},
+          {"by_silhouette", silhouette},
+          {"convex_hull_median_ms", hullMedian},
+          {"convex_hull_over_swept", median > 0 ? hullMedian / median : 0.0}};
 }
 
 // Sideways key moves (0.5 mm, back and forth) with the reamer's solid just clear of the bone (backed off

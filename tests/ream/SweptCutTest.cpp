@@ -8,6 +8,7 @@
 #include <atomic>
 #include <map>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 #include <cmath>
@@ -19,6 +20,7 @@
 #include "reamsim/ream/LocalCutBackend.h"
 #include "reamsim/csg/SweptVolume.h"
 #include "reamsim/mesh/TriangleMesh.h"
+#include "reamsim/mesh/Validation.h"
 #include "reamsim/tools/Primitives.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/tools/ReamerGeometry.h"
@@ -393,23 +395,26 @@ TEST(SweptCut, HullOfTheGlenoidReamerHoldsEveryPlacedVertex) {
       }
       const double expected = signedVolume(solid) + shadow;
       EXPECT_NEAR(signedVolume(hull), expected, 1e-9 * expected);
-      // Every placed vertex on or behind every face's plane. Faces whose corners lie all but on one line (a
-      // feed along the axis makes needles of the strips between the cylinder's edges) have no plane to
-      // speak of in doubles; their neighbours bound the same points.
+      // Every placed vertex on or behind every face's plane (to 1e-9 mm). Faces whose corners lie all but on
+      // one line (a feed along the axis makes needles of the strips between the cylinder's edges) have no
+      // plane to speak of in doubles; their neighbours bound the same points. A thin face's plane (a 1 µm move
+      // makes parallelograms 1 µm by 1 mm) is known to its squared size over its area times the rounding,
+      // which the bound grows by.
       for (const Triangle& f : hull.triangles) {
         const Vec3 a = hull.vertices[f[0]], e1 = hull.vertices[f[1]] - a, e2 = hull.vertices[f[2]] - a;
         const Vec3 n = cross(e1, e2);
         if (!(norm(n) > 1e-3 * norm(e1) * norm(e2))) continue;
+        const double bound = 1e-9 * std::max(1.0, std::max(squaredNorm(e1), squaredNorm(e2)) / norm(n));
         const Vec3 un = normalized(n);
         for (const RigidTransform* t : {&from, static_cast<const RigidTransform*>(&to)})
-          for (const Vec3& v : solid.vertices) ASSERT_LE(dot(un, t->apply(v) - a), 1e-9);
+          for (const Vec3& v : solid.vertices) ASSERT_LE(dot(un, t->apply(v) - a), bound);
       }
     }
   }
 }
 
-// The hull of a tilted flat reamer moved across its axis is listed the same way after the allocator's state
-// changed. Moved along x at its axis-aligned pose (its discs then lie exactly in planes z = const), the
+// hullOfPlacements (sweptByTranslation's fallback): the hull of a tilted flat reamer moved across its axis is
+// listed the same way after the allocator's state changed. Moved along x at its axis-aligned pose (its discs then lie exactly in planes z = const), the
 // discs' interior points are left out and each disc face is split by its Delaunay triangulation (no vertex
 // inside the circumcircle of the triangle across an edge); convex_hull_3's own split is neither.
 TEST(SweptCut, HullIsTheSameEveryTimeWithCornersOnlyAndDelaunayFaces) {
@@ -417,17 +422,17 @@ TEST(SweptCut, HullIsTheSameEveryTimeWithCornersOnlyAndDelaunayFaces) {
   const RigidTransform tilted = toTransform(tiltedAt(10.0));
   RigidTransform across = tilted;
   across.translation = across.translation + Vec3{3.0, 1.5, 0.25};
-  const TriangleMesh first = sweptByTranslation(solid, tilted, across);
+  const TriangleMesh first = hullOfPlacements(solid, tilted, across);
   std::vector<std::unique_ptr<int[]>> junk;
   for (int run = 0; run < 4; ++run) {
     for (int k = 0; k < 500; ++k) junk.emplace_back(new int[std::size_t(5 + (k * 7) % 31)]);
-    const TriangleMesh again = sweptByTranslation(solid, tilted, across);
+    const TriangleMesh again = hullOfPlacements(solid, tilted, across);
     ASSERT_EQ(again.triangles, first.triangles) << run;
     ASSERT_EQ(again.vertices.size(), first.vertices.size());
     for (std::size_t i = 0; i < first.vertices.size(); ++i) EXPECT_EQ(again.vertices[i], first.vertices[i]);
   }
 
-  const TriangleMesh hull = sweptByTranslation(solid, toTransform(at(0, 0)), toTransform(at(7, 0)));
+  const TriangleMesh hull = hullOfPlacements(solid, toTransform(at(0, 0)), toTransform(at(7, 0)));
   EXPECT_TRUE(isConvexSolid(hull));
   auto flat = [&](const Triangle& t) {
     return hull.vertices[t[0]].z == hull.vertices[t[1]].z && hull.vertices[t[0]].z == hull.vertices[t[2]].z;
@@ -463,8 +468,8 @@ TEST(SweptCut, HullIsTheSameEveryTimeWithCornersOnlyAndDelaunayFaces) {
   EXPECT_GT(discPairs, 50);  // the stadium-shaped floor and back
 }
 
-// A solid with integer corners moved by an integer vector with a part along its axis: every coordinate is
-// exact, so coplanarity is decided exactly here too. The hull's planar faces (the floor, the top and the
+// hullOfPlacements: a solid with integer corners moved by an integer vector with a part along its axis: every
+// coordinate is exact, so coplanarity is decided exactly here too. The hull's planar faces (the floor, the top and the
 // slanted parallelograms between the two placements' edges) are split with the Delaunay condition (the two
 // angles facing a shared edge sum to at most 180 degrees), and every vertex is a corner (three or more
 // planes around it: the midpoints on the prism's edges are left out).
@@ -482,7 +487,7 @@ TEST(SweptCut, HullOfAnExactPrismSplitsItsPlanarFacesByDelaunay) {
   ASSERT_NEAR(signedVolume(prism), 240.0, 1e-9);
   RigidTransform from, to;
   to.translation = Vec3{5, 3, 4};
-  const TriangleMesh hull = sweptByTranslation(prism, from, to);
+  const TriangleMesh hull = hullOfPlacements(prism, from, to);
   EXPECT_TRUE(isConvexSolid(hull));
   // The hull of two placements of a convex solid is its Minkowski sum with the move: its volume plus the
   // area of its shadow across the move times the move's length, i.e. half the sum of |area vector . move|.
@@ -525,6 +530,71 @@ TEST(SweptCut, HullOfAnExactPrismSplitsItsPlanarFacesByDelaunay) {
     EXPECT_LE(facing, M_PI + 1e-12) << "edge " << edge.first << "-" << edge.second;
   }
   EXPECT_GE(split, 4);  // at least the floor, the top and two parallelograms are split faces
+}
+
+
+// The silhouette sweep (what sweptByTranslation builds first) against the hull of the two placements, for the
+// glenoid and the flat reamer at tilted, rolled poses and moves across, along and oblique to the axis: where it
+// is built, a closed, consistently oriented surface without self-intersections (CGAL, exact predicates) whose
+// volume is the hull's, each one's vertices on or behind the other's faces; and it is built
+// for every move with a part across the axis (the key moves of the reaming loop), which is where its speed
+// matters. Mutation-checked: without the tolerance that keeps the two halves of a planar strip parallel to
+// the move together, the fold check refuses seven of these moves (the hull is built instead), and without
+// that check too the strip folds over itself and this fails (self-intersections, a vertex 28 mm in front of
+// a face).
+TEST(SweptCut, SilhouetteSweepIsTheHullOfThePlacements) {
+  const std::vector<TriangleMesh> solids = {buildCuttingSolid(loadPreset("glenoid-36-R30", reamerPresetsPath())),
+                                            buildCuttingSolid(test::flatReamer20())};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Vec3 moves[] = {{0.5, 0, 0}, {0, -0.5, 0}, {0.3, -0.2, -0.4}, {4, 1, 0}, {0, 1e-3, 0}, {0, 0, -0.8}};
+  int built = 0;
+  for (std::size_t k = 0; k < solids.size(); ++k) {
+    const TriangleMesh& solid = solids[k];
+    for (int pose = 0; pose < 6; ++pose) {
+      // The first pose axis-aligned and unrolled (faces exactly parallel to the move), the others tilted.
+      const Vec3 axis = pose == 0 ? Vec3{0, 0, -1} : normalized(Vec3{0.3 * u(rng), 0.3 * u(rng), -1});
+      const RigidTransform from =
+          toTransform(Pose{{u(rng), u(rng), u(rng)}, axis, pose == 0 ? 0.0 : 40.0 * u(rng)});
+      for (const Vec3& move : moves) {
+        SCOPED_TRACE("solid " + std::to_string(k) + ", pose " + std::to_string(pose) + ", move " +
+                     std::to_string(move.x) + " " + std::to_string(move.y) + " " + std::to_string(move.z));
+        RigidTransform to = from;
+        to.translation = from.translation + from.applyToDirection(move);
+        const std::optional<TriangleMesh> swept = sweptBySilhouette(solid, from, to);
+        const bool across = std::hypot(move.x, move.y) >= 1e-3;
+        if (across) EXPECT_TRUE(swept.has_value());
+        if (!swept) continue;
+        ++built;
+        const EdgeTopology topology = analyzeEdges(*swept);
+        EXPECT_EQ(topology.boundaryEdges, 0u);
+        EXPECT_EQ(topology.nonManifoldEdges, 0u);
+        EXPECT_TRUE(topology.consistentlyOriented());
+        EXPECT_EQ(countSelfIntersections(*swept), 0u);
+        const TriangleMesh hull = hullOfPlacements(solid, from, to);
+        EXPECT_NEAR(signedVolume(*swept), signedVolume(hull), 1e-9 * signedVolume(hull));
+        EXPECT_TRUE(isConvexSolid(*swept));
+        // The same convex body: each one's vertices on or behind every face of the other (to 1e-9 mm).
+        auto behindEveryFace = [](const TriangleMesh& faces, const std::vector<Vec3>& points) {
+          double worst = -1;
+          for (const Triangle& f : faces.triangles) {
+            // A needle (the hull makes them of strips parallel to the move) has no plane to speak of; a thin
+            // face's plane is known in doubles to its squared size over its area times the rounding.
+            const Vec3 a = faces.vertices[f[0]], e1 = faces.vertices[f[1]] - a, e2 = faces.vertices[f[2]] - a;
+            const double area2 = norm(cross(e1, e2));
+            if (!(area2 > 1e-3 * norm(e1) * norm(e2))) continue;
+            const double slack = 1e-9 * std::max(1.0, std::max(squaredNorm(e1), squaredNorm(e2)) / area2);
+            const Vec3 n = normalized(cross(e1, e2));
+            for (const Vec3& p : points) worst = std::max(worst, dot(n, p - a) - slack + 1e-9);
+          }
+          return worst;
+        };
+        EXPECT_LE(behindEveryFace(*swept, hull.vertices), 1e-9);
+        EXPECT_LE(behindEveryFace(hull, swept->vertices), 1e-9);
+      }
+    }
+  }
+  EXPECT_GE(built, 2 * 6 * 4);
 }
 
 }  // namespace

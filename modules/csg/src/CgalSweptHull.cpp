@@ -1,5 +1,7 @@
-// Convex hull of two placements of a convex cutting solid (SweptVolume.h). Only predicates are needed, so
-// the inexact-constructions kernel is exact here: the output points are input points.
+// The volume a convex cutting solid sweeps along a translation (SweptVolume.h): built from the solid's own faces
+// and its swept silhouette (sweptBySilhouette, plain doubles, checked), else as the convex hull of its two
+// placements (hullOfPlacements). The hull needs only predicates, so the inexact-constructions kernel is exact
+// there: its output points are input points.
 #include "ExactRationalFastPaths.h"  // before any CGAL kernel: see there
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -12,6 +14,8 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <optional>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
@@ -156,19 +160,25 @@ bool isConvexSolid(const TriangleMesh& m, double relativeTolerance) {
   return true;
 }
 
-TriangleMesh sweptByTranslation(const TriangleMesh& solid, const RigidTransform& from, const RigidTransform& to) {
+namespace {
+void requireSameRotation(const RigidTransform& from, const RigidTransform& to, const char* what) {
   for (int i = 0; i < 9; ++i)
     if (from.rotation[i] != to.rotation[i])
-      throw std::invalid_argument("sweptByTranslation: the two poses have different orientations");
-  std::vector<K::Point_3> points;
+      throw std::invalid_argument(std::string(what) + ": the two poses have different orientations");
+}
+
+// The solid's vertices placed at `from`, then at `to`.
+std::vector<Vec3> placements(const TriangleMesh& solid, const RigidTransform& from, const RigidTransform& to) {
+  std::vector<Vec3> points;
   points.reserve(2 * solid.vertices.size());
   for (const RigidTransform* t : {&from, &to})
-    for (const Vec3& p : solid.vertices) {
-      const Vec3 q = t->apply(p);
-      points.emplace_back(q.x, q.y, q.z);
-    }
-  std::vector<Triangle> facets = canonicalHull(points);
-  // Listed canonically: vertices in the input's order, each triangle from its smallest vertex, sorted.
+    for (const Vec3& p : solid.vertices) points.push_back(t->apply(p));
+  return points;
+}
+
+// Listed canonically: the vertices the triangles use, in the input's order; each triangle from its smallest
+// vertex; triangles sorted.
+TriangleMesh canonicalMesh(const std::vector<Vec3>& points, std::vector<Triangle> facets) {
   std::vector<std::uint32_t> outIndex(points.size(), kNoIndex);
   for (const Triangle& t : facets)
     for (std::uint32_t v : t) outIndex[v] = 0;
@@ -176,7 +186,7 @@ TriangleMesh sweptByTranslation(const TriangleMesh& solid, const RigidTransform&
   for (std::uint32_t i = 0; i < points.size(); ++i)
     if (outIndex[i] != kNoIndex) {
       outIndex[i] = static_cast<std::uint32_t>(out.vertices.size());
-      out.vertices.push_back({points[i].x(), points[i].y(), points[i].z()});
+      out.vertices.push_back(points[i]);
     }
   for (Triangle& t : facets) {
     for (auto& v : t) v = outIndex[v];
@@ -185,6 +195,153 @@ TriangleMesh sweptByTranslation(const TriangleMesh& solid, const RigidTransform&
   std::sort(facets.begin(), facets.end());
   out.triangles = std::move(facets);
   return out;
+}
+
+// For each face f and each of its edges i (t[i] -> t[i+1]), the face across it: across[3 f + i]. Empty unless
+// every directed edge has exactly one twin (a closed, consistently oriented manifold). Found through each
+// vertex's faces (a handful), not by sorting the edges.
+std::vector<std::int32_t> facesAcross(const std::vector<Triangle>& faces, std::size_t vertexCount) {
+  std::vector<std::uint32_t> start(vertexCount + 1, 0), around(3 * faces.size());
+  for (const Triangle& t : faces)
+    for (std::uint32_t v : t) ++start[v + 1];
+  for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (std::uint32_t v : faces[f]) around[fill[v]++] = std::uint32_t(f);
+  std::vector<std::int32_t> across(3 * faces.size(), -1);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t a = faces[f][i], b = faces[f][(i + 1) % 3];
+      int twins = 0;
+      for (std::uint32_t k = start[b]; k < start[b + 1]; ++k) {
+        const Triangle& g = faces[around[k]];
+        for (int j = 0; j < 3; ++j)
+          if (g[j] == b && g[(j + 1) % 3] == a) {
+            ++twins;
+            across[3 * f + i] = std::int32_t(around[k]);
+          }
+      }
+      if (twins != 1) return {};
+    }
+  return across;
+}
+
+// Smallest sine of a triangle's angles for the silhouette sweep: a needle's plane is not known in doubles.
+// A 1 µm move along 1 mm edges makes ~1e-3.
+constexpr double kMinimumSine = 1e-6;
+// How far, relative to the coordinates' size (times the face's conditioning, below), a vertex may lie in
+// front of the plane of a face across an edge from it: rounding (the placed solid is convex only to the
+// rounding of its placed vertices).
+constexpr double kConvexityTolerance = 1e-12;
+
+// |cos| of the angle between a face's normal and the move below which the face counts as parallel to it.
+constexpr double kParallelTolerance = 1e-12;
+
+bool wellShaped(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 e[3] = {b - a, c - b, a - c};
+  const double area2 = norm(cross(e[0], e[1]));
+  for (int i = 0; i < 3; ++i)  // the sine of the angle opposite edge i+2: |e_i x e_{i+1}| / (|e_i| |e_{i+1}|)
+    if (!(area2 > kMinimumSine * norm(e[i]) * norm(e[(i + 1) % 3]))) return false;
+  return true;
+}
+}  // namespace
+
+std::optional<TriangleMesh> sweptBySilhouette(const TriangleMesh& solid, const RigidTransform& from,
+                                              const RigidTransform& to) {
+  requireSameRotation(from, to, "sweptBySilhouette");
+  const auto n = static_cast<std::uint32_t>(solid.vertices.size());
+  const std::vector<std::int32_t> solidAcross = facesAcross(solid.triangles, n);
+  if (solidAcross.empty()) return std::nullopt;  // not a closed, oriented manifold
+  const std::vector<Vec3> points = placements(solid, from, to);
+  // The move in the solid's frame (the rotation is row-major: its transpose applied to the change).
+  const Vec3 m = to.translation - from.translation;
+  const auto& r = from.rotation;
+  const Vec3 move{r[0] * m.x + r[3] * m.y + r[6] * m.z, r[1] * m.x + r[4] * m.y + r[7] * m.z,
+                  r[2] * m.x + r[5] * m.y + r[8] * m.z};
+  std::vector<char> front(solid.triangles.size());
+  for (std::size_t f = 0; f < solid.triangles.size(); ++f) {
+    const Triangle& t = solid.triangles[f];
+    const Vec3 a = solid.vertices[t[0]];
+    // A face parallel to the move stays at the start; "parallel" up to rounding, so that coplanar faces
+    // (the two halves of a planar quad) go the same way: one of them moved would fold the strip between.
+    const Vec3 normal = cross(solid.vertices[t[1]] - a, solid.vertices[t[2]] - a);
+    front[f] = dot(normal, move) > kParallelTolerance * norm(normal) * norm(move);
+  }
+  std::vector<Triangle> faces;
+  faces.reserve(solid.triangles.size() + 256);
+  for (std::size_t f = 0; f < solid.triangles.size(); ++f) {
+    const Triangle& t = solid.triangles[f];
+    if (!front[f]) {
+      faces.push_back(t);
+      continue;
+    }
+    faces.push_back({t[0] + n, t[1] + n, t[2] + n});
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t a = t[i], b = t[(i + 1) % 3];
+      if (front[std::size_t(solidAcross[3 * f + i])]) continue;
+      // Silhouette edge: the quad (start a, start b, end b, end a), whose sides are the twins of the back
+      // face's b->a at the start and of this face's a->b at the end; split on its shorter diagonal.
+      const std::uint32_t sa = a, sb = b, eb = b + n, ea = a + n;
+      if (squaredNorm(points[eb] - points[sa]) <= squaredNorm(points[ea] - points[sb])) {
+        faces.push_back({sa, sb, eb});
+        faces.push_back({sa, eb, ea});
+      } else {
+        faces.push_back({sa, sb, ea});
+        faces.push_back({sb, eb, ea});
+      }
+    }
+  }
+  // The checks on the placed points: every edge with its twin, Euler characteristic 2 (one closed piece of
+  // genus 0), no needle, and no edge reflex beyond rounding.
+  const std::vector<std::int32_t> across = facesAcross(faces, points.size());
+  if (across.empty()) return std::nullopt;
+  std::vector<char> used(points.size(), 0);
+  double scale = 1;
+  for (const Triangle& t : faces) {
+    if (!wellShaped(points[t[0]], points[t[1]], points[t[2]])) return std::nullopt;
+    for (std::uint32_t v : t) {
+      used[v] = 1;
+      scale = std::max({scale, std::abs(points[v].x), std::abs(points[v].y), std::abs(points[v].z)});
+    }
+  }
+  const auto vertices = std::count(used.begin(), used.end(), char(1));
+  const auto edges = std::int64_t(3 * faces.size() / 2);
+  if (vertices - edges + std::int64_t(faces.size()) != 2) return std::nullopt;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const std::size_t g = std::size_t(across[3 * f + i]);
+      if (g < f) continue;  // each edge's dihedral once
+      const Triangle& t = faces[f];
+      const Triangle& u = faces[g];
+      std::uint32_t opposite = u[0];
+      for (std::uint32_t v : u)
+        if (v != t[i] && v != t[(i + 1) % 3]) opposite = v;
+      const Vec3 normal = cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]);
+      const Vec3 other = cross(points[u[1]] - points[u[0]], points[u[2]] - points[u[0]]);
+      // The plane of a thin triangle is known less well: its normal's error grows as its squared size over
+      // its area.
+      const Vec3 reach = points[opposite] - points[t[0]];
+      const double size2 = std::max({squaredNorm(points[t[1]] - points[t[0]]),
+                                     squaredNorm(points[t[2]] - points[t[0]]), squaredNorm(reach)});
+      if (dot(normal, reach) > kConvexityTolerance * scale * (norm(normal) + size2)) return std::nullopt;
+      if (!(dot(normal, other) > -0.5 * norm(normal) * norm(other))) return std::nullopt;  // folded back
+    }
+  return canonicalMesh(points, std::move(faces));
+}
+
+TriangleMesh hullOfPlacements(const TriangleMesh& solid, const RigidTransform& from, const RigidTransform& to) {
+  requireSameRotation(from, to, "hullOfPlacements");
+  const std::vector<Vec3> placed = placements(solid, from, to);
+  std::vector<K::Point_3> points;
+  points.reserve(placed.size());
+  for (const Vec3& q : placed) points.emplace_back(q.x, q.y, q.z);
+  return canonicalMesh(placed, canonicalHull(points));
+}
+
+TriangleMesh sweptByTranslation(const TriangleMesh& solid, const RigidTransform& from, const RigidTransform& to) {
+  requireSameRotation(from, to, "sweptByTranslation");
+  if (std::optional<TriangleMesh> swept = sweptBySilhouette(solid, from, to)) return std::move(*swept);
+  return hullOfPlacements(solid, from, to);
 }
 
 }  // namespace reamsim
