@@ -167,6 +167,27 @@ TEST(SweptCut, AxialJumpLongerThanTheSolidIsSwept) {
   EXPECT_NEAR(plunge.cut.removedMm3, 15.0 * disc, 1e-6 * plunge.cut.removedMm3);
 }
 
+// A move that travels less than 1 µm across the axis (a hand-held device at rest jitters by less) is cut at
+// its end pose: what it would sweep lies within that of the end placement, far under the reamer's facet sag.
+// From 1 µm on it is swept, in one Boolean. Both remove the same to within the travel times the sweep's face.
+TEST(SweptCut, ASidewaysTravelUnderAMicrometreIsCutAtItsEndPose) {
+  test::ReamScene s(block(), test::flatReamer20(), localCutBackendFactory());
+  s.controller->moveTo(at(0, 1.0));
+  s.controller->moveTo(at(0, -1.0));
+  ReamEngine engine(s.reamer->cuttingVolume(), makeBvhContactBackend(), localCutBackendFactory());
+  const Pose start = at(0, -1.0);
+  const ReamComputation jitter =
+      engine.compute(s.bone->current(), s.bone->currentRevision(), at(0.0005, -1.1), 0.1, &start);
+  EXPECT_FALSE(jitter.swept);
+  EXPECT_TRUE(jitter.cut.changed);
+  const ReamComputation moved =
+      engine.compute(s.bone->current(), s.bone->currentRevision(), at(0.002, -1.1), 0.1, &start);
+  EXPECT_TRUE(moved.swept);
+  EXPECT_EQ(moved.sweepCuts, 1);
+  // The disc's area times 0.1 mm either way, plus what the 2 µm travel sweeps beyond the end placement.
+  EXPECT_NEAR(moved.cut.removedMm3, jitter.cut.removedMm3, 0.002 * 1.1 * widthAcrossX(*s.reamer->cuttingVolume()));
+}
+
 // The flat reamer 1 mm deep, tilted by `deg` about y, its tip moved `x` mm along x.
 Pose tiltedAt(double deg, double x = 0) {
   const double a = deg * 3.14159265358979323846 / 180;
