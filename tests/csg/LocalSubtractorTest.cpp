@@ -206,7 +206,9 @@ TEST(LocalSubtractor, StraightFeedWithCoplanarWallsMatchesTheReference) {
     EXPECT_NEAR(c.removedMm3, r.removedMm3, 1e-9 * r.removedMm3 + moved) << "cut " << i;
     EXPECT_NEAR(c.removedMm3, polygonArea(10, 32) * 0.8, 1e-9 * c.removedMm3 + moved) << "cut " << i;
     expectBookkeeping(c);
-    if (c.redoneWithOffsetMm > 0) EXPECT_TRUE(c.toolMovedOffBoneSurface) << "cut " << i;
+    if (c.redoneWithOffsetMm > 0) {
+      EXPECT_TRUE(c.toolMovedOffBoneSurface) << "cut " << i;
+    }
   }
   EXPECT_NEAR(local.volumeMm3(), reference.volumeMm3(), 1e-9 * reference.volumeMm3() + movedBy);
   // Walls that coincide with the last cut's give intersection points closer than a double's spacing;

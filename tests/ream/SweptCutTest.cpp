@@ -107,7 +107,9 @@ TEST(SweptCut, AMoveOfLengthZeroIsAskedLikeAnyOther) {
     const ReamComputation c = engine.compute(s.bone->current(), s.bone->currentRevision(), here, 0.0, &here);
     ASSERT_TRUE(c.contact.alongMove.has_value());
     EXPECT_EQ(c.contact.alongMove->reached, z == 0.0) << z;
-    if (z == 0.0) EXPECT_EQ(c.contact.alongMove->t, 0.0);
+    if (z == 0.0) {
+      EXPECT_EQ(c.contact.alongMove->t, 0.0);
+    }
     EXPECT_FALSE(c.swept);
     EXPECT_FALSE(c.cut.changed);
   }
@@ -584,7 +586,9 @@ TEST(SweptCut, SilhouetteSweepIsTheHullOfThePlacements) {
         to.translation = from.translation + from.applyToDirection(move);
         const std::optional<TriangleMesh> swept = sweptBySilhouette(solid, from, to);
         const bool across = std::hypot(move.x, move.y) >= 1e-3;
-        if (across) EXPECT_TRUE(swept.has_value());
+        if (across) {
+          EXPECT_TRUE(swept.has_value());
+        }
         if (!swept) continue;
         ++built;
         const EdgeTopology topology = analyzeEdges(*swept);
