@@ -198,12 +198,15 @@ TriangleMesh canonicalMesh(const std::vector<Vec3>& points, std::vector<Triangle
 }
 
 // For each face f and each of its edges i (t[i] -> t[i+1]), the face across it: across[3 f + i]. Empty unless
-// every directed edge has exactly one twin (a closed, consistently oriented manifold). Found through each
-// vertex's faces (a handful), not by sorting the edges.
+// every directed edge has exactly one twin (a closed, consistently oriented manifold) and every index is a
+// vertex. Found through each vertex's faces (a handful), not by sorting the edges.
 std::vector<std::int32_t> facesAcross(const std::vector<Triangle>& faces, std::size_t vertexCount) {
   std::vector<std::uint32_t> start(vertexCount + 1, 0), around(3 * faces.size());
   for (const Triangle& t : faces)
-    for (std::uint32_t v : t) ++start[v + 1];
+    for (std::uint32_t v : t) {
+      if (v >= vertexCount) return {};
+      ++start[v + 1];
+    }
   for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
   for (std::size_t f = 0; f < faces.size(); ++f)
