@@ -19,6 +19,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "FacesAcross.h"
 #include "reamsim/csg/SweptVolume.h"
 
 namespace reamsim {
@@ -197,36 +198,19 @@ TriangleMesh canonicalMesh(const std::vector<Vec3>& points, std::vector<Triangle
   return out;
 }
 
-// For each face f and each of its edges i (t[i] -> t[i+1]), the face across it: across[3 f + i]. Empty unless
-// every directed edge has exactly one twin (a closed, consistently oriented manifold) and every index is a
-// vertex. Found through each vertex's faces (a handful), not by sorting the edges.
-std::vector<std::int32_t> facesAcross(const std::vector<Triangle>& faces, std::size_t vertexCount) {
-  std::vector<std::uint32_t> start(vertexCount + 1, 0), around(3 * faces.size());
+// The face across each edge of each face (csg::facesAcross), or nothing unless every index is a vertex and
+// every directed edge has exactly one twin (a closed, consistently oriented manifold).
+std::optional<std::vector<std::array<std::uint32_t, 3>>> closedAcross(const std::vector<Triangle>& faces,
+                                                                      std::size_t vertexCount) {
   for (const Triangle& t : faces)
-    for (std::uint32_t v : t) {
-      if (v >= vertexCount) return {};
-      ++start[v + 1];
-    }
-  for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t f = 0; f < faces.size(); ++f)
-    for (std::uint32_t v : faces[f]) around[fill[v]++] = std::uint32_t(f);
-  std::vector<std::int32_t> across(3 * faces.size(), -1);
-  for (std::size_t f = 0; f < faces.size(); ++f)
-    for (int i = 0; i < 3; ++i) {
-      const std::uint32_t a = faces[f][i], b = faces[f][(i + 1) % 3];
-      int twins = 0;
-      for (std::uint32_t k = start[b]; k < start[b + 1]; ++k) {
-        const Triangle& g = faces[around[k]];
-        for (int j = 0; j < 3; ++j)
-          if (g[j] == b && g[(j + 1) % 3] == a) {
-            ++twins;
-            across[3 * f + i] = std::int32_t(around[k]);
-          }
-      }
-      if (twins != 1) return {};
-    }
-  return across;
+    for (std::uint32_t v : t)
+      if (v >= vertexCount) return std::nullopt;
+  csg::FacesAcross adjacency = csg::facesAcross(faces, vertexCount);
+  if (adjacency.repeatedDirectedEdge) return std::nullopt;
+  for (const auto& across : adjacency.face)
+    for (std::uint32_t g : across)
+      if (g == csg::kNoFaceAcross) return std::nullopt;
+  return std::move(adjacency.face);
 }
 
 // Smallest sine of a triangle's angles for the silhouette sweep: a needle's plane is not known in doubles.
@@ -253,8 +237,8 @@ std::optional<TriangleMesh> sweptBySilhouette(const TriangleMesh& solid, const R
                                               const RigidTransform& to) {
   requireSameRotation(from, to, "sweptBySilhouette");
   const auto n = static_cast<std::uint32_t>(solid.vertices.size());
-  const std::vector<std::int32_t> solidAcross = facesAcross(solid.triangles, n);
-  if (solidAcross.empty()) return std::nullopt;  // not a closed, oriented manifold
+  const auto solidAcross = closedAcross(solid.triangles, n);
+  if (!solidAcross) return std::nullopt;  // not a closed, oriented manifold
   const std::vector<Vec3> points = placements(solid, from, to);
   // The move in the solid's frame (the rotation is row-major: its transpose applied to the change).
   const Vec3 m = to.translation - from.translation;
@@ -281,7 +265,7 @@ std::optional<TriangleMesh> sweptBySilhouette(const TriangleMesh& solid, const R
     faces.push_back({t[0] + n, t[1] + n, t[2] + n});
     for (int i = 0; i < 3; ++i) {
       const std::uint32_t a = t[i], b = t[(i + 1) % 3];
-      if (front[std::size_t(solidAcross[3 * f + i])]) continue;
+      if (front[(*solidAcross)[f][std::size_t(i)]]) continue;
       // Silhouette edge: the quad (start a, start b, end b, end a), whose sides are the twins of the back
       // face's b->a at the start and of this face's a->b at the end; split on its shorter diagonal.
       const std::uint32_t sa = a, sb = b, eb = b + n, ea = a + n;
@@ -296,8 +280,8 @@ std::optional<TriangleMesh> sweptBySilhouette(const TriangleMesh& solid, const R
   }
   // The checks on the placed points: every edge with its twin, Euler characteristic 2 (one closed piece of
   // genus 0), no needle, and no edge reflex beyond rounding.
-  const std::vector<std::int32_t> across = facesAcross(faces, points.size());
-  if (across.empty()) return std::nullopt;
+  const auto across = closedAcross(faces, points.size());
+  if (!across) return std::nullopt;
   std::vector<char> used(points.size(), 0);
   double scale = 1;
   for (const Triangle& t : faces) {
@@ -312,7 +296,7 @@ std::optional<TriangleMesh> sweptBySilhouette(const TriangleMesh& solid, const R
   if (vertices - edges + std::int64_t(faces.size()) != 2) return std::nullopt;
   for (std::size_t f = 0; f < faces.size(); ++f)
     for (int i = 0; i < 3; ++i) {
-      const std::size_t g = std::size_t(across[3 * f + i]);
+      const std::size_t g = (*across)[f][std::size_t(i)];
       if (g < f) continue;  // each edge's dihedral once
       const Triangle& t = faces[f];
       const Triangle& u = faces[g];
