@@ -181,6 +181,41 @@ BvhUpdateStats timedUpdate(BoneCollider& collider, F&& apply) {
 // The BVH's local update after a sequence of feed steps at one site: exact CGAL cuts (closed bones) followed
 // by commitByDiff + the slot diff, ReamSim's own cutting engine (LocalSubtractor with its band clean-up, the
 // cut the application makes) followed by the slot diff, or the synthetic dent cut (open bones).
+// The penetrating ticks' axial penetration by the parametric reamer's face-as-height-field path and by the
+// general two-tree path (the same solid read as a plain mesh), alternating which goes first tick by tick,
+// so the ratio comes from one run; and whether the two depths agree.
+json penetrationAgainstGeneralPath(const BoneCollider& collider, const ReamerModel& rm, const std::vector<HandHeldTick>& ticks) {
+  const ReamerModel general = ReamerModel::fromSolid(rm.solid());
+  std::vector<double> fastUs, generalUs;
+  std::size_t disagreements = 0;
+  for (std::size_t i = 0; i < ticks.size(); ++i) {
+    PenetrationResult r[2];
+    double us[2];
+    for (int k = 0; k < 2; ++k) {
+      const int which = (i + k) % 2;  // 0: the face path, 1: the general path
+      const auto t0 = Clock::now();
+      r[which] = collider.axialPenetration(which == 0 ? rm : general, ticks[i].to);
+      us[which] = microsSince(t0);
+    }
+    if (!r[0].penetrating) continue;
+    fastUs.push_back(us[0]);
+    generalUs.push_back(us[1]);
+    disagreements += r[0].penetrating != r[1].penetrating ||
+                     !(std::abs(r[0].depthMm - r[1].depthMm) <= kChainToleranceRelative * std::max(1.0, rm.radius()));
+  }
+  json j = {{"what", "penetrating ticks of the hand-held path again: the parametric reamer's face as a height field "
+                     "(CapShadow, the path used) against the general path over the same solid read as a plain mesh "
+                     "(reamer and bone trees paired), alternating which goes first"},
+            {"ticks", fastUs.size()},
+            {"disagreements", disagreements}};
+  if (!fastUs.empty()) {
+    j["median_us"] = summary(fastUs)["median_us"];
+    j["general_path_median_us"] = summary(generalUs)["median_us"];
+    j["general_over_this"] = double(j["general_path_median_us"]) / double(j["median_us"]);
+  }
+  return j;
+}
+
 json benchUpdates(const TriangleMesh& mesh, BoneState state, BoneCollider& collider, const ReamerModel& reamer,
                   const CutSite& site, int steps, const std::string& mode) {
   std::unique_ptr<ReferenceSubtractor> engine;
@@ -610,6 +645,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
     handHeld["first_contact"]["by_outcome"] = {{"no_contact", withMax(byKind[0])},
                                                {"touching_at_start", withMax(byKind[1])},
                                                {"contact_during_motion", withMax(byKind[2])}};
+    if (rm.capShadow()) handHeld["penetration_depth"]["against_general_path"] = penetrationAgainstGeneralPath(collider, rm, ticks);
   }
 
   // A collider built afresh for each sequence of cuts (a copy would lack the spare capacity a built tree

@@ -127,11 +127,15 @@ Counts checkFirstContact(const TriangleMesh& bone, std::size_t n, std::size_t in
 Counts checkPenetration(const TriangleMesh& bone, bool closed, std::size_t n, std::size_t independentEvery,
                         std::uint64_t seed) {
   const TriangleBvh bvh = TriangleBvh::fromMesh(bone);
-  const ReamerModel reamers[2] = {ReamerModel::fromSpec(test::smallSpec(false)), ReamerModel::fromSpec(test::smallSpec(true))};
+  // The parametric reamers take the face-as-height-field path, the solid read from a mesh the general one.
+  const ReamerModel reamers[3] = {ReamerModel::fromSpec(test::smallSpec(false)), ReamerModel::fromSpec(test::smallSpec(true)),
+                                  ReamerModel::fromSolid(buildCuttingSolid(test::smallSpec(false)))};
+  EXPECT_TRUE(reamers[0].capShadow() && reamers[1].capShadow());
+  EXPECT_FALSE(reamers[2].capShadow());
   std::mt19937_64 rng(seed);
   Counts c;
   for (std::size_t i = 0; i < n; ++i) {
-    const ReamerModel& reamer = reamers[i % 2];
+    const ReamerModel& reamer = reamers[i % 3];
     const RigidTransform T = toTransform(test::poseNearSurface(bone, rng, -4, 1, 30));
     const PenetrationResult ref = bruteForceAxialPenetration(bone, reamer, T, closed);
     const PenetrationResult got = queryAxialPenetration(bvh, reamer, T, closed);
@@ -208,8 +212,8 @@ TEST(collisionPenetrationProperty, PressedIntoAParallelBone) {
   std::uniform_real_distribution<double> u(-1, 1);
   auto unit = [&] { return randomUnit(rng); };
   std::size_t deep = 0;
-  for (int i = 0; i < 300; ++i) {
-    const bool cup = i % 2 == 0;
+  for (int i = 0; i < 400; ++i) {
+    const bool cup = i % 2 == 0, general = i % 4 >= 2;  // each reamer on its face path and on the general one
     const double press = 0.05 + 0.45 * std::abs(u(rng));
     Pose p;
     if (cup) {  // sphere centre = tip - 16 axis, 1 mm + press from the cavity's centre (a hair off the axis)
@@ -222,7 +226,7 @@ TEST(collisionPenetrationProperty, PressedIntoAParallelBone) {
     p.rollDeg = 180 * u(rng);
     const RigidTransform T = toTransform(p);
     const TriangleMesh& bone = cup ? bones.cavity : slab();
-    const ReamerModel& reamer = cup ? bones.round : bones.flat;
+    const ReamerModel& reamer = general ? (cup ? bones.roundSolid : bones.flatSolid) : (cup ? bones.round : bones.flat);
     const PenetrationResult ref = bruteForceAxialPenetration(bone, reamer, T, true);
     const PenetrationResult got = queryAxialPenetration(cup ? bones.cavityBvh : bones.slabBvh, reamer, T, true);
     EXPECT_EQ(got.penetrating, ref.penetrating) << "query " << i;
@@ -230,7 +234,45 @@ TEST(collisionPenetrationProperty, PressedIntoAParallelBone) {
     if (::testing::Test::HasFailure()) return;
     deep += ref.depthMm > 0.04;
   }
-  EXPECT_GT(deep, 250u);  // nearly all pressed in, as set up
+  EXPECT_GT(deep, 330u);  // nearly all pressed in, as set up
+}
+
+// The face path where it differs most from the general one: a bone much finer than the reamer's facets (most
+// bone triangles within one face triangle's shadow), pressed by a cap of nearly its curvature and tilted,
+// so that many triangles end within the facets' sag of the depth; and a coarse one, whose triangles span
+// several face triangles. Both paths and the brute force agree; the face path solves fewer triangles.
+TEST(collisionPenetrationProperty, FacePathAgreesWithTheGeneralPathOnFineAndCoarseBones) {
+  for (int subdivisions : {1, 5}) {
+    const ParallelBones bones(subdivisions);
+    const Vec3& o = bones.centre;
+    std::mt19937_64 rng(45 + subdivisions);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::size_t facePairs = 0, generalPairs = 0, deep = 0;
+    for (int i = 0; i < 120; ++i) {
+      Pose p;
+      p.axis = randomUnit(rng);
+      p.tip = o + p.axis * (17 + 0.05 + 0.6 * std::abs(u(rng))) + randomUnit(rng) * (0.5 * std::abs(u(rng)));
+      p.axis = normalized(p.axis + randomUnit(rng) * std::tan(10 * kPi / 180 * std::abs(u(rng))));
+      p.rollDeg = 180 * u(rng);
+      const RigidTransform T = toTransform(p);
+      const PenetrationResult face = queryAxialPenetration(bones.cavityBvh, bones.round, T, true);
+      const PenetrationResult general = queryAxialPenetration(bones.cavityBvh, bones.roundSolid, T, true);
+      const double tol = kChainToleranceRelative * bones.round.radius();
+      EXPECT_EQ(face.penetrating, general.penetrating) << "subdivisions " << subdivisions << " query " << i;
+      EXPECT_EQ(face.enclosed, general.enclosed) << "subdivisions " << subdivisions << " query " << i;
+      EXPECT_NEAR(face.depthMm, general.depthMm, tol) << "subdivisions " << subdivisions << " query " << i;
+      if (i % 10 == 0) {
+        const PenetrationResult ref = bruteForceAxialPenetration(bones.cavity, bones.round, T, true);
+        EXPECT_NEAR(face.depthMm, ref.depthMm, tol) << "subdivisions " << subdivisions << " query " << i;
+      }
+      if (::testing::Test::HasFailure()) return;
+      facePairs += face.trianglePairs;
+      generalPairs += general.trianglePairs;
+      deep += general.depthMm > 0.03;
+    }
+    EXPECT_GT(deep, 100u) << "subdivisions " << subdivisions;  // nearly all pressed in, as set up
+    if (subdivisions == 5) EXPECT_LT(facePairs, generalPairs);
+  }
 }
 
 // Motions towards a bone that runs parallel to the reamer, where the hull search's node bounds decide the
@@ -347,4 +389,35 @@ TEST(collisionFirstContact, BodyTouchingAtTheStartIsTimeZero) {
     EXPECT_GT(got.t, 0.2);
     EXPECT_NEAR(got.t, ref.t, 1e-9);
   }
+}
+
+// A knife edge under the cap: the bone's two long faces run within 0.3 degrees of the axis, so their shadows
+// are too thin for the face path's height field and they are paired with the face triangles over them; the
+// depth is decided on the edge they share.
+TEST(collisionPenetrationProperty, KnifeEdgeAlongTheAxis) {
+  TriangleMesh wedge;
+  wedge.vertices = {{-5, 0, 0}, {5, 0, 0}, {-5, -0.1, -20}, {5, -0.1, -20}, {-5, 0.1, -20}, {5, 0.1, -20}};
+  wedge.triangles = {{0, 1, 3}, {0, 3, 2}, {0, 4, 5}, {0, 5, 1}, {2, 3, 5}, {2, 5, 4}, {0, 2, 4}, {1, 5, 3}};
+  const TriangleBvh bvh = TriangleBvh::fromMesh(wedge);
+  const ParallelBones bones(1);
+  std::mt19937_64 rng(46);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::size_t deep = 0;
+  for (int i = 0; i < 200; ++i) {
+    const bool cup = i % 2 == 0;
+    const ReamerModel& reamer = cup ? bones.round : bones.flat;
+    const double press = 0.05 + 0.5 * std::abs(u(rng));
+    Pose p;
+    p.axis = normalized(Vec3{0, 0, -1} + randomUnit(rng) * std::tan(0.2 * kPi / 180 * std::abs(u(rng))));
+    p.tip = Vec3{3 * u(rng), 2 * u(rng), -press};
+    p.rollDeg = 180 * u(rng);
+    const RigidTransform T = toTransform(p);
+    const PenetrationResult ref = bruteForceAxialPenetration(wedge, reamer, T, true);
+    const PenetrationResult got = queryAxialPenetration(bvh, reamer, T, true);
+    EXPECT_EQ(got.penetrating, ref.penetrating) << "query " << i;
+    EXPECT_NEAR(got.depthMm, ref.depthMm, kChainToleranceRelative * reamer.radius()) << "query " << i;
+    if (::testing::Test::HasFailure()) return;
+    deep += ref.depthMm > 0.04;
+  }
+  EXPECT_GT(deep, 100u);
 }

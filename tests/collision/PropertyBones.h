@@ -34,6 +34,9 @@ struct ParallelBones {
   TriangleBvh cavityBvh, slabBvh;
   ReamerModel round = ReamerModel::fromSpec(smallSpec(false, 24, 6));
   ReamerModel flat = ReamerModel::fromSpec(smallSpec(true, 24, 6));
+  // The same solids read as plain meshes: the queries' general paths (no ideal solid, no face height field).
+  ReamerModel roundSolid = ReamerModel::fromSolid(round.solid());
+  ReamerModel flatSolid = ReamerModel::fromSolid(flat.solid());
   explicit ParallelBones(int subdivisions) : cavity(icosphere(subdivisions, 17, centre)) {
     for (Triangle& t : cavity.triangles) std::swap(t[1], t[2]);
     cavityBvh = TriangleBvh::fromMesh(cavity);

@@ -9,6 +9,7 @@
 #include <map>
 #include <utility>
 
+#include "CapShadow.h"
 #include "reamsim/collision/TriangleGeometry.h"
 #include "reamsim/tools/ReamerGeometry.h"
 
@@ -274,7 +275,9 @@ ReamerModel ReamerModel::fromSpec(const ReamerSpec& spec) {
     }
   }
   id.maxSag = id.maxSag * (1 + 1e-9) + tolOn;
+  id.vertexSlack = tolOn;
   id.valid = true;
+  model.capShadow_ = detail::CapShadow::build(model.solid_, model.face_);
   return model;
 }
 

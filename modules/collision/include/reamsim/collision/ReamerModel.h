@@ -3,6 +3,7 @@
 // the closed cutting solid with a BVH over all its triangles, and a second BVH over the cutting-face
 // triangles only (for the face-to-bone distance). Built once per reamer; a pose is applied per query.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "reamsim/collision/TriangleBvh.h"
@@ -10,6 +11,10 @@
 #include "reamsim/mesh/TriangleMesh.h"
 
 namespace reamsim {
+
+namespace detail {
+class CapShadow;  // src/CapShadow.h
+}
 
 class ReamerModel {
  public:
@@ -69,8 +74,12 @@ class ReamerModel {
   struct IdealSolid {
     bool valid = false, flat = false;
     double radius = 0, zBack = 0, capBaseZ = 0, sphereCentreZ = 0, sphereRadius = 0, maxSag = 0;
+    double vertexSlack = 0;  // how far a mesh vertex may lie off the ideal surface it was checked on
   };
   const IdealSolid& idealSolid() const { return ideal_; }
+  // A parametric reamer's face as a height field across the axis (internal, for the axial penetration);
+  // null for a solid from a file.
+  const detail::CapShadow* capShadow() const { return capShadow_.get(); }
   // Unit normal of each face-BVH slot's triangle (local), for plane distance bounds.
   const std::vector<Vec3>& faceUnitNormals() const { return faceNormals_; }
   // Padded box of each face-BVH slot's triangle (TriangleBvh::paddedBox, local): the distance query bounds
@@ -97,6 +106,7 @@ class ReamerModel {
   Vec3 deepPoint_;
   FaceRegion faceRegion_;
   IdealSolid ideal_;
+  std::shared_ptr<const detail::CapShadow> capShadow_;
   bool containsBySearch(const Vec3& p) const;
   std::vector<Vec3> faceNormals_;
   std::vector<Box> faceBoxes_;
