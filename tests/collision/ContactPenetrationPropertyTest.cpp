@@ -271,7 +271,9 @@ TEST(collisionPenetrationProperty, FacePathAgreesWithTheGeneralPathOnFineAndCoar
       deep += general.depthMm > 0.03;
     }
     EXPECT_GT(deep, 100u) << "subdivisions " << subdivisions;  // nearly all pressed in, as set up
-    if (subdivisions == 5) EXPECT_LT(facePairs, generalPairs);
+    if (subdivisions == 5) {
+      EXPECT_LT(facePairs, generalPairs);
+    }
   }
 }
 

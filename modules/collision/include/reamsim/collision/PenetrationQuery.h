@@ -7,7 +7,8 @@
 // edge-edge events. depth = the end of the connected run of these intervals that starts at d = 0 (the
 // surfaces touch at the pose) or, when the solid overlaps the bone without surface contact (enclosed), at
 // the first contact when backing out. Bone farther behind the reamer that it would meet later does not
-// count. 0 when the volumes do not overlap.
+// count. 0 when the volumes do not overlap. A parametric reamer's face is taken as a height field across the
+// axis (one interval per bone triangle); a reamer read from a file is paired triangle by triangle.
 #include <cstddef>
 
 #include "reamsim/collision/ReamerModel.h"
@@ -22,7 +23,8 @@ struct PenetrationResult {
   double depthMm = 0;
   Vec3 backOut;              // unit direction to back out (-axis)
   Vec3 lastContact;          // where the surfaces separate when backed out by depthMm (pose coordinates)
-  std::size_t trianglePairs = 0;
+  std::size_t trianglePairs = 0;  // exact intervals solved: triangle pairs, or a bone triangle against a
+                                  // parametric reamer's whole face (its face path, src/CapShadow.h)
 };
 
 inline constexpr double kChainToleranceRelative = 1e-9;  // x reamer radius: gap still counted as connected
