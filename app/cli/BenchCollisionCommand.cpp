@@ -178,9 +178,6 @@ BvhUpdateStats timedUpdate(BoneCollider& collider, F&& apply) {
   return s;
 }
 
-// The BVH's local update after a sequence of feed steps at one site: exact CGAL cuts (closed bones) followed
-// by commitByDiff + the slot diff, ReamSim's own cutting engine (LocalSubtractor with its band clean-up, the
-// cut the application makes) followed by the slot diff, or the synthetic dent cut (open bones).
 // The penetrating ticks' axial penetration by the parametric reamer's face-as-height-field path and by the
 // general two-tree path (the same solid read as a plain mesh), alternating which goes first tick by tick,
 // so the ratio comes from one run; and whether the two depths agree.
@@ -197,17 +194,17 @@ json penetrationAgainstGeneralPath(const BoneCollider& collider, const ReamerMod
       r[which] = collider.axialPenetration(which == 0 ? rm : general, ticks[i].to);
       us[which] = microsSince(t0);
     }
+    disagreements += r[0].penetrating != r[1].penetrating || r[0].enclosed != r[1].enclosed ||
+                     !(std::abs(r[0].depthMm - r[1].depthMm) <= kChainToleranceRelative * std::max(1.0, rm.radius()));
     if (!r[0].penetrating) continue;
     fastUs.push_back(us[0]);
     generalUs.push_back(us[1]);
-    disagreements += r[0].penetrating != r[1].penetrating ||
-                     !(std::abs(r[0].depthMm - r[1].depthMm) <= kChainToleranceRelative * std::max(1.0, rm.radius()));
   }
   json j = {{"what", "penetrating ticks of the hand-held path again: the parametric reamer's face as a height field "
                      "(CapShadow, the path used) against the general path over the same solid read as a plain mesh "
                      "(reamer and bone trees paired), alternating which goes first"},
             {"ticks", fastUs.size()},
-            {"disagreements", disagreements}};
+            {"disagreements", disagreements}};  // over all ticks, penetrating or not
   if (!fastUs.empty()) {
     j["median_us"] = summary(fastUs)["median_us"];
     j["general_path_median_us"] = summary(generalUs)["median_us"];
@@ -216,6 +213,9 @@ json penetrationAgainstGeneralPath(const BoneCollider& collider, const ReamerMod
   return j;
 }
 
+// The BVH's local update after a sequence of feed steps at one site: exact CGAL cuts (closed bones) followed
+// by commitByDiff + the slot diff, ReamSim's own cutting engine (LocalSubtractor with its band clean-up, the
+// cut the application makes) followed by the slot diff, or the synthetic dent cut (open bones).
 json benchUpdates(const TriangleMesh& mesh, BoneState state, BoneCollider& collider, const ReamerModel& reamer,
                   const CutSite& site, int steps, const std::string& mode) {
   std::unique_ptr<ReferenceSubtractor> engine;

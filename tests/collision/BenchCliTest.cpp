@@ -107,6 +107,13 @@ TEST(collisionBenchCli, ClosedBoneTimesTheUpdateAfterBothEngines) {
   EXPECT_GT(hand["min_distance"]["by_outcome"]["apart"]["samples"].get<int>(), 100);
   EXPECT_GT(hand["min_distance"]["by_outcome"]["touching"]["samples"].get<int>(), 100);
   EXPECT_GE(hand["min_distance"]["max_us"].get<double>(), hand["min_distance"]["median_us"].get<double>());
+  // The parametric reamer's face path against the general path, tick by tick: the same depths.
+  const auto& faceVsGeneral = hand["penetration_depth"]["against_general_path"];
+  ASSERT_TRUE(faceVsGeneral.is_object());
+  EXPECT_EQ(faceVsGeneral["ticks"].get<int>(), hand["penetration_depth"]["by_outcome"]["penetrating"]["samples"].get<int>());
+  EXPECT_GT(faceVsGeneral["ticks"].get<int>(), 50);
+  EXPECT_EQ(faceVsGeneral["disagreements"].get<int>(), 0);
+  EXPECT_GT(faceVsGeneral["general_over_this"].get<double>(), 0.0);
   EXPECT_NE(j["update"]["kind"].get<std::string>().find("exact"), std::string::npos);
   ASSERT_TRUE(j["update_local"].is_object()) << r.err;
   EXPECT_NE(j["update_local"]["kind"].get<std::string>().find("local"), std::string::npos);
