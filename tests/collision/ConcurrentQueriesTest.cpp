@@ -1,5 +1,5 @@
 // One BoneCollider queried from two threads at once (a haptic device's thread and the reaming worker could
-// share one): every query is const on the tree and keeps its scratch per thread, so each thread gets exactly
+// share one; first contact, face distance, overlap and axial penetration): every query is const on the tree and keeps its scratch per thread, so each thread gets exactly
 // what it gets alone. `scripts/tsan-csg.sh build-tsan reamsim_collision_tests 'collisionConcurrency.*'` runs
 // it under ThreadSanitizer.
 #include <gtest/gtest.h>
@@ -20,8 +20,10 @@ struct Answer {
   double t = 0, distance = 0;
   bool overlap = false;
   std::size_t touched = 0;
+  double depth = 0;  // the axial penetration at the end pose (the parametric reamer's face path)
   bool operator==(const Answer& o) const {
-    return hit == o.hit && t == o.t && distance == o.distance && overlap == o.overlap && touched == o.touched;
+    return hit == o.hit && t == o.t && distance == o.distance && overlap == o.overlap && touched == o.touched &&
+           depth == o.depth;
   }
 };
 
@@ -47,6 +49,7 @@ TEST(collisionConcurrency, TwoThreadsGetWhatOneThreadGets) {
     const OverlapResult o = collider.overlap(reamer, m.second);
     a.overlap = o.overlap;
     a.touched = o.touchedSlots.size();
+    a.depth = collider.axialPenetration(reamer, m.second).depthMm;
     return a;
   };
   std::vector<Answer> alone;
@@ -60,13 +63,15 @@ TEST(collisionConcurrency, TwoThreadsGetWhatOneThreadGets) {
   });
   first.join();
   second.join();
-  std::size_t hits = 0;
+  std::size_t hits = 0, pressed = 0;
   for (std::size_t i = 0; i < motions.size(); ++i) {
     EXPECT_TRUE(forward[i] == alone[i]) << i;
     EXPECT_TRUE(backward[i] == alone[i]) << i;
     hits += alone[i].hit;
+    pressed += alone[i].depth > 0;
   }
   EXPECT_GT(hits, 50u);  // the motions meet the bone often enough for the search to go deep
+  EXPECT_GT(pressed, 30u);
   EXPECT_LT(hits, motions.size());
 }
 
