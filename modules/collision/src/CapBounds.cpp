@@ -63,11 +63,11 @@ bool CapBounds::node(const Vec3& lo, const Vec3& hi, const BvhSlab& slab, double
   zlo -= ut;
   zhi -= ut;
   dhi = faceTop_ - zlo;
-  // The shadow lies within halfDiagonal of the middle's, where the sphere is no lower than farther out.
   dlo = faceBottom_ - zhi;
-  if (sphere_) dlo = std::max(dlo, sphereTopLessSag(rc + halfDiagonal) - zhi);
   double pad = 1e-12 * (std::abs(faceTop_) + std::abs(faceBottom_) + std::abs(zlo) + std::abs(zhi) + std::abs(ut));
   if (sphere_) {
+    // The shadow lies within halfDiagonal of the middle's, where the sphere is no lower than farther out.
+    dlo = std::max(dlo, sphereTopLessSag(rc + halfDiagonal) - zhi);
     double gx, gy, k;
     tangentPlane(cl.x, cl.y, gx, gy, k);
     // top(p) <= g . p + k, so d <= g.x qx + g.y qy - qz + k: a world linear function over the region.

@@ -12,16 +12,20 @@ struct Point2 {
   double x, y;
 };
 
+// Twice the signed area of (a, b, p): > 0 when p lies left of a -> b.
+double leftOf(const Point2& a, const Point2& b, const Point2& p) {
+  return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+}
+
 // Sutherland-Hodgman against the closed half-plane left of a -> b. A vertex rounded to just outside an edge
 // it lies on is lost only where the neighbouring face triangle, whose height agrees there, keeps it.
 int clipLeftOf(const Point2* in, int n, Point2 a, Point2 b, Point2* out) {
-  const double ex = b.x - a.x, ey = b.y - a.y;
   int m = 0;
   for (int i = 0; i < n; ++i) {
     const Point2& p = in[i];
     const Point2& q = in[(i + 1) % n];
-    const double sp = ex * (p.y - a.y) - ey * (p.x - a.x);
-    const double sq = ex * (q.y - a.y) - ey * (q.x - a.x);
+    const double sp = leftOf(a, b, p);
+    const double sq = leftOf(a, b, q);
     if (sp >= 0) out[m++] = p;
     if ((sp >= 0) != (sq >= 0)) {
       const double t = sp / (sp - sq);
@@ -163,12 +167,10 @@ bool CapShadow::interval(const Vec3 (&q)[3], double& lo, double& hi, Vec3& hiPoi
   forFacesUnder(xlo, xhi, ylo, yhi, [&](const Face& s) {
     // Within one face triangle's shadow (the usual case for a bone finer than the reamer), the interval is
     // that face's alone: any other face meets the shadow at most on a shared edge, with the same heights.
+    const Point2 corner[3] = {{s.x[0], s.y[0]}, {s.x[1], s.y[1]}, {s.x[2], s.y[2]}};
     bool inside = true;
-    for (int e = 0; e < 3 && inside; ++e) {
-      const int f = (e + 1) % 3;
-      const double ex = s.x[f] - s.x[e], ey = s.y[f] - s.y[e];
-      for (const Point2& p : tri) inside = inside && ex * (p.y - s.y[e]) - ey * (p.x - s.x[e]) > 0;
-    }
+    for (int e = 0; e < 3 && inside; ++e)
+      for (const Point2& p : tri) inside = inside && leftOf(corner[e], corner[(e + 1) % 3], p) > 0;
     if (inside) {
       lo = std::numeric_limits<double>::infinity();
       hi = -lo;
@@ -176,11 +178,11 @@ bool CapShadow::interval(const Vec3 (&q)[3], double& lo, double& hi, Vec3& hiPoi
       return false;
     }
     Point2 a[9], b[9];
-    int m = clipLeftOf(tri, 3, {s.x[0], s.y[0]}, {s.x[1], s.y[1]}, a);
+    int m = clipLeftOf(tri, 3, corner[0], corner[1], a);
     if (m == 0) return true;
-    m = clipLeftOf(a, m, {s.x[1], s.y[1]}, {s.x[2], s.y[2]}, b);
+    m = clipLeftOf(a, m, corner[1], corner[2], b);
     if (m == 0) return true;
-    m = clipLeftOf(b, m, {s.x[2], s.y[2]}, {s.x[0], s.y[0]}, a);
+    m = clipLeftOf(b, m, corner[2], corner[0], a);
     take(s, a, m);
     return true;
   });
