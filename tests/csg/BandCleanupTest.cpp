@@ -129,6 +129,7 @@ TEST(BandCleanup, AFailedRoundingCheckKeepsExactPointsAndThePlanAvoidsThem) {
   cleaned.failRoundingChecksForTesting(true);
   ReferenceSubtractor reference(bone.mesh);
   std::size_t operations = 0;
+  double deviation = 0;
   for (int i : {60, 61, 62, 63}) {
     const TriangleMesh tool = needleCapAt(path[i]);
     const LocalCut a = exactOnly.subtract(tool);
@@ -140,6 +141,7 @@ TEST(BandCleanup, AFailedRoundingCheckKeepsExactPointsAndThePlanAvoidsThem) {
     EXPECT_NEAR(c.volumeBeforeMm3 - c.volumeAfterMm3, c.removedMm3, 1e-9 * c.removedMm3) << i;
     EXPECT_NEAR(c.removedMm3 - c.cleanupVolumeMm3, c.removedPieceMm3, 1e-9 * c.removedMm3) << i;
     operations += c.cleanupCollapses + c.cleanupFlips;
+    deviation = c.cleanupDeviationMm;
     // After the first cut both engines hold the same Boolean result; the clean-up removes no vertex known
     // exactly (a plan made before the check failed would collapse many).
     if (i == 60) {
@@ -150,7 +152,9 @@ TEST(BandCleanup, AFailedRoundingCheckKeepsExactPointsAndThePlanAvoidsThem) {
   EXPECT_GT(exactOnly.exactVertexCount(), 0u);
   EXPECT_GT(cleaned.exactVertexCount(), 0u);
   EXPECT_GT(operations, 0u);
-  EXPECT_NEAR(cleaned.volumeMm3(), exactOnly.volumeMm3(), 0.1);
+  // The clean-up moves the band's surface by at most its deviation bound: over the ~20 mm² it works on here
+  // (0.15 mm³ at the default 8.4 um), with room.
+  EXPECT_NEAR(cleaned.volumeMm3(), exactOnly.volumeMm3(), 30.0 * deviation);
   for (const LocalSubtractor* e : {&exactOnly, &cleaned}) {
     const BoneInvariants inv = e->checkInvariants();
     EXPECT_TRUE(inv.closed && inv.outwardOriented);

@@ -138,7 +138,10 @@ TEST(GuiReaming, ReamToDepthBehindQueuedStepsSearchesTheBoneTheyLeave) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return !w.contactSearchRunning(); }, 60000));
   ASSERT_TRUE(s.waitIdle(120000));
   EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
-  EXPECT_NEAR(w.lastApproachMm(), 2.0, 0.01);
+  // 2 mm to the floor the reamer's own facets cut, less what the band clean-up moved it by: up to half the
+  // facets' 17 um sag per operation, more where the steps' clean-ups meet (18 um here; 1 mm would be the
+  // bone before the steps).
+  EXPECT_NEAR(w.lastApproachMm(), 2.0, 0.03);
   EXPECT_GT(s.log()->size(), cutsBefore + 1);  // the cut at `inside`, then the feed below the floor
   EXPECT_NEAR(dot(s.reamer()->pose().tip - backedOut.tip, normalized(backedOut.axis)), w.lastApproachMm() + 0.5, 1e-9);
 }
