@@ -78,6 +78,9 @@ if [ "$what" = cut ] || [ "$what" = all ]; then
   run cut_bundled_glenoid bench cut --steps 200 --check-every 50 "${peerArgs[@]}" --peers-budget-ms 20000 --table-5-1
   run cut_45k_glenoid bench cut --bone "$s45" --cut-site glenoid --steps 200 --check-every 100 "${peerArgs[@]}" --peers-budget-ms 60000
   run cut_405k_glenoid bench cut --bone "$s405" --cut-site glenoid --steps 100 "${peerArgs[@]}" --peers-budget-ms 120000
+  # The 45k bone on the 405k row's path (100 steps: twice the feed per cut of the 200-step row): 405k / 45k
+  # compares like with like from these two rows (or from the two 200-step rows).
+  run cut_45k_glenoid_100 bench cut --bone "$s45" --cut-site glenoid --steps 100
   run cut_405k_top bench cut --bone "$s405" --steps 100 "${peerArgs[@]}" --peers-budget-ms 120000
   run cut_405k_glenoid_200 bench cut --bone "$s405" --cut-site glenoid --steps 200 --loop
   run cut_405k_top_200 bench cut --bone "$s405" --steps 200 --loop
