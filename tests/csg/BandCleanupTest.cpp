@@ -152,8 +152,8 @@ TEST(BandCleanup, AFailedRoundingCheckKeepsExactPointsAndThePlanAvoidsThem) {
   EXPECT_GT(exactOnly.exactVertexCount(), 0u);
   EXPECT_GT(cleaned.exactVertexCount(), 0u);
   EXPECT_GT(operations, 0u);
-  // The clean-up moves the band's surface by at most its deviation bound: over the ~20 mm² it works on here
-  // (0.15 mm³ at the default 8.4 um), with room.
+  // The clean-up moves the band's surface by at most its deviation bound per operation: about that bound over
+  // the ~20 mm² it works on here (0.15 mm³ with this tool's 9 um), with room.
   EXPECT_NEAR(cleaned.volumeMm3(), exactOnly.volumeMm3(), 30.0 * deviation);
   for (const LocalSubtractor* e : {&exactOnly, &cleaned}) {
     const BoneInvariants inv = e->checkInvariants();
