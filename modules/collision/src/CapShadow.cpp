@@ -81,11 +81,10 @@ std::shared_ptr<const CapShadow> CapShadow::build(const TriangleMesh& solid, con
   cap->ny_ = std::max(1, static_cast<int>(std::ceil((yhi - ylo) / cap->cell_)));
   const std::size_t cells = static_cast<std::size_t>(cap->nx_) * static_cast<std::size_t>(cap->ny_);
   auto cellRange = [&](const Face& s, int& i0, int& i1, int& j0, int& j1) {
-    auto clampTo = [](double v, int hi) { return std::clamp(static_cast<int>(std::floor(v)), 0, hi - 1); };
-    i0 = clampTo((s.xlo - cap->x0_) / cap->cell_, cap->nx_);
-    i1 = clampTo((s.xhi - cap->x0_) / cap->cell_, cap->nx_);
-    j0 = clampTo((s.ylo - cap->y0_) / cap->cell_, cap->ny_);
-    j1 = clampTo((s.yhi - cap->y0_) / cap->cell_, cap->ny_);
+    i0 = cap->cellOf(s.xlo, cap->x0_, cap->nx_);
+    i1 = cap->cellOf(s.xhi, cap->x0_, cap->nx_);
+    j0 = cap->cellOf(s.ylo, cap->y0_, cap->ny_);
+    j1 = cap->cellOf(s.yhi, cap->y0_, cap->ny_);
   };
   std::vector<std::uint32_t> count(cells + 1, 0);
   for (Face& s : cap->faces_) {
@@ -108,11 +107,18 @@ std::shared_ptr<const CapShadow> CapShadow::build(const TriangleMesh& solid, con
   return cap;
 }
 
+CapShadow::ShadowBox CapShadow::shadowBox(const Vec3 (&q)[3]) {
+  return {std::min({q[0].x, q[1].x, q[2].x}), std::max({q[0].x, q[1].x, q[2].x}), std::min({q[0].y, q[1].y, q[2].y}),
+          std::max({q[0].y, q[1].y, q[2].y})};
+}
+
+int CapShadow::cellOf(double v, double v0, int n) const {
+  return std::clamp(static_cast<int>(std::floor((v - v0) / cell_)), 0, n - 1);
+}
+
 template <class Visit>
-void CapShadow::forFacesUnder(double xlo, double xhi, double ylo, double yhi, Visit&& visit) const {
-  auto cellOf = [&](double v, double v0, int n) {
-    return std::clamp(static_cast<int>(std::floor((v - v0) / cell_)), 0, n - 1);
-  };
+void CapShadow::forFacesUnder(const ShadowBox& box, Visit&& visit) const {
+  const auto [xlo, xhi, ylo, yhi] = box;
   if (!(xhi >= x0_ && ylo <= y0_ + ny_ * cell_ && yhi >= y0_ && xlo <= x0_ + nx_ * cell_)) return;
   const int i0 = cellOf(xlo, x0_, nx_), i1 = cellOf(xhi, x0_, nx_);
   const int j0 = cellOf(ylo, y0_, ny_), j1 = cellOf(yhi, y0_, ny_);
@@ -129,9 +135,9 @@ void CapShadow::forFacesUnder(double xlo, double xhi, double ylo, double yhi, Vi
     }
 }
 
-void CapShadow::facesUnder(double xlo, double xhi, double ylo, double yhi, std::vector<std::uint32_t>& out) const {
+void CapShadow::facesUnder(const Vec3 (&q)[3], std::vector<std::uint32_t>& out) const {
   out.clear();
-  forFacesUnder(xlo, xhi, ylo, yhi, [&](const Face& s) {
+  forFacesUnder(shadowBox(q), [&](const Face& s) {
     out.push_back(s.solidTriangle);
     return true;
   });
@@ -148,8 +154,6 @@ bool CapShadow::interval(const Vec3 (&q)[3], double& lo, double& hi, Vec3& hiPoi
   const double gx = -n.x / n.z, gy = -n.y / n.z;
   Point2 tri[3] = {{q[0].x, q[0].y}, {q[1].x, q[1].y}, {q[2].x, q[2].y}};
   if (n.z < 0) std::swap(tri[1], tri[2]);  // counter-clockwise, as the face triangles' shadows are
-  const double xlo = std::min({tri[0].x, tri[1].x, tri[2].x}), xhi = std::max({tri[0].x, tri[1].x, tri[2].x});
-  const double ylo = std::min({tri[0].y, tri[1].y, tri[2].y}), yhi = std::max({tri[0].y, tri[1].y, tri[2].y});
   lo = std::numeric_limits<double>::infinity();
   hi = -lo;
   Point2 best{0, 0};
@@ -164,7 +168,7 @@ bool CapShadow::interval(const Vec3 (&q)[3], double& lo, double& hi, Vec3& hiPoi
       }
     }
   };
-  forFacesUnder(xlo, xhi, ylo, yhi, [&](const Face& s) {
+  forFacesUnder(shadowBox(q), [&](const Face& s) {
     // Within one face triangle's shadow (the usual case for a bone finer than the reamer), the interval is
     // that face's alone: any other face meets the shadow at most on a shared edge, with the same heights.
     const Point2 corner[3] = {{s.x[0], s.y[0]}, {s.x[1], s.y[1]}, {s.x[2], s.y[2]}};

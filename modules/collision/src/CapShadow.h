@@ -32,9 +32,9 @@ class CapShadow {
   bool interval(const Vec3 (&q)[3], double& lo, double& hi, Vec3& hiPoint) const;
   static bool steep(const Vec3 (&q)[3]);
 
-  // Face triangles (solid triangle indices) whose shadows' boxes meet the shadow box [xlo, xhi] x [ylo, yhi],
-  // each once.
-  void facesUnder(double xlo, double xhi, double ylo, double yhi, std::vector<std::uint32_t>& out) const;
+  // Face triangles (solid triangle indices) whose shadows' boxes meet the box of q's shadow (q in the reamer
+  // frame), each once.
+  void facesUnder(const Vec3 (&q)[3], std::vector<std::uint32_t>& out) const;
 
   double rimRadius() const { return rimRadius_; }  // largest distance of a face vertex from the axis
   double top() const { return top_; }              // the face's highest and lowest vertex (z)
@@ -56,9 +56,15 @@ class CapShadow {
   int nx_ = 0, ny_ = 0;
   std::vector<std::uint32_t> cellStart_, cellFaces_;
 
-  // Calls visit(face) for each face whose shadow's box meets the given box, once each, until it returns false.
+  struct ShadowBox {
+    double xlo, xhi, ylo, yhi;
+  };
+  static ShadowBox shadowBox(const Vec3 (&q)[3]);
+  // The grid column (v: x, v0: x0_, n: nx_) or row holding coordinate v, clamped to the grid.
+  int cellOf(double v, double v0, int n) const;
+  // Calls visit(face) for each face whose shadow's box meets `box`, once each, until it returns false.
   template <class Visit>
-  void forFacesUnder(double xlo, double xhi, double ylo, double yhi, Visit&& visit) const;
+  void forFacesUnder(const ShadowBox& box, Visit&& visit) const;
 };
 
 }  // namespace reamsim::detail

@@ -305,8 +305,7 @@ class AxialSweep {
       }
       // Along the axis: its shadow is thin, so it is paired with each face triangle over it.
       const BvhTriangle local{q[0], q[1], q[2]};
-      cap_->facesUnder(std::min({q[0].x, q[1].x, q[2].x}), std::max({q[0].x, q[1].x, q[2].x}),
-                       std::min({q[0].y, q[1].y, q[2].y}), std::max({q[0].y, q[1].y, q[2].y}), faces_);
+      cap_->facesUnder(q, faces_);
       for (std::uint32_t f : faces_) {
         const Triangle& t = solid_.triangles[f];
         const Vec3 x[3] = {solid_.vertices[t[0]], solid_.vertices[t[1]], solid_.vertices[t[2]]};
