@@ -11,6 +11,7 @@
 #include <limits>
 #include <unordered_map>
 
+#include "PlaneSide.h"
 #include "SplitOverTwoThreads.h"
 #include "TrianglePair.h"
 
@@ -152,8 +153,10 @@ class Cleanup {
   }
 
  private:
-  // Faces made per thread from which the outcome test is split over two threads.
-  static constexpr std::size_t kParallelOutcomeFaces = 300;
+  // Faces made per thread from which the outcome test is split over two threads: by the time it runs the
+  // rounding check (the cut's other thread) has usually finished, so from 64 (300 before session 43; a
+  // bundled glenoid cut makes ~165).
+  static constexpr std::size_t kParallelOutcomeFaces = 64;
 
   // Whether made face `id` meets no face it must not: an alive bone face or made face (one with a larger
   // id: each pair once), or any frozen face. Const (the grids' shared queries keep no stamps).
@@ -292,7 +295,8 @@ class Cleanup {
   // A replacement face: not degenerate, turned by less than ~45 degrees from `was`.
   bool acceptableFace(const Tri& t, const Vec3& was) const {
     const Vec3 n = normalOf(t);  // the turn first, in doubles; the exact collinearity test last
-    return dot(n, was) > kNormalAgreement * norm(n) * norm(was) && !CGAL::collinear(kp(t[0]), kp(t[1]), kp(t[2]));
+    if (!(dot(n, was) > kNormalAgreement * norm(n) * norm(was))) return false;
+    return PlaneSide(at(t[0]), at(t[1]), at(t[2])).proper() || !CGAL::collinear(kp(t[0]), kp(t[1]), kp(t[2]));
   }
   // Distance of point p from the plane of t.
   double planeDistance(const Vec3& p, const Tri& t) const {

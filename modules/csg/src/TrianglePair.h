@@ -1,10 +1,13 @@
 #pragma once
 // Whether two triangles of one mesh intersect other than along the vertices and edge they share (by
-// index). Exact with an exact-predicates kernel. Included by the CGAL units only.
+// index). Exact with an exact-predicates kernel whose points have double coordinates (Epick). Included by
+// the CGAL units only.
 #include <CGAL/intersections.h>
 
 #include <array>
 #include <cstdint>
+
+#include "PlaneSide.h"
 
 namespace reamsim::csg {
 
@@ -22,6 +25,27 @@ bool trianglesIntersectBeyondShared(const std::array<std::uint32_t, 3>& s, const
         only = u;
       }
   if (shared == 3) return false;  // the same face
+  // Most pairs the callers test are apart by far more than rounding: one triangle's corners (other than a
+  // shared one) strictly on one side of the other's plane, proven in doubles (PlaneSide.h), meet it nowhere
+  // else. Only the pairs this does not settle build CGAL triangles.
+  auto v = [&](std::uint32_t i) {
+    const auto& p = pt(i);
+    return Vec3{p.x(), p.y(), p.z()};
+  };
+  if (shared != 2) {
+    const Vec3 sv[3] = {v(s[0]), v(s[1]), v(s[2])}, tv[3] = {v(t[0]), v(t[1]), v(t[2])};
+    // b's corners (but the shared one) strictly on one side of a's plane.
+    auto apart = [&](const Vec3 (&a)[3], const Vec3 (&b)[3], const std::array<std::uint32_t, 3>& bi) {
+      const PlaneSide plane(a[0], a[1], a[2]);
+      if (shared == 0) return plane.separates(b[0], b[1], b[2]);
+      int k = 0;
+      Vec3 other[2];
+      for (int i = 0; i < 3; ++i)
+        if (bi[i] != only) other[k++] = b[i];
+      return plane.separates(other[0], other[1]);
+    };
+    if (apart(sv, tv, t) || apart(tv, sv, s)) return false;
+  }
   const Triangle3 ts(pt(s[0]), pt(s[1]), pt(s[2])), tt(pt(t[0]), pt(t[1]), pt(t[2]));
   if (shared == 0) return CGAL::do_intersect(ts, tt);
   if (shared == 2) {
