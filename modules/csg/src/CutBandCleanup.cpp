@@ -11,6 +11,7 @@
 #include <limits>
 #include <unordered_map>
 
+#include "PackedTriangleGrid.h"
 #include "PlaneSide.h"
 #include "SplitOverTwoThreads.h"
 #include "TrianglePair.h"
@@ -94,12 +95,15 @@ class Cleanup {
       if ((anyBad = bad({t[0], t[1], t[2]}))) break;
     }
     if (!anyBad) return plan;
-    // Faces made here are found through a grid of their own, the bone's through the engine's grid; the
-    // bone's faces and vertices are looked at only where an operation is tried.
-    Box3 domain = Box3::empty();
-    for (std::uint32_t s : seeds)
-      for (std::uint32_t v : state_.triangle(s)) domain.add(at(v));
-    made_.init(domain.bounds(), seeds.size(), 2.0);
+    // The bone's faces and vertices are looked at only where an operation is tried (through the engine's
+    // grid). Testing each operation also needs the faces made so far by box: a grid of their own, kept only
+    // then (the outcome test files the faces that are left once).
+    if (checkEach_) {
+      Box3 domain = Box3::empty();
+      for (std::uint32_t s : seeds)
+        for (std::uint32_t v : state_.triangle(s)) domain.add(at(v));
+      made_.init(domain.bounds(), seeds.size(), 2.0);
+    }
     // Sized for the faces and vertices a cut's band looks at, so that the maps are not rehashed as they grow.
     star_.reserve(2 * seeds.size());
     faces_.reserve(4 * seeds.size());
@@ -141,13 +145,23 @@ class Cleanup {
     std::vector<int> made;
     for (std::size_t id = 0; id < faces_.size(); ++id)
       if (faces_[id].slot == kNone && faces_[id].alive) made.push_back(int(id));
+    // The faces left, filed once (most faces made were replaced again within the plan: keeping a grid of
+    // them up to date as they came and went cost a tenth of the clean-up).
+    std::vector<Box3> boxes(made.size());
+    Bounds domain;
+    for (std::size_t i = 0; i < made.size(); ++i) {
+      boxes[i] = boxOf(faces_[made[i]].v);
+      domain.add(boxes[i].bounds());
+    }
+    PackedTriangleGrid madeGrid;
+    madeGrid.build(domain, boxes, 2.0);
     // Read-only work over the faces made, so it is split over two threads: at the glenoid of the 405k
     // scapula 1.7 ms, run when the rounding check (the cut's other thread) has usually finished.
     std::atomic<bool> failed{false};
     splitOverTwoThreads(made.size(), kParallelOutcomeFaces, [&](std::size_t begin, std::size_t end, int) {
       std::vector<std::uint32_t> hits;
       for (std::size_t i = begin; i < end && !failed.load(std::memory_order_relaxed); ++i)
-        if (!madeFaceIsClear(made[i], hits)) failed.store(true, std::memory_order_relaxed);
+        if (!madeFaceIsClear(i, made, boxes, madeGrid, hits)) failed.store(true, std::memory_order_relaxed);
     });
     return !failed.load();
   }
@@ -158,11 +172,13 @@ class Cleanup {
   // bundled glenoid cut makes ~165).
   static constexpr std::size_t kParallelOutcomeFaces = 64;
 
-  // Whether made face `id` meets no face it must not: an alive bone face or made face (one with a larger
-  // id: each pair once), or any frozen face. Const (the grids' shared queries keep no stamps).
-  bool madeFaceIsClear(int id, std::vector<std::uint32_t>& hits) const {
-    const LocalFace& m = faces_[id];
-    const Box3 b = boxOf(m.v);
+  // Whether the made face made[i] meets no face it must not: an alive bone face, another face left made
+  // (one later in `made`: each pair once), or any frozen face. Const (the grids' shared queries keep no
+  // stamps).
+  bool madeFaceIsClear(std::size_t i, const std::vector<int>& made, const std::vector<Box3>& boxes,
+                       const PackedTriangleGrid& madeGrid, std::vector<std::uint32_t>& hits) const {
+    const LocalFace& m = faces_[made[i]];
+    const Box3& b = boxes[i];
     boneGrid_.queryShared(b, hits);
     for (std::uint32_t s : hits) {
       const int local = localOfSlot_.find(s);
@@ -176,9 +192,9 @@ class Cleanup {
       if (frozenFace_(s) || frozenVertex_(t[0]) || frozenVertex_(t[1]) || frozenVertex_(t[2])) return false;
       if (meets(m.v, {t[0], t[1], t[2]})) return false;
     }
-    made_.queryShared(b, hits);
+    madeGrid.query(b, hits);
     for (std::uint32_t g : hits)
-      if (g > std::uint32_t(id) && faces_[g].alive && meets(m.v, faces_[g].v)) return false;
+      if (g > i && meets(m.v, faces_[made[g]].v)) return false;
     return true;
   }
 
@@ -202,13 +218,10 @@ class Cleanup {
     if (st.gathered) return st;
     st.gathered = true;
     if (frozenVertex_(v)) return st;  // known exactly: never moved, so its faces are never looked at
-    const Vec3& p = at(v);
-    Box3 q;
-    q.lo = q.hi = {p.x, p.y, p.z};
-    boneGrid_.query(q, hits_);
+    // Every face with corner v has a box that holds v's position, so it is filed in that position's cell.
     std::uint32_t found = 0;
     bool frozen = false;
-    for (std::uint32_t s : hits_) {
+    for (std::uint32_t s : boneGrid_.slotsInCellOf(at(v))) {
       const Triangle& t = state_.triangle(s);
       if (t[0] != v && t[1] != v && t[2] != v) continue;
       ++found;
@@ -351,12 +364,12 @@ class Cleanup {
   void replace(const std::vector<int>& dying, const std::vector<Tri>& made, std::vector<int>& ids) {
     for (int f : dying) {
       faces_[f].alive = false;
-      made_.remove(static_cast<std::uint32_t>(f));  // a no-op for the bone's faces
+      if (checkEach_) made_.remove(static_cast<std::uint32_t>(f));  // a no-op for the bone's faces
     }
     for (const Tri& t : made) {
       const int id = static_cast<int>(faces_.size());
       faces_.push_back({t, kNone, true});
-      made_.insert(static_cast<std::uint32_t>(id), boxOf(t));
+      if (checkEach_) made_.insert(static_cast<std::uint32_t>(id), boxOf(t));
       for (std::uint32_t v : t) star_[v].faces.push_back(id);  // before or after its bone faces are gathered
       ids.push_back(id);
     }
@@ -509,7 +522,7 @@ class Cleanup {
   std::vector<LocalFace> faces_;  // bone faces looked at (by localFace) and faces made here
   SlotIndex& localOfSlot_ = tlsSlotIndex;  // this thread's; begun anew by the constructor
   std::unordered_map<std::uint32_t, VertexStar> star_;
-  TriangleGrid made_;  // the faces made here (local ids), by box
+  TriangleGrid made_;  // the faces made here (local ids), by box: only when each operation is tested
   std::vector<std::uint32_t> hits_;
   std::vector<Box3> madeBoxes_;      // scratch for intersectionFree
   std::vector<std::uint32_t> ring_;  // scratch for closedFan

@@ -90,6 +90,13 @@ class TriangleGrid {
   // cells are skipped is not reported. Border blocks (which also hold faces beyond the domain) are never
   // skipped.
   void query(const Box3& query, const std::function<bool(const Box3&)>& mayHold, std::vector<std::uint32_t>& out);
+  // The slots filed in the cell that holds p: every slot whose box holds p, and others (each once). A
+  // superset, read without the boxes, for a caller that tests its own condition on each (the clean-up's
+  // vertex stars: the faces with a given corner).
+  const std::vector<std::uint32_t>& slotsInCellOf(const Vec3& p) const {
+    const auto c = cellOf({p.x, p.y, p.z});
+    return cells_[index(c[0], c[1], c[2])];
+  }
   // Slots whose boxes overlap `query`, each once, in no particular order; const, so threads may share the
   // grid: a slot is reported only from the first cell of its box's range within the query's (no stamps).
   void queryShared(const Box3& query, std::vector<std::uint32_t>& out) const;
