@@ -11,7 +11,8 @@
 
 namespace reamsim::csg {
 
-template <class K, class PointOf>
+// kPlaneFilter = false skips the filter below (its test compares the two).
+template <class K, bool kPlaneFilter = true, class PointOf>
 bool trianglesIntersectBeyondShared(const std::array<std::uint32_t, 3>& s, const std::array<std::uint32_t, 3>& t,
                                     PointOf&& pt) {
   using Triangle3 = typename K::Triangle_3;
@@ -32,7 +33,7 @@ bool trianglesIntersectBeyondShared(const std::array<std::uint32_t, 3>& s, const
     const auto& p = pt(i);
     return Vec3{p.x(), p.y(), p.z()};
   };
-  if (shared != 2) {
+  if (kPlaneFilter && shared != 2) {
     const Vec3 sv[3] = {v(s[0]), v(s[1]), v(s[2])}, tv[3] = {v(t[0]), v(t[1]), v(t[2])};
     // b's corners (but the shared one) strictly on one side of a's plane.
     auto apart = [&](const Vec3 (&a)[3], const Vec3 (&b)[3], const std::array<std::uint32_t, 3>& bi) {
