@@ -207,17 +207,17 @@ bool roundingIsSafe(const std::vector<std::array<std::uint32_t, 3>>& kept,
     keptBoxes[i] = boxOf(kept[i]);
     domain.add(keptBoxes[i].bounds());
   }
-  // Filed once and only queried: the packed grid (no per-cell vectors to grow; a third of this check's
-  // time went to TriangleGrid's inserts at the bundled glenoid).
+  // Filed once and only queried: the packed grid (no per-cell vectors to grow; this check ~10 % shorter at
+  // the bundled glenoid than with TriangleGrid's inserts).
   csg::PackedTriangleGrid grid;
-  grid.build(domain, keptBoxes, 4.0);
+  grid.build(domain, std::move(keptBoxes), 4.0);
   // Moved faces lie side by side along the intersection curve: a pair of two moved faces is tested once,
   // from the later one (a third fewer tests at the glenoid).
   std::vector<char> isMoved(kept.size(), 0);
   for (std::uint32_t m : moved) isMoved[m] = 1;
   std::vector<std::uint32_t> near;
   for (std::uint32_t m : moved) {
-    grid.query(keptBoxes[m], near);
+    grid.query(grid.box(m), near);
     for (std::uint32_t k : near)
       if (!(isMoved[k] && k <= m) && csg::trianglesIntersectBeyondShared<IK>(kept[m], kept[k], pt)) return false;
   }

@@ -154,14 +154,14 @@ class Cleanup {
       domain.add(boxes[i].bounds());
     }
     PackedTriangleGrid madeGrid;
-    madeGrid.build(domain, boxes, 2.0);
+    madeGrid.build(domain, std::move(boxes), 2.0);
     // Read-only work over the faces made, so it is split over two threads: at the glenoid of the 405k
     // scapula 1.7 ms, run when the rounding check (the cut's other thread) has usually finished.
     std::atomic<bool> failed{false};
     splitOverTwoThreads(made.size(), kParallelOutcomeFaces, [&](std::size_t begin, std::size_t end, int) {
       std::vector<std::uint32_t> hits;
       for (std::size_t i = begin; i < end && !failed.load(std::memory_order_relaxed); ++i)
-        if (!madeFaceIsClear(i, made, boxes, madeGrid, hits)) failed.store(true, std::memory_order_relaxed);
+        if (!madeFaceIsClear(i, made, madeGrid, hits)) failed.store(true, std::memory_order_relaxed);
     });
     return !failed.load();
   }
@@ -175,10 +175,10 @@ class Cleanup {
   // Whether the made face made[i] meets no face it must not: an alive bone face, another face left made
   // (one later in `made`: each pair once), or any frozen face. Const (the grids' shared queries keep no
   // stamps).
-  bool madeFaceIsClear(std::size_t i, const std::vector<int>& made, const std::vector<Box3>& boxes,
-                       const PackedTriangleGrid& madeGrid, std::vector<std::uint32_t>& hits) const {
+  bool madeFaceIsClear(std::size_t i, const std::vector<int>& made, const PackedTriangleGrid& madeGrid,
+                       std::vector<std::uint32_t>& hits) const {
     const LocalFace& m = faces_[made[i]];
-    const Box3& b = boxes[i];
+    const Box3& b = madeGrid.box(std::uint32_t(i));
     boneGrid_.queryShared(b, hits);
     for (std::uint32_t s : hits) {
       const int local = localOfSlot_.find(s);
