@@ -202,15 +202,11 @@ bool roundingIsSafe(const std::vector<std::array<std::uint32_t, 3>>& kept,
     return b;
   };
   std::vector<csg::Box3> keptBoxes(kept.size());
-  Bounds domain;
-  for (std::size_t i = 0; i < kept.size(); ++i) {
-    keptBoxes[i] = boxOf(kept[i]);
-    domain.add(keptBoxes[i].bounds());
-  }
+  for (std::size_t i = 0; i < kept.size(); ++i) keptBoxes[i] = boxOf(kept[i]);
   // Filed once and only queried: the packed grid (no per-cell vectors to grow; this check ~10 % shorter at
   // the bundled glenoid than with TriangleGrid's inserts).
   csg::PackedTriangleGrid grid;
-  grid.build(domain, std::move(keptBoxes), 4.0);
+  grid.build(std::move(keptBoxes), 4.0);
   // Moved faces lie side by side along the intersection curve: a pair of two moved faces is tested once,
   // from the later one (a third fewer tests at the glenoid).
   std::vector<char> isMoved(kept.size(), 0);

@@ -148,13 +148,9 @@ class Cleanup {
     // The faces left, filed once (most faces made were replaced again within the plan: keeping a grid of
     // them up to date as they came and went cost a tenth of the clean-up).
     std::vector<Box3> boxes(made.size());
-    Bounds domain;
-    for (std::size_t i = 0; i < made.size(); ++i) {
-      boxes[i] = boxOf(faces_[made[i]].v);
-      domain.add(boxes[i].bounds());
-    }
+    for (std::size_t i = 0; i < made.size(); ++i) boxes[i] = boxOf(faces_[made[i]].v);
     PackedTriangleGrid madeGrid;
-    madeGrid.build(domain, std::move(boxes), 2.0);
+    madeGrid.build(std::move(boxes), 2.0);
     // Read-only work over the faces made, so it is split over two threads: at the glenoid of the 405k
     // scapula 1.7 ms, run when the rounding check (the cut's other thread) has usually finished.
     std::atomic<bool> failed{false};
@@ -307,9 +303,11 @@ class Cleanup {
   }
   // A replacement face: not degenerate, turned by less than ~45 degrees from `was`.
   bool acceptableFace(const Tri& t, const Vec3& was) const {
-    const Vec3 n = normalOf(t);  // the turn first, in doubles; the exact collinearity test last
+    // The turn first, in doubles; then non-degenerate, proven in doubles where it can be, else exactly.
+    const PlaneSide plane(at(t[0]), at(t[1]), at(t[2]));
+    const Vec3& n = plane.normal();  // normalOf(t)
     if (!(dot(n, was) > kNormalAgreement * norm(n) * norm(was))) return false;
-    return PlaneSide(at(t[0]), at(t[1]), at(t[2])).proper() || !CGAL::collinear(kp(t[0]), kp(t[1]), kp(t[2]));
+    return plane.proper() || !CGAL::collinear(kp(t[0]), kp(t[1]), kp(t[2]));
   }
   // Distance of point p from the plane of t.
   double planeDistance(const Vec3& p, const Tri& t) const {

@@ -31,6 +31,12 @@ void PackedTriangleGrid::build(const Bounds& domain, std::vector<Box3> boxes, do
     forCellsOf(s, [&](std::size_t c) { slots_[fill[c]++] = std::uint32_t(s); });
 }
 
+void PackedTriangleGrid::build(std::vector<Box3> boxes, double targetPerCell) {
+  Bounds domain;
+  for (const Box3& b : boxes) domain.add(b.bounds());
+  build(domain, std::move(boxes), targetPerCell);
+}
+
 void PackedTriangleGrid::query(const Box3& q, std::vector<std::uint32_t>& out) const {
   out.clear();
   if (boxes_.empty()) return;

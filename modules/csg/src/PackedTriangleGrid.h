@@ -16,6 +16,8 @@ class PackedTriangleGrid {
  public:
   // Slot i has box boxes[i]; `domain` should hold them (boxes beyond it are filed in the border cells).
   void build(const Bounds& domain, std::vector<Box3> boxes, double targetPerCell);
+  // The same over the boxes' own union.
+  void build(std::vector<Box3> boxes, double targetPerCell);
   const Box3& box(std::uint32_t slot) const { return boxes_[slot]; }
   // Slots whose boxes overlap `query`, each once, in no particular order (const: threads may share it).
   void query(const Box3& query, std::vector<std::uint32_t>& out) const;

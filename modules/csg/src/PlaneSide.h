@@ -34,6 +34,7 @@ class PlaneSide {
     const double s = dot(n_, d);
     return s > bound ? 1 : s < -bound ? -1 : 0;
   }
+  const Vec3& normal() const { return n_; }  // (b − a) × (c − a), in doubles
   // Whether the corners are proven not collinear: a component of the computed normal beyond the bound (the
   // exact normal of the rounded differences is within 8 ε U W of it, the true one as close again).
   bool proper() const { return largest(n_) > scale_; }
