@@ -400,17 +400,23 @@ int runBenchCollision(const std::vector<std::string>& args) {
   std::size_t touchedTotal = 0;
   const auto tOverlapAll = timeEach(n, [&](std::size_t i) { touchedTotal += collider.overlap(rm, poses[i]).touchedSlots.size(); });
   std::size_t pairs[3] = {};
+  std::size_t distanceNodes = 0;
   const auto tDistance = timeEach(n, [&](std::size_t i) {
     const DistanceResult r = collider.faceDistance(rm, poses[i]);
     positives[2] += r.distanceMm == 0;
     pairs[0] += r.trianglePairs;
+    distanceNodes += r.nodesOpened;
   });
   std::vector<int> contactKind(n, 0);  // 0 no contact, 1 touching at the start, 2 contact during the motion
+  std::vector<FirstContactResult::Work> contactWork(n);
+  std::vector<std::size_t> contactPairs(n, 0);
   const auto tContact = timeEach(n, [&](std::size_t i) {
     const FirstContactResult r = collider.firstContact(rm, from[i], to[i]);
     positives[3] += r.hit;
     pairs[1] += r.trianglePairs;
     contactKind[i] = !r.hit ? 0 : (r.t == 0 ? 1 : 2);
+    contactWork[i] = r.work;
+    contactPairs[i] = r.trianglePairs;
   });
   std::size_t tickHits = 0, tickPairs = 0;
   const auto tTick = timeEach(n, [&](std::size_t i) {
@@ -435,6 +441,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
   queries["min_distance"] = summary(tDistance);
   queries["min_distance"]["touching_poses"] = positives[2];
   queries["min_distance"]["mean_triangle_pairs"] = double(pairs[0]) / double(n);
+  queries["min_distance"]["mean_nodes_opened"] = double(distanceNodes) / double(n);
   queries["first_contact"] = summary(tContact);
   queries["first_contact"]["motions_with_contact"] = positives[3];
   queries["first_contact"]["mean_triangle_pairs"] = double(pairs[1]) / double(n);
@@ -445,6 +452,25 @@ int runBenchCollision(const std::vector<std::string>& args) {
     queries["first_contact"]["by_outcome"] = {{"no_contact", summary(kind[0])},
                                               {"touching_at_start", summary(kind[1])},
                                               {"contact_during_motion", summary(kind[2])}};
+    // What each kind of motion did, as mean counts per query (FirstContactResult::Work): where its time goes.
+    const char* names[3] = {"no_contact", "touching_at_start", "contact_during_motion"};
+    for (int k = 0; k < 3; ++k) {
+      double startNodes = 0, passNodes = 0, hullBounds = 0, pairBounds = 0, exactPairs = 0, count = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (contactKind[i] != k) continue;
+        startNodes += double(contactWork[i].startTestNodes);
+        passNodes += double(contactWork[i].sweepPassNodes);
+        hullBounds += double(contactWork[i].hullBounds);
+        pairBounds += double(contactWork[i].pairBounds);
+        exactPairs += double(contactPairs[i]);
+        ++count;
+      }
+      if (count == 0) continue;
+      queries["first_contact"]["by_outcome"][names[k]]["mean_work"] = {
+          {"start_test_nodes", startNodes / count}, {"sweep_pass_nodes", passNodes / count},
+          {"hull_bounds", hullBounds / count},      {"pair_bounds", pairBounds / count},
+          {"exact_pairs", exactPairs / count}};
+    }
   }
   queries["first_contact_haptic_tick"] = summary(tTick);
   queries["first_contact_haptic_tick"]["motions_with_contact"] = tickHits;

@@ -393,6 +393,66 @@ TEST(collisionFirstContact, BodyTouchingAtTheStartIsTimeZero) {
   }
 }
 
+// FirstContactResult::work counts what the query did (the bench reports them per kind of motion): a motion that
+// starts touching stops at the face's start test; one that meets nothing is settled by the sweep pass, one node
+// per segment when even the root is out of reach (the counts of a segment skipped without its search are kept);
+// one that meets the bone on the way is searched, and every exact pair passed the pair bounds first.
+TEST(collisionFirstContact, WorkCountsSayWhatTheQueryDid) {
+  const ReamerModel reamer = ReamerModel::fromSpec(test::smallSpec(false));
+  const TriangleMesh slab = test::makeBox({-60, -60, -20}, {60, 60, -0.05});
+  const TriangleBvh bvh = TriangleBvh::fromMesh(slab);
+  auto turnedAboutX = [](const RigidTransform& from, double degrees) {
+    RigidTransform to = from;
+    for (int c = 0; c < 3; ++c) {
+      const Vec3 r = test::rotate({from.rotation[c], from.rotation[3 + c], from.rotation[6 + c]}, {1, 0, 0},
+                                  degrees * kPi / 180);
+      to.rotation[c] = r.x;
+      to.rotation[3 + c] = r.y;
+      to.rotation[6 + c] = r.z;
+    }
+    return to;
+  };
+  // The reamer's own frame points its feed along +z; turned by 180 degrees about x it faces the slab (-z).
+  // A feed straight down from the tip at height z0 to z1:
+  const RigidTransform down = turnedAboutX(RigidTransform{}, 180);
+  auto feedDown = [&](double z0, double z1) {
+    RigidTransform from = down, to = down;
+    from.translation = {0, 0, z0};
+    to.translation = {0, 0, z1};
+    return queryFirstContact(bvh, reamer, from, to);
+  };
+
+  // Touching at the start: the tip 1 mm into the slab.
+  const FirstContactResult touching = feedDown(-1, -2);
+  ASSERT_TRUE(touching.hit);
+  EXPECT_EQ(touching.t, 0.0);
+  EXPECT_GE(touching.work.startTestNodes, 1u);
+  EXPECT_EQ(touching.work.sweepPassNodes, 0u);
+  EXPECT_EQ(touching.work.hullBounds, 0u);
+  EXPECT_EQ(touching.work.pairBounds, 0u);
+  EXPECT_EQ(touching.trianglePairs, 0u);
+
+  // Meeting nothing: a 170-degree turn about the tip 200 mm above the slab, two segments, neither in reach.
+  RigidTransform high;
+  high.translation = {0, 0, 200};
+  const FirstContactResult none = queryFirstContact(bvh, reamer, high, turnedAboutX(high, 170));
+  ASSERT_FALSE(none.hit);
+  EXPECT_EQ(none.work.startTestNodes, 0u);
+  EXPECT_EQ(none.work.sweepPassNodes, 2u);
+  EXPECT_EQ(none.work.hullBounds, 0u);
+  EXPECT_EQ(none.work.pairBounds, 0u);
+  EXPECT_EQ(none.trianglePairs, 0u);
+
+  // Meeting the slab on the way: fed 3 mm down from 1 mm above it.
+  const FirstContactResult during = feedDown(1, -2);
+  ASSERT_TRUE(during.hit);
+  EXPECT_GT(during.t, 0.0);
+  EXPECT_GE(during.work.sweepPassNodes, 1u);
+  EXPECT_GE(during.work.hullBounds, 1u);
+  EXPECT_GE(during.trianglePairs, 1u);
+  EXPECT_GE(during.work.pairBounds, during.trianglePairs);
+}
+
 // A knife edge under the cap: the bone's two long faces run within 0.3 degrees of the axis, so their shadows
 // are too thin for the face path's height field and they are paired with the face triangles over them; the
 // depth is decided on the edge they share.

@@ -11,11 +11,14 @@ namespace reamsim {
 using detail::FaceDistanceSearch;
 
 namespace detail {
-bool faceTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where) {
+bool faceTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where,
+                     std::size_t* nodesOpened) {
   if (bone.empty() || reamer.faceBvh().empty()) return false;
   DistanceResult out;
   FaceDistanceSearch search(bone, reamer, pose, FaceDistanceSearch::kInf, out);
-  if (!search.findCrossing(false)) return false;
+  const bool crossing = search.findCrossing(false);
+  if (nodesOpened) *nodesOpened += out.nodesOpened;
+  if (!crossing) return false;
   if (where) *where = {out.boneSlot, out.reamerTriangle, out.onBone};
   return true;
 }

@@ -173,6 +173,7 @@ class FaceDistanceSearch {
         continue;
       }
       const BvhNode& B = bn[it.b];
+      ++out_.nodesOpened;
       if (B.isLeaf()) {
         // Queued by leaf position, not slot: the leaf's triangles lie side by side (TriangleBvh::leafTriangles).
         const std::uint32_t first = TriangleBvh::leafPosition(B);

@@ -94,6 +94,14 @@ struct ToiScratch {
 };
 thread_local ToiScratch tlsScratch;
 
+// Adds the counts of `b` to `a`.
+void addWork(FirstContactResult::Work& a, const FirstContactResult::Work& b) {
+  a.startTestNodes += b.startTestNodes;
+  a.sweepPassNodes += b.sweepPassNodes;
+  a.hullBounds += b.hullBounds;
+  a.pairBounds += b.pairBounds;
+}
+
 // Touching at the start (time 0): fills `out` from the touching pair.
 FirstContactResult touchAtStart(const TriangleBvh& bone, const detail::TouchPair& touch) {
   FirstContactResult out;
@@ -160,6 +168,7 @@ class ToiSearch {
     // Node b: a leaf in reach answers; an internal node in reach has its children queued (with
     // `nearerLast`, the one nearer the solid's middle last: the depth-first part takes it next).
     const auto take = [&](std::int32_t b, bool nearerLast) {
+      ++out_.work.sweepPassNodes;
       const BvhNode& B = bn[b];
       if (!nodeInReach(B, b, lo, hi, smallEnough)) return false;
       if (B.isLeaf()) return leafInReach(B);
@@ -226,7 +235,9 @@ class ToiSearch {
           detail::TouchPair touch;
           if (!restAtStart_) restAtStart_.emplace(bone_, reamer_, *untestedStart_);
           if (restAtStart_->touchesSubtree(it.b, &touch)) {
+            const FirstContactResult::Work work = out_.work;
             out_ = touchAtStart(bone_, touch);
+            out_.work = work;
             sHit = 0;
             return true;
           }
@@ -500,6 +511,7 @@ class ToiSearch {
   // it is taken, they are read behind bound tests that return early, so their cache misses would not
   // overlap (no-contact motions at 400k ~25% faster over alternating runs).
   Item boneItem(std::int32_t b) const {
+    ++out_.work.hullBounds;
     Item it{hullTime(b), b, -1, Item::BoneOnly};
     // While the start is untested, a bound that may be a contact at s = 0 rounded up is taken as 0 (still a
     // lower bound), so that the leaf comes before every triangle pair (see run()).
@@ -542,6 +554,7 @@ class ToiSearch {
   }
   // The same with the bone triangle's padded box already at hand.
   void pushTrianglePair(std::uint32_t bonePos, const Vec3& blo, const Vec3& bhi, std::uint32_t reamerSlot, double floor) {
+    ++out_.work.pairBounds;
     const BvhTriangle& bt = bone_.triangleAt(bonePos);
     const ToiScratch::Moving& mv = moving(reamerSlot);
     double t = std::max(floor, detail::sweptBoxTime(mv.lo, mv.hi, mv.rateLo, mv.rateHi, blo, bhi, best_));
@@ -731,8 +744,12 @@ FirstContactResult queryFirstContact(const TriangleBvh& bone, const ReamerModel&
   // ideal solid reaches at the start (ToiSearch::run), which a reamer starting clear of the bone does not.
   const bool sweepTestsRest = reamer.idealSolid().valid;
   detail::TouchPair touch;
-  if (sweepTestsRest ? detail::faceTouchesBone(bone, reamer, from, &touch) : detail::surfacesTouch(bone, reamer, from, &touch))
-    return touchAtStart(bone, touch);
+  if (sweepTestsRest ? detail::faceTouchesBone(bone, reamer, from, &touch, &out.work.startTestNodes)
+                     : detail::surfacesTouch(bone, reamer, from, &touch)) {
+    FirstContactResult r = touchAtStart(bone, touch);
+    r.work = out.work;
+    return r;
+  }
   const MotionPlan plan = MotionPlan::between(from, to);
   for (int i = 0; i < plan.segments; ++i) {
     double s;
@@ -741,14 +758,19 @@ FirstContactResult queryFirstContact(const TriangleBvh& bone, const ReamerModel&
     // A segment whose sweep of the ideal solid reaches no bone triangle is skipped without the search; most
     // motions that meet nothing end here. (After the start tests: this pass would find bone at once under a
     // reamer touching at the start, and that motion would pay for it on top, session 38.)
-    if (!search.hullMayReachBone()) continue;
+    if (!search.hullMayReachBone()) {
+      addWork(out.work, seg.work);
+      continue;
+    }
     if (search.run(s)) {
       seg.hit = true;
       seg.t = std::min(1.0, (i + s) / plan.segments);
       seg.trianglePairs += out.trianglePairs;
+      addWork(seg.work, out.work);
       return seg;
     }
     out.trianglePairs += seg.trianglePairs;
+    addWork(out.work, seg.work);
   }
   return out;
 }

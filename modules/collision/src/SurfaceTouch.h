@@ -20,7 +20,9 @@ struct TouchPair {
   Vec3 point;                        // a common point, bone coordinates
 };
 
-bool faceTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);
+// `nodesOpened`, when given, is increased by the bone nodes the search opened.
+bool faceTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where,
+                     std::size_t* nodesOpened = nullptr);
 // The body and back alone.
 bool restTouchesBone(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);
 bool surfacesTouch(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose, TouchPair* where);

@@ -24,6 +24,7 @@ struct DistanceResult {
   std::uint32_t boneSlot = 0;
   std::uint32_t reamerTriangle = 0;  // index into reamer.solid().triangles
   std::size_t trianglePairs = 0;     // exact triangle-pair evaluations (a cost indicator)
+  std::size_t nodesOpened = 0;       // bone tree nodes the search opened (a cost indicator)
 };
 
 DistanceResult queryFaceDistance(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& pose,

@@ -40,6 +40,15 @@ struct FirstContactResult {
   std::uint32_t reamerTriangle = 0;  // index into reamer.solid().triangles
   ContactFeature feature = ContactFeature::None;
   std::size_t trianglePairs = 0;     // exact triangle-pair evaluations (a cost indicator)
+  // What else the query did, as counts (cost indicators: `bench collision` reports them per kind of motion,
+  // docs/COLLISION.md). The first three are counted for a parametric reamer only (zero for a reamer read
+  // from a file, whose start test and search take other paths).
+  struct Work {
+    std::size_t startTestNodes = 0;  // bone nodes the cutting face's start test opened
+    std::size_t sweepPassNodes = 0;  // bone nodes the yes/no pass over the ideal solid's sweep took
+    std::size_t hullBounds = 0;      // bone nodes bounded against the moving ideal solid by the search
+    std::size_t pairBounds = 0;      // (bone, reamer) triangle pairs given the pair bounds
+  } work;
 };
 
 FirstContactResult queryFirstContact(const TriangleBvh& bone, const ReamerModel& reamer, const RigidTransform& from,
