@@ -102,9 +102,8 @@ void addWork(FirstContactResult::Work& a, const FirstContactResult::Work& b) {
   a.pairBounds += b.pairBounds;
 }
 
-// Touching at the start (time 0): fills `out` from the touching pair.
-FirstContactResult touchAtStart(const TriangleBvh& bone, const detail::TouchPair& touch) {
-  FirstContactResult out;
+// Touching at the start (time 0): `out` takes the touching pair; its counts (trianglePairs, work) stay.
+void setTouchAtStart(FirstContactResult& out, const TriangleBvh& bone, const detail::TouchPair& touch) {
   const BvhTriangle& bt = bone.triangle(touch.boneSlot);
   out.hit = true;
   out.t = 0;
@@ -113,7 +112,6 @@ FirstContactResult touchAtStart(const TriangleBvh& bone, const detail::TouchPair
   out.boneSlot = touch.boneSlot;
   out.reamerTriangle = touch.reamerTriangle;
   out.feature = ContactFeature::Initial;
-  return out;
 }
 
 // Best-first search for the earliest contact along one segment, on lower bounds of the time things can
@@ -235,9 +233,7 @@ class ToiSearch {
           detail::TouchPair touch;
           if (!restAtStart_) restAtStart_.emplace(bone_, reamer_, *untestedStart_);
           if (restAtStart_->touchesSubtree(it.b, &touch)) {
-            const FirstContactResult::Work work = out_.work;
-            out_ = touchAtStart(bone_, touch);
-            out_.work = work;
+            setTouchAtStart(out_, bone_, touch);
             sHit = 0;
             return true;
           }
@@ -746,9 +742,8 @@ FirstContactResult queryFirstContact(const TriangleBvh& bone, const ReamerModel&
   detail::TouchPair touch;
   if (sweepTestsRest ? detail::faceTouchesBone(bone, reamer, from, &touch, &out.work.startTestNodes)
                      : detail::surfacesTouch(bone, reamer, from, &touch)) {
-    FirstContactResult r = touchAtStart(bone, touch);
-    r.work = out.work;
-    return r;
+    setTouchAtStart(out, bone, touch);
+    return out;
   }
   const MotionPlan plan = MotionPlan::between(from, to);
   for (int i = 0; i < plan.segments; ++i) {
