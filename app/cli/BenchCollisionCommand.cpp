@@ -15,6 +15,7 @@
 #include "CliArgs.h"
 #include "Commands.h"
 #include "HandHeldPath.h"
+#include "MachineSpeed.h"
 #include "reamsim/collision/BoneCollider.h"
 #include "reamsim/collision/CgalAabbBaseline.h"
 #include "reamsim/collision/MeshRayCast.h"
@@ -348,6 +349,9 @@ int runBenchCollision(const std::vector<std::string>& args) {
                                    static_cast<int>(a.number("rings", kBenchRings)));
   const ReamerModel& rm = reamer.model;
 
+  // The machine's speed around the timed queries (MachineSpeed.h): before the tree is built, and after.
+  const json machineBefore = machineSpeed();
+
   // --- build ---
   const BoneState state = BoneState::fromMesh(mesh);
   BoneCollider collider(state);
@@ -433,6 +437,8 @@ int runBenchCollision(const std::vector<std::string>& args) {
     positives[7] += r.depthMm > 0;
     pairs[2] += r.trianglePairs;
   });
+
+  const json machineAfter = machineSpeed();
 
   queries["overlap_any"] = summary(tOverlapAny);
   queries["overlap_any"]["overlapping_poses"] = positives[0];
@@ -694,6 +700,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
   const BvhQuality q = bvh.quality();
   json out = {{"bench", "collision"},
               {"allocator", allocatorName()},
+              {"machine", {{"before", machineBefore}, {"after", machineAfter}}},
               {"bone", {{"source", boneArg}, {"label", label}, {"faces", mesh.triangles.size()},
                         {"vertices", mesh.vertices.size()}, {"closed", collider.closed()},
                         {"bounds_diagonal_mm", boneBounds.diagonal()}}},

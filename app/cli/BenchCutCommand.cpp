@@ -18,6 +18,7 @@
 
 #include "CliArgs.h"
 #include "Commands.h"
+#include "MachineSpeed.h"
 #include "NodePeers.h"
 #include "ReamedSurfaceJson.h"
 #include "reamsim/core/Document.h"
@@ -556,6 +557,8 @@ int runBenchCut(const std::vector<std::string>& args) {
   if (peersBudgetMs <= 0) throw UsageError("--peers-budget-ms > 0");
   if (a.has("export-sequence")) exportSequence(a.value("export-sequence"), bone, localTool, poses);
 
+  // The machine's speed around ReamSim's steps (MachineSpeed.h): before the engine is made, and after.
+  const nlohmann::json machineBefore = machineSpeed();
   const auto t0 = std::chrono::steady_clock::now();
   LocalSubtractor engine(bone);
   {
@@ -633,11 +636,13 @@ int runBenchCut(const std::vector<std::string>& args) {
     if (checkEvery > 0 && (i + 1) % checkEvery == 0) check();
   }
   if (checkEvery > 0) check();
+  const nlohmann::json machineAfter = machineSpeed();
   const TriangleMesh finalMesh = engine.mesh();
 
   nlohmann::json out = {
       {"bone", boneArg},
       {"allocator", allocatorName()},
+      {"machine", {{"before", machineBefore}, {"after", machineAfter}}},
       {"subdivisions", subdivisions},
       {"merged_coincident_vertices", a.has("merge-coincident") ? nlohmann::json(mergedVertices) : nlohmann::json(nullptr)},
       {"reamer", spec.name},

@@ -45,6 +45,19 @@ TEST(Cli, InfoReportsTheBundledScapula) {
   EXPECT_GT(j["self_intersecting_pairs"].get<int>(), 0);
 }
 
+// bench cut says how fast the machine was around ReamSim's steps (MachineSpeed.h), as bench collision does.
+TEST(Cli, BenchCutReportsTheMachineSpeed) {
+  const CliRun r = reamsim::test::runCommand(std::string(REAMSIM_CLI) + " bench cut --steps 2 --json 2>/dev/null");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* when : {"before", "after"}) {
+    const auto& m = j["machine"][when];
+    EXPECT_GT(m["fma_ns"].get<double>(), 0.0) << when;
+    EXPECT_GT(m["load_ns"]["64MiB"].get<double>(), 2 * m["load_ns"]["256KiB"].get<double>()) << when << ": " << m.dump();
+    EXPECT_GT(m["probe_ms"].get<double>(), 0.0) << when;
+  }
+}
+
 TEST(Cli, MalformedFilesExitWithCodeThreeAndNameTheFile) {
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(kData + "/malformed")) {

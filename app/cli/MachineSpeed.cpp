@@ -1,0 +1,69 @@
+#include "MachineSpeed.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <vector>
+
+namespace reamsim::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double nanosSince(Clock::time_point t0, std::size_t per) {
+  return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / double(per);
+}
+
+// One dependent chain of multiply-adds: each waits for the last, so the time per step is the unit's
+// latency in the core's clock.
+double fmaNanos() {
+  constexpr std::size_t kSteps = 10'000'000;
+  volatile double seed = 1.0;
+  double x = seed;
+  const auto t0 = Clock::now();
+  for (std::size_t i = 0; i < kSteps; ++i) x = x * 0.9999999 + 1e-7;
+  const double ns = nanosSince(t0, kSteps);
+  seed = x;  // keeps the chain
+  return ns;
+}
+
+// A dependent load through `bytes` of cache lines in one random cycle (Sattolo's shuffle), so that neither
+// the prefetchers nor the out-of-order core can run ahead: each load waits for the one before.
+double loadNanos(std::size_t bytes, std::size_t loads) {
+  struct alignas(64) Line {
+    std::uint32_t next;
+  };
+  const std::size_t n = bytes / sizeof(Line);
+  std::unique_ptr<Line[]> lines(new Line[n]);
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = std::uint32_t(i);
+  std::mt19937_64 rng(7);
+  for (std::size_t i = n - 1; i > 0; --i) std::swap(order[i], order[std::uniform_int_distribution<std::size_t>(0, i - 1)(rng)]);
+  for (std::size_t i = 0; i < n; ++i) lines[order[i]].next = order[(i + 1) % n];
+  std::uint32_t at = order[0];
+  // A first stretch of the walk: what fits in a cache is in it (the fill above has mapped every page).
+  for (std::size_t i = 0; i < std::min(n, loads); ++i) at = lines[at].next;
+  const auto t0 = Clock::now();
+  for (std::size_t i = 0; i < loads; ++i) at = lines[at].next;
+  const double ns = nanosSince(t0, loads);
+  volatile std::uint32_t sink = at;
+  (void)sink;
+  return ns;
+}
+
+}  // namespace
+
+nlohmann::json machineSpeed() {
+  const auto t0 = Clock::now();
+  nlohmann::json j;
+  j["fma_ns"] = fmaNanos();
+  j["load_ns"] = {{"256KiB", loadNanos(std::size_t(256) << 10, 1'000'000)},
+                  {"8MiB", loadNanos(std::size_t(8) << 20, 300'000)},
+                  {"64MiB", loadNanos(std::size_t(64) << 20, 200'000)}};
+  j["probe_ms"] = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  return j;
+}
+
+}  // namespace reamsim::cli
