@@ -15,7 +15,7 @@
 # OUT_DIR/bones by scripts/make_scapula_variants.py when missing.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-out="${1:?usage: scripts/bench-lines.sh OUT_DIR [ROUNDS]}"
+out="${1:?usage: scripts/bench-lines.sh OUT_DIR [ROUNDS] [--summary-only]}"
 rounds="${2:-8}"
 summaryOnly="${3:-}"
 cli="${REAMSIM_CLI:-$root/build/app/cli/reamsim-cli}"
