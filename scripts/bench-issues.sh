@@ -37,6 +37,10 @@ try:
     d = json.load(open(sys.argv[1]))
 except Exception as e:
     print(f"{sys.argv[2]}: no JSON ({e})"); sys.exit(0)
+# The machine's speed around the run (MachineSpeed.h): load latency through 256 KiB and 8 MiB, before / after.
+m = d.get("machine")
+machine = ("; machine load ns " + ", ".join(f"{size} " + " / ".join(f"{m[w]['load_ns'][size]:.1f}" for w in ("before", "after"))
+                                           for size in ("256KiB", "8MiB"))) if m else ""
 if "median_ms" in d:  # bench cut
     line = (f"{sys.argv[2]}: faces {d['faces_start']} -> {d['faces_end']}, {d['cuts']} cuts, median {d['median_ms']:.2f} "
             f"(cuts {d['median_ms_changed']:.2f}) p95 {d['p95_ms']:.2f} p99 {d['p99_ms']:.2f} ms, failures {d['failures']}, "
@@ -58,13 +62,13 @@ if "median_ms" in d:  # bench cut
         if rd:
             line += (f"; ream-to-depth search {rd['engine_median_ms']:.3f} ms against {rd['fresh_tree_median_ms']:.1f} "
                      f"with a tree built for it ({rd['ratio']:.0f}x, max diff {rd['max_diff_mm']:.1e} mm)")
-    print(line)
+    print(line + machine)
 else:  # bench collision
     q = d["queries"]
     print(f"{sys.argv[2]}: faces {d['faces']}, build {d['build_ms']:.0f} ms, update {d['update_after_cut_ms']:.3f} ms, "
           f"min distance {q['min_distance']['median_us']:.1f} us, first contact {q['first_contact']['median_us']:.1f} us "
           f"({q['first_contact'].get('within_20us', '?')} of {q['first_contact']['samples']} within 20 us), "
-          f"tick {q['first_contact_haptic_tick']['median_us']:.1f} us, targets {d.get('targets')}")
+          f"tick {q['first_contact_haptic_tick']['median_us']:.1f} us, targets {d.get('targets')}{machine}")
     h = d.get("hand_held_path")
     if h:
         print("  hand-held path (median / p99 us): " + ", ".join(
