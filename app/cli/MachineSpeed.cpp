@@ -29,8 +29,8 @@ double fmaNanos() {
   return ns;
 }
 
-// A dependent load through `bytes` of cache lines in one random cycle (Sattolo's shuffle), so that neither
-// the prefetchers nor the out-of-order core can run ahead: each load waits for the one before.
+// A dependent load through `bytes` of cache lines visited in a random order linked into one cycle, so that
+// neither the prefetchers nor the out-of-order core can run ahead: each load waits for the one before.
 double loadNanos(std::size_t bytes, std::size_t loads) {
   struct alignas(64) Line {
     std::uint32_t next;
@@ -40,7 +40,7 @@ double loadNanos(std::size_t bytes, std::size_t loads) {
   std::vector<std::uint32_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = std::uint32_t(i);
   std::mt19937_64 rng(7);
-  for (std::size_t i = n - 1; i > 0; --i) std::swap(order[i], order[std::uniform_int_distribution<std::size_t>(0, i - 1)(rng)]);
+  std::shuffle(order.begin(), order.end(), rng);
   for (std::size_t i = 0; i < n; ++i) lines[order[i]].next = order[(i + 1) % n];
   std::uint32_t at = order[0];
   // A first stretch of the walk: what fits in a cache is in it (the fill above has mapped every page).

@@ -1,7 +1,7 @@
 #pragma once
 // A reading of how fast this machine is at the moment, which the benchmarks print beside their own figures.
-// A shared virtual machine's speed drifts by up to 1.5x within an hour (docs/BENCHMARKS.md): its neighbours
-// load the cache and memory it shares with them, which the guest sees neither as steal time nor as a lower
+// A shared virtual machine's speed drifts by 1.5x and more within an hour (docs/BENCHMARKS.md): its neighbours
+// load the caches and memory it shares with them, which the guest sees neither as steal time nor as a lower
 // clock. A figure held against an absolute line (first contact <= 20 us) cannot be read without knowing on
 // which stretch it was measured; a ratio to a peer in the same run can, and still moves when the two depend
 // on the memory differently.
