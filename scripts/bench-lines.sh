@@ -38,7 +38,7 @@ try:
     p = json.load(open(f"{out}/peers_{i}.json"))
     m = p["peers"]["manifold_3d"]
     cm = json.load(open(f"{out}/collision_{i}.json"))["machine"]
-    load = lambda r: ", ".join(f"{size} " + " / ".join(f"{r[w]['load_ns'][size]:.0f}" for w in ("before", "after"))
+    load = lambda r: ", ".join(f"{size} " + " / ".join(f"{r[w]['load_ns'][size]:.1f}" for w in ("before", "after"))
                                for size in ("256KiB", "8MiB"))
     print(f"round {i}: first contact {c['first_contact']['median_us']:.1f} us ({c['first_contact']['within_20us']} of "
           f"{c['first_contact']['samples']} within 20 us), min distance {c['min_distance']['median_us']:.1f} us "
