@@ -3,14 +3,31 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
-#include <memory>
 #include <random>
-#include <vector>
+
+#include <sys/mman.h>
 
 namespace reamsim::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Memory of its own from the system, returned when done: the probe's 64 MiB must not pass through the
+// allocator, which would keep the pages and hand them, already mapped, to the benchmark that follows.
+template <class T>
+struct Mapped {
+  explicit Mapped(std::size_t count) : bytes(count * sizeof(T)) {
+    void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    data = p == MAP_FAILED ? nullptr : static_cast<T*>(p);
+  }
+  ~Mapped() {
+    if (data) ::munmap(data, bytes);
+  }
+  Mapped(const Mapped&) = delete;
+  Mapped& operator=(const Mapped&) = delete;
+  std::size_t bytes;
+  T* data = nullptr;
+};
 
 double nanosSince(Clock::time_point t0, std::size_t per) {
   return std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / double(per);
@@ -36,11 +53,14 @@ double loadNanos(std::size_t bytes, std::size_t loads) {
     std::uint32_t next;
   };
   const std::size_t n = bytes / sizeof(Line);
-  std::unique_ptr<Line[]> lines(new Line[n]);
-  std::vector<std::uint32_t> order(n);
+  const Mapped<Line> lineMap(n);
+  const Mapped<std::uint32_t> orderMap(n);
+  Line* lines = lineMap.data;
+  std::uint32_t* order = orderMap.data;
+  if (!lines || !order) return -1;
   for (std::size_t i = 0; i < n; ++i) order[i] = std::uint32_t(i);
   std::mt19937_64 rng(7);
-  std::shuffle(order.begin(), order.end(), rng);
+  std::shuffle(order, order + n, rng);
   for (std::size_t i = 0; i < n; ++i) lines[order[i]].next = order[(i + 1) % n];
   std::uint32_t at = order[0];
   // A first stretch of the walk: what fits in a cache is in it (the fill above has mapped every page).
