@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The two figures that sit at their lines on this machine (docs/BENCHMARKS.md "Where the targets stand"),
 # measured ROUNDS times in turn, so that a note can say on how many runs each line held instead of quoting one
-# run of a machine whose speed drifts by up to 1.5x within an hour:
+# run of a machine whose speed drifts by 1.5x and more within an hour (2.4x in session 45):
 #   - issue 3: first contact and min distance medians at 405k faces (bench collision --cut-site glenoid
 #     --no-baselines --hand-held-approaches 0; target <= 20 us each);
 #   - issue 4: ReamSim against manifold-3d on the bundled scapula (scripts/bench-peers.sh --cut-site glenoid
@@ -34,10 +34,10 @@ for i in $(seq 1 "$rounds_to_run"); do
 import json, sys
 out, i = sys.argv[1], sys.argv[2]
 try:
-    c = json.load(open(f"{out}/collision_{i}.json"))["queries"]
+    collision = json.load(open(f"{out}/collision_{i}.json"))
+    c, cm = collision["queries"], collision["machine"]
     p = json.load(open(f"{out}/peers_{i}.json"))
     m = p["peers"]["manifold_3d"]
-    cm = json.load(open(f"{out}/collision_{i}.json"))["machine"]
     load = lambda r: ", ".join(f"{size} " + " / ".join(f"{r[w]['load_ns'][size]:.1f}" for w in ("before", "after"))
                                for size in ("256KiB", "8MiB"))
     print(f"round {i}: first contact {c['first_contact']['median_us']:.1f} us ({c['first_contact']['within_20us']} of "
