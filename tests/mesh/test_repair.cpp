@@ -2,6 +2,7 @@
 
 #include "RepairTestMeshes.h"
 #include "reamsim/mesh/Repair.h"
+#include "reamsim/mesh/VolumetricRemesh.h"
 
 namespace reamsim {
 namespace {
@@ -76,16 +77,55 @@ TEST(Repair, SelfIntersectingSoupIsRemeshedFaithfully) {
   EXPECT_TRUE(said) << toText(r.report);
 }
 
+// A remesh beyond its limits is refused before the work, and the repair reports it (the mesh as the
+// topological repair left it, not a clean solid) instead of throwing: an importer shows the mesh as read.
+bool saysRemeshRefused(const RepairResult& r, const std::string& detail) {
+  for (const std::string& a : r.report.actions)
+    if (a.find("volumetric remesh refused") != std::string::npos && a.find(detail) != std::string::npos) return true;
+  return false;
+}
+
 TEST(Repair, RemeshRefusesHugeGridsClearly) {
   RepairOptions options;
   options.remesh.voxelMm = 1e-4;
   const TriangleMesh a = test::unitBox(10, 1);
+  const RepairResult r = repairMesh(test::merged(a, test::translated(a, {5, 5, 5})), options);
+  EXPECT_FALSE(r.report.success());
+  EXPECT_FALSE(r.report.remeshed);
+  EXPECT_TRUE(saysRemeshRefused(r, "exceeds the limit")) << toText(r.report);
+  EXPECT_TRUE(saysRemeshRefused(r, "the mesh spans 15 x 15 x 15 mm")) << toText(r.report);
+  EXPECT_FALSE(r.mesh.empty());
+}
+
+// Found by fuzzing `reamsim-cli export --repair`: one vertex of a box moved 65.5 m away makes slivers whose
+// grid (88 million points) is within the grid's limit but lies nearly all (82 million) in the band near the surface,
+// which the remesh would have sampled point by point for hours. With the default options, as the CLI and the
+// GUI's import call it.
+TEST(Repair, RemeshRefusesAHugeBandBeforeTheWork) {
+  TriangleMesh m = test::unitBox(10, 1);
+  std::size_t far = 0;
+  for (std::size_t i = 0; i < m.vertices.size(); ++i)
+    if (m.vertices[i].x == 0 && m.vertices[i].y == 10 && m.vertices[i].z == 0) far = i;
+  m.vertices[far].x = 65536;  // folds two faces through others: self-intersecting, so the repair remeshes
+  const RepairResult r = repairMesh(m);
+  EXPECT_FALSE(r.report.success());
+  EXPECT_TRUE(saysRemeshRefused(r, "grid points near the surface exceeds the limit")) << toText(r.report);
+  EXPECT_TRUE(saysRemeshRefused(r, "the mesh spans 65536 x 10 x 10 mm")) << toText(r.report);
+}
+
+TEST(Repair, VolumetricRemeshChecksItsBandLimit) {
+  const TriangleMesh a = test::unitBox(10, 1);
+  RemeshOptions options;
+  options.voxelMm = 0.5;
+  options.maxBandPoints = 1000;  // the two boxes' band at 0.5 mm holds several thousand
   try {
-    repairMesh(test::merged(a, test::translated(a, {5, 5, 5})), options);
-    FAIL() << "expected an exception";
+    volumetricRemesh(test::merged(a, test::translated(a, {5, 5, 5})), options);
+    FAIL() << "expected the band limit to refuse";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("exceeds the limit"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("exceeds the limit of 1000"), std::string::npos) << e.what();
   }
+  options.maxBandPoints = 30'000'000;
+  EXPECT_FALSE(volumetricRemesh(test::merged(a, test::translated(a, {5, 5, 5})), options).mesh.empty());
 }
 
 TEST(Repair, RemeshWithDecimationStaysClean) {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 
 #include "ReportJson.h"
 #include "SoupRepair.h"
@@ -61,7 +62,16 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
   if (!rep.after.consistentlyOriented) why += " not consistently oriented;";
   if (rep.after.selfIntersectingPairs.value_or(0) > 0)
     why += " " + std::to_string(*rep.after.selfIntersectingPairs) + " self-intersecting face pairs;";
-  RemeshResult remesh = volumetricRemesh(soup.orientedSoup, options.remesh);
+  RemeshResult remesh;
+  try {
+    remesh = volumetricRemesh(soup.orientedSoup, options.remesh);
+  } catch (const std::invalid_argument& e) {
+    // Refused before the work (a grid or band beyond its limit: wrong units, a stray vertex far away): the
+    // report says why, and the caller keeps the mesh as the topological repair left it (not a clean solid).
+    rep.actions.push_back("after topological repair the surface was still" + why.substr(0, why.size() - 1) +
+                          "; volumetric remesh refused: " + e.what());
+    return result;
+  }
   rep.remeshed = true;
   rep.remesh = remesh.stats;
   const RemeshStats& s = remesh.stats;

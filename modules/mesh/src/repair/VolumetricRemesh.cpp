@@ -4,8 +4,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <stdexcept>
+#include <string>
 
 #include "DistanceOracle.h"
 #include "MarchingTetrahedra.h"
@@ -16,6 +18,14 @@ namespace reamsim {
 namespace {
 
 enum : std::uint8_t { kFar = 0, kBand = 1 };
+
+// "the mesh spans 65536 x 10 x 10 mm, at a 0.5 mm grid": what an error about the grid's size should say.
+std::string extentText(const Bounds& b, double voxelMm) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "the mesh spans %.6g x %.6g x %.6g mm, at a %.3g mm grid", b.max.x - b.min.x,
+                b.max.y - b.min.y, b.max.z - b.min.z, voxelMm);
+  return buf;
+}
 
 ScalarGrid makeGrid(const TriangleMesh& soup, const RemeshOptions& options) {
   if (!(options.voxelMm > 0) || !std::isfinite(options.voxelMm))
@@ -32,9 +42,10 @@ ScalarGrid makeGrid(const TriangleMesh& soup, const RemeshOptions& options) {
   }
   if (points > double(options.maxGridPoints))
     throw std::invalid_argument("remesh grid of " + std::to_string(grid.n[0]) + "x" + std::to_string(grid.n[1]) + "x" +
-                                std::to_string(grid.n[2]) + " points exceeds the limit; use a larger voxel size");
-  grid.value.assign(grid.size(), 0.0);
-  return grid;
+                                std::to_string(grid.n[2]) + " points exceeds the limit of " +
+                                std::to_string(options.maxGridPoints) + " (" + extentText(bounds, grid.h) +
+                                "); check the mesh's units, or use a larger voxel size");
+  return grid;  // values not allocated yet: the band's size is checked first
 }
 
 // Marks the grid points whose box around a triangle could lie within `width` of it.
@@ -94,7 +105,17 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
   // Every grid edge (up to a cell diagonal, h√3) that the surface crosses has both ends in the band.
   const double bandWidth = grid.h * 1.75;
   std::vector<std::uint8_t> mark = candidateBand(soup, grid, bandWidth);
+  std::size_t bandSize = 0;
+  for (std::uint8_t m : mark) bandSize += m == kBand;
+  // Checked before any distance is taken: that pass costs microseconds a point (the grid's own limit lets a
+  // long thin mesh through, whose band is nearly all of it).
+  if (bandSize > options.maxBandPoints)
+    throw std::invalid_argument("remesh band of " + std::to_string(bandSize) + " grid points near the surface exceeds the limit of " +
+                                std::to_string(options.maxBandPoints) + " (" + extentText(computeBounds(soup), grid.h) +
+                                "); check the mesh's units, or use a larger voxel size");
+  grid.value.assign(grid.size(), 0.0);
   std::vector<std::size_t> band;
+  band.reserve(bandSize);
   for (std::size_t i = 0; i < mark.size(); ++i)
     if (mark[i] == kBand) band.push_back(i);
 
