@@ -124,7 +124,7 @@ TEST(Repair, VolumetricRemeshChecksItsBandLimit) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("exceeds the limit of 1000"), std::string::npos) << e.what();
   }
-  options.maxBandPoints = 30'000'000;
+  options.maxBandPoints = 15'000'000;
   EXPECT_FALSE(volumetricRemesh(test::merged(a, test::translated(a, {5, 5, 5})), options).mesh.empty());
 }
 

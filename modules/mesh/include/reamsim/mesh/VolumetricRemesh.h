@@ -21,10 +21,11 @@ struct RemeshOptions {
   std::size_t targetTriangles = 0;  // 0 = keep the marching-tetrahedra output
   std::size_t maxGridPoints = 200'000'000;  // refuse larger grids with a clear message
   // Refuse a band (the grid points near the surface, each given a distance and a winding number) larger
-  // than this. Measured: the 400k CT skull holds 9.3 million at 0.5 mm, the bundled scapula's original 2.0
-  // million at 0.5 mm and 13.2 million at 0.25; a box with one vertex moved 65 m away (a fuzzed file) 82
-  // million, which the remesh would have sampled for hours.
-  std::size_t maxBandPoints = 30'000'000;
+  // than this: what follows (the marching tetrahedra, the distances both ways, the validation) grows with it,
+  // ~0.3 output triangles a band point. Measured: the 400k CT skull holds 9.3 million at 0.5 mm, the bundled
+  // scapula's original 2.0 million at 0.5 mm and 13.2 million at 0.25; fuzzed files with one vertex of a box
+  // moved 65 m away 16.4 and 82 million, which ran for more than two minutes and for hours.
+  std::size_t maxBandPoints = 15'000'000;
 };
 
 struct RemeshStats {
