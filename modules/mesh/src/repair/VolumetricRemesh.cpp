@@ -113,6 +113,15 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
     throw std::invalid_argument("remesh band of " + std::to_string(bandSize) + " grid points near the surface exceeds the limit of " +
                                 std::to_string(options.maxBandPoints) + " (" + extentText(computeBounds(soup), grid.h) +
                                 "); check the mesh's units, or use a larger voxel size");
+  const double solidAngles = double(bandSize) * double(soup.triangles.size());
+  if (solidAngles > options.maxSolidAngles) {
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "remesh would sum %.3g solid angles (%zu grid points near the surface x %zu triangles), over the "
+                  "limit of %.3g: hours of work at this size; use a larger voxel size, or repair the mesh elsewhere",
+                  solidAngles, bandSize, soup.triangles.size(), options.maxSolidAngles);
+    throw std::invalid_argument(buf);
+  }
   grid.value.assign(grid.size(), 0.0);
   std::vector<std::size_t> band;
   band.reserve(bandSize);
