@@ -21,15 +21,15 @@ struct RemeshOptions {
   std::size_t targetTriangles = 0;  // 0 = keep the marching-tetrahedra output
   std::size_t maxGridPoints = 200'000'000;  // refuse larger grids with a clear message
   // Refuse a band (the grid points near the surface, each given a distance and a winding number) larger
-  // than this: what follows (the marching tetrahedra, the distances both ways, the validation) grows with it,
-  // ~0.3 output triangles a band point. Measured: the 400k CT skull holds 9.3 million at 0.5 mm, the bundled
-  // scapula's original 2.0 million at 0.5 mm and 13.2 million at 0.25; fuzzed files with one vertex of a box
-  // moved 65 m away 16.4 and 82 million, which ran for more than two minutes and for hours.
+  // than this: what follows (the marching tetrahedra, the distances both ways, the validation) grows with
+  // it. Measured: the 400k CT skull holds 9.3 million at 0.5 mm, the bundled scapula's original 2.0 million
+  // at 0.5 mm and 13.2 million at 0.25; fuzzed files with one vertex of a box moved 65 m away 16.4 and 82
+  // million, which ran for more than two minutes and for hours.
   std::size_t maxBandPoints = 15'000'000;
   // Refuse more than this many solid angles (band points x input triangles): the winding number is summed
-  // over every triangle at every band point (no hierarchy yet), ~12 ns each here. The bundled scapula's
-  // original (1,543 triangles) at 0.75 mm is ~1.4e9; the 400k CT skull at 0.5 mm would be 3.7e12, about eight
-  // hours on two cores (measured session 46: 97 % of a stopped run in the band's winding numbers).
+  // over every triangle at every band point (no hierarchy yet). The bundled scapula's
+  // original (1,543 triangles) at 0.75 mm is ~1.4e9; the 400k CT skull at 0.5 mm would be 3.7e12, hours on two
+  // cores (session 46: 97 % of a run stopped after 18 CPU-minutes was in the band's winding numbers).
   double maxSolidAngles = 2e10;
 };
 
