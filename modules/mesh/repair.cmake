@@ -8,6 +8,7 @@ reamsim_add_module(mesh_repair
     src/repair/Validation.cpp
     src/repair/Repair.cpp
     src/repair/VolumetricRemesh.cpp
+    src/repair/FastWindingNumber.cpp
     src/repair/MarchingTetrahedra.cpp
     src/repair/CgalSelfIntersections.cpp
     src/repair/CgalSoupRepair.cpp

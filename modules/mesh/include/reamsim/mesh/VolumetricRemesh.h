@@ -2,8 +2,8 @@
 // Volumetric remesh of an arbitrary triangle soup into a closed, consistently outward-oriented,
 // self-intersection-free surface.
 //  - inside/outside from the generalized winding number (robust to holes, flipped and overlapping
-//    faces), distance from an AABB tree; both sampled on a regular grid of `voxelMm`, only in a
-//    narrow band around the input (the rest is labelled by connected components);
+//    faces; summed over a tree of clusters, reamsim/mesh/WindingNumber.h), distance from an AABB tree;
+//    both sampled on a regular grid of `voxelMm`, only in a narrow band around the input (the rest is labelled by connected components);
 //  - marching tetrahedra on the Kuhn (6-tetrahedra) subdivision of the grid: the zero set of a
 //    piecewise-linear field with no zero at the grid points is a closed 2-manifold whose triangles lie
 //    in disjoint tetrahedra, so it cannot self-intersect; crossing points are kept at least 0.1 % of an
@@ -26,11 +26,11 @@ struct RemeshOptions {
   // at 0.5 mm and 13.2 million at 0.25; fuzzed files with one vertex of a box moved 65 m away 16.4 and 82
   // million, which ran for more than two minutes and for hours.
   std::size_t maxBandPoints = 15'000'000;
-  // Refuse more than this many solid angles (band points x input triangles): the winding number is summed
-  // over every triangle at every band point (no hierarchy yet). The bundled scapula's
-  // original (1,543 triangles) at 0.75 mm is ~1.4e9; the 400k CT skull at 0.5 mm would be 3.7e12, hours on two
-  // cores (session 46: 97 % of a run stopped after 18 CPU-minutes was in the band's winding numbers).
-  double maxSolidAngles = 2e10;
+  // Refuse more than about this many winding-number terms (exact solid angles and far clusters'
+  // expansions, FastWindingNumber), estimated from a sample of the band before the band is evaluated.
+  // Until session 47 the winding number was summed over every triangle at every band point: the 400k CT
+  // skull at 0.5 mm would have taken 3.7e12 solid angles, hours on two cores.
+  double maxWindingTerms = 2e10;
 };
 
 struct RemeshStats {
