@@ -158,6 +158,9 @@ TEST(Repair, LargeDirtyMeshIsRemeshed) {
   // The rebuilt surface follows the input: on average within about half a voxel of it.
   EXPECT_LT(r.report.remesh->meanOutputToInputMm, 0.75);
   EXPECT_LT(r.report.remesh->meanInputToOutputMm, 0.2);
+  // The tree's point of it: a band point costs a few hundred terms, not the direct sum's 400k solid angles.
+  EXPECT_GT(r.report.remesh->windingTermsPerPoint, 0.0);
+  EXPECT_LT(r.report.remesh->windingTermsPerPoint, 4000.0);
 }
 
 TEST(Repair, RemeshWithDecimationStaysClean) {

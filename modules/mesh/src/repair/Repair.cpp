@@ -117,6 +117,8 @@ std::string toJson(const RepairReport& r, int indent) {
     j["remesh"] = {{"voxel_mm", s.voxelMm},
                    {"grid", {s.grid[0], s.grid[1], s.grid[2]}},
                    {"band_points", s.bandPoints},
+                   {"winding_terms_per_point", s.windingTermsPerPoint},
+                   {"band_ms", s.windingMilliseconds},
                    {"triangles_before_decimation", s.trianglesBeforeDecimation},
                    {"triangles_after", s.trianglesAfter},
                    {"max_result_to_input_mm", s.maxOutputToInputMm},

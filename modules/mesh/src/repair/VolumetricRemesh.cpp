@@ -154,6 +154,7 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
   }
   grid.value.assign(grid.size(), 0.0);
 
+  const auto bandStart = std::chrono::steady_clock::now();
   DistanceOracle oracle(soup);
   tbb::parallel_for(std::size_t(0), band.size(), [&](std::size_t b) {
     const std::size_t idx = band[b];
@@ -168,6 +169,9 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
   signFarRegions(winding, soup, grid, mark, 2 * bandWidth);
 
   RemeshResult result;
+  result.stats.windingTermsPerPoint = band.empty() ? 0.0 : terms / double(band.size());
+  result.stats.windingMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - bandStart).count();
   result.mesh = marchingTetrahedra(grid);
   RemeshStats& s = result.stats;
   s.voxelMm = grid.h;

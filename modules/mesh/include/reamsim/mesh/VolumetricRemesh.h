@@ -37,6 +37,8 @@ struct RemeshStats {
   double voxelMm = 0;
   int grid[3] = {0, 0, 0};
   std::size_t bandPoints = 0;
+  double windingTermsPerPoint = 0;  // estimated from the sample the limit is checked on
+  double windingMilliseconds = 0;   // the band's distances and winding numbers
   std::size_t trianglesBeforeDecimation = 0;
   std::size_t trianglesAfter = 0;
   // Fidelity, measured both ways (vertices of one surface against the other surface):
