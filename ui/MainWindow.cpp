@@ -100,6 +100,7 @@ MainWindow::~MainWindow() {
   alertSubscription_.reset();
   boneFrameSubscription_.reset();
   otherBones_.reset();
+  if (importStop_) importStop_->store(true);  // a repair under way stops at its next check
   if (importWatcher_.isRunning()) importWatcher_.waitForFinished();
   for (QDockWidget* d : panels_) delete d;
   panels_.clear();

@@ -7,6 +7,7 @@
 #include <QTimer>
 #include <QMap>
 #include <QStringList>
+#include <atomic>
 #include <memory>
 #include <optional>
 
@@ -32,6 +33,7 @@ class RecoveryFiles;
 struct ImportOutcome {
   ImportedBone bone;
   QString error;
+  QString stoppedAt;  // the repair's stage where a cancelled import's worker stopped
 };
 
 class MainWindow : public QMainWindow {
@@ -63,7 +65,9 @@ class MainWindow : public QMainWindow {
   void openFile(const QString& path, bool repair = true);
   bool importRunning() const { return importWatcher_.isRunning(); }
   void waitImport();
-  void cancelImport();  // the window is free at once; the worker's result is discarded
+  void cancelImport();  // the window is free at once; the worker stops at its next check, its result is discarded
+  // Where the last cancelled import's worker stopped (a repair stage), empty when it ran to its end (tests).
+  const QString& lastImportStoppedAt() const { return importStoppedAt_; }
   bool saveBoneAs(const QString& path);  // true when written; the bone is then "saved" (no unsaved changes)
   // Changes since the bone was opened or last saved (the undo history is away from its saved point).
   bool hasUnsavedChanges() const;
@@ -114,6 +118,7 @@ class MainWindow : public QMainWindow {
   bool confirmDiscardChanges(const QString& action);
   bool saveBoneAndCutLogInteractive();  // "Save" in that question: the bone, and its cut log beside it
   void importFinished();
+  void showImportProgress(int permille, const QString& stage);
   void updateStatus();
   void updateTitle();
   void addRecent(const QString& path);
@@ -154,6 +159,8 @@ class MainWindow : public QMainWindow {
   QProgressBar* importBusy_ = nullptr;
   QPushButton* importCancel_ = nullptr;
   bool importCancelled_ = false;
+  std::shared_ptr<std::atomic<bool>> importStop_;  // read by the import's worker at each progress check
+  QString importStoppedAt_;
   static constexpr double kContactSearchMm = 100;
   static constexpr int kRecoveryDelayMs = 3000;  // after the last change (a feed's steps write one copy)
   static constexpr std::size_t kMaxQueuedFeedSteps = 4;  // feed key presses beyond this are ignored

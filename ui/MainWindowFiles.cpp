@@ -9,12 +9,16 @@
 #include <QFileInfo>
 #include <QMenu>
 #include <QMessageBox>
+#include <QMetaObject>
 #include <QMimeData>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSettings>
 #include <QStatusBar>
 #include <QtConcurrent/QtConcurrentRun>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
 #include <utility>
 
 #include "BonePlacement.h"
@@ -70,14 +74,36 @@ void MainWindow::openFile(const QString& path, bool repair) {
   importPath_ = path;
   importCancelled_ = false;
   statusBar()->showMessage(tr("Importing %1…").arg(path));
+  importBusy_->setRange(0, 0);  // busy until the repair reports a fraction
   importBusy_->setVisible(true);
   importCancel_->setVisible(true);
   const MeshImportInterface* importer = plugins_.meshImport();
   const std::string file = path.toStdString();
-  importWatcher_.setFuture(QtConcurrent::run([importer, file, repair] {
+  auto stop = std::make_shared<std::atomic<bool>>(false);
+  importStop_ = stop;
+  // Called on the worker only: posts what changed (a new stage, or half a per cent) to the window and
+  // tells the repair whether to go on. The window outlives the worker (its destructor stops and waits).
+  struct Relay {
+    int permille = -1000;
+    std::string stage;
+  };
+  auto relay = std::make_shared<Relay>();
+  RepairProgress progress = [this, stop, relay](double fraction, const std::string& stage) {
+    const int permille = int(std::lround(fraction * 1000));
+    if (stage != relay->stage || std::abs(permille - relay->permille) >= 5) {
+      relay->stage = stage;
+      relay->permille = permille;
+      const QString text = QString::fromStdString(stage);
+      QMetaObject::invokeMethod(this, [this, permille, text] { showImportProgress(permille, text); }, Qt::QueuedConnection);
+    }
+    return !stop->load();
+  };
+  importWatcher_.setFuture(QtConcurrent::run([importer, file, repair, progress] {
     ImportOutcome out;
     try {
-      out.bone = importer->importBone(file, repair);
+      out.bone = importer->importBone(file, repair, progress);
+    } catch (const RepairCancelled& e) {
+      out.stoppedAt = QString::fromStdString(e.stage());
     } catch (const std::exception& e) {
       out.error = QString::fromStdString(e.what());
     }
@@ -85,16 +111,25 @@ void MainWindow::openFile(const QString& path, bool repair) {
   }));
 }
 
+void MainWindow::showImportProgress(int permille, const QString& stage) {
+  if (!importWatcher_.isRunning() || importCancelled_) return;
+  importBusy_->setRange(0, 1000);
+  importBusy_->setValue(permille);
+  statusBar()->showMessage(tr("Importing %1: %2").arg(QFileInfo(importPath_).fileName(), stage));
+}
+
 void MainWindow::waitImport() {
   if (importWatcher_.isRunning()) importWatcher_.waitForFinished();
   QCoreApplication::processEvents();  // delivers finished()
 }
 
-// Reading and repair cannot be interrupted inside the importer: Cancel gives the window back at once and the
-// result, when the worker is done, is discarded.
+// Cancel gives the window back at once; the worker stops at the repair's next check (between its stages,
+// and between slices of the remesh's band: well under a second), and whatever it returns is discarded.
+// Reading the file is not interrupted.
 void MainWindow::cancelImport() {
   if (!importWatcher_.isRunning()) return;
   importCancelled_ = true;
+  if (importStop_) importStop_->store(true);
   importBusy_->setVisible(false);
   importCancel_->setVisible(false);
   statusBar()->showMessage(tr("Import of %1 cancelled").arg(QFileInfo(importPath_).fileName()), 5000);
@@ -103,8 +138,9 @@ void MainWindow::cancelImport() {
 void MainWindow::importFinished() {
   importBusy_->setVisible(false);
   importCancel_->setVisible(false);
-  if (std::exchange(importCancelled_, false)) return;
   ImportOutcome out = importWatcher_.result();
+  importStoppedAt_ = out.stoppedAt;
+  if (std::exchange(importCancelled_, false)) return;
   if (!out.error.isEmpty()) {
     showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), out.error);
     return;

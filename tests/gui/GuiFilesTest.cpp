@@ -1,10 +1,14 @@
 // Bones in and out of the window: import errors in a dialog with the importer's message (never a crash),
 // a valid mesh replaces the bone, save in another format, recent files, drag and drop, CSV export.
+#include <QCoreApplication>
 #include <QDockWidget>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QProgressBar>
 #include <QPushButton>
+#include <QStatusBar>
 #include <QTemporaryDir>
 #include <QUrl>
 #include <QtTest/QTest>
@@ -50,6 +54,8 @@ TEST(GuiFiles, CancelledImportGivesTheWindowBackAndDiscardsTheResult) {
   QTest::mouseClick(cancel, Qt::LeftButton);
   EXPECT_FALSE(cancel->isVisible());
   w.waitImport();
+  // The worker stopped at one of the repair's checks rather than finishing the remesh.
+  EXPECT_FALSE(w.lastImportStoppedAt().isEmpty());
   EXPECT_EQ(f.session().bone()->currentRevision(), revision);  // the result was discarded
   EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
   EXPECT_TRUE(w.recentFiles().isEmpty());
@@ -57,6 +63,30 @@ TEST(GuiFiles, CancelledImportGivesTheWindowBackAndDiscardsTheResult) {
   w.openFile(kData + "/malformed/stl_ascii_bad_number.stl");
   w.waitImport();
   EXPECT_TRUE(w.lastError().contains("stl_ascii_bad_number.stl"));
+}
+
+TEST(GuiFiles, ImportShowsTheRepairsProgress) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  // The OpenSim scapula with repair: the remesh reports its stages and fractions while the worker runs.
+  w.openFile(QString(REAMSIM_RESOURCE_DIR) + "/bones/scapula_R_opensim.vtp", true);
+  auto* bar = w.findChild<QProgressBar*>("ImportProgress");
+  ASSERT_NE(bar, nullptr);
+  bool sawRemesh = false, sawFraction = false;
+  QElapsedTimer guard;  // a deadline for a hung worker, not a measurement
+  guard.start();
+  while (w.importRunning() && guard.elapsed() < 300000) {
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+    sawRemesh |= w.statusBar()->currentMessage().contains("remesh:");
+    sawFraction |= bar->maximum() == 1000 && bar->value() > 0;
+  }
+  w.waitImport();
+  EXPECT_TRUE(sawRemesh);
+  EXPECT_TRUE(sawFraction);
+  EXPECT_TRUE(w.lastImportStoppedAt().isEmpty());
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_TRUE(f.session().canCut()) << f.session().cuttingStatus().toStdString();
 }
 
 TEST(GuiFiles, WithoutRepairAClosedOutwardBoneIsCuttableAnOpenOneIsNot) {

@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "RepairTestMeshes.h"
 #include "reamsim/mesh/MeshIO.h"
@@ -161,6 +164,40 @@ TEST(Repair, LargeDirtyMeshIsRemeshed) {
   // The tree's point of it: a band point costs a few hundred terms, not the direct sum's 400k solid angles.
   EXPECT_GT(r.report.remesh->windingTermsPerPoint, 0.0);
   EXPECT_LT(r.report.remesh->windingTermsPerPoint, 4000.0);
+}
+
+TEST(Repair, ReportsProgressAndStopsWhenCancelled) {
+  const TriangleMesh a = test::unitBox(10, 1);
+  const TriangleMesh boxes = test::merged(a, test::translated(a, {5, 5, 5}));  // needs the remesh
+  RepairOptions options;
+  std::vector<std::pair<double, std::string>> seen;
+  options.progress = [&](double f, const std::string& stage) {
+    seen.emplace_back(f, stage);
+    return true;
+  };
+  const RepairResult r = repairMesh(boxes, options);
+  ASSERT_TRUE(r.report.success()) << toText(r.report);
+  ASSERT_GE(seen.size(), 6u);
+  EXPECT_EQ(seen.front().first, 0.0);
+  EXPECT_EQ(seen.back(), std::make_pair(1.0, std::string("done")));
+  std::vector<std::string> stages;
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    if (i > 0) EXPECT_GE(seen[i].first, seen[i - 1].first) << seen[i].second;  // never goes back
+    if (stages.empty() || stages.back() != seen[i].second) stages.push_back(seen[i].second);
+  }
+  for (const char* expected : {"validation", "topological repair", "remesh: inside and outside near the surface",
+                               "remesh: marching tetrahedra", "validation of the result"})
+    EXPECT_NE(std::find(stages.begin(), stages.end(), expected), stages.end()) << expected;
+
+  // Asked to stop when the remesh starts: it stops there, with the stage named.
+  options.progress = [](double, const std::string& stage) { return stage.rfind("remesh", 0) != 0; };
+  try {
+    repairMesh(boxes, options);
+    FAIL() << "expected the repair to stop";
+  } catch (const RepairCancelled& e) {
+    EXPECT_EQ(e.stage(), "remesh: inside and outside near the surface");
+    EXPECT_NE(std::string(e.what()).find("cancelled"), std::string::npos);
+  }
 }
 
 TEST(Repair, RemeshWithDecimationStaysClean) {

@@ -31,7 +31,7 @@ QStringList MeshImportPlugin::nameFilters() const {
   return {QStringLiteral("Meshes (%1)").arg(patterns.join(' ')), QStringLiteral("All files (*)")};
 }
 
-ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair) const {
+ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, const RepairProgress& progress) const {
   LoadedMesh loaded = readMesh(path);
   ImportedBone out;
   out.source = path;
@@ -57,7 +57,9 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair) 
                     "); shown as read, cutting disabled\n";
     return out;
   }
-  RepairResult r = repairMesh(loaded.mesh);
+  RepairOptions options;
+  options.progress = progress;
+  RepairResult r = repairMesh(loaded.mesh, options);
   out.report += toText(r.report);
   out.cuttable = r.report.success();
   out.mesh = out.cuttable ? std::move(r.mesh) : std::move(loaded.mesh);

@@ -14,7 +14,7 @@ class MeshImportPlugin : public QObject, public MeshImportInterface {
  public:
   QStringList nameFilters() const override;
   QStringList extensions() const override;
-  ImportedBone importBone(const std::string& path, bool repair) const override;
+  ImportedBone importBone(const std::string& path, bool repair, const RepairProgress& progress = {}) const override;
   void exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame) const override;
 };
 

@@ -204,8 +204,10 @@ ImportResult importBone(const CtVolume& volume, const ImportOptions& o, const Pr
   });
 
   if (!rep.validation.isCleanSolid()) {
-    stages.run("repair", 1.0, 1.0, [&](const detail::Tick&) {
-      RepairResult r = repairMesh(mesh);
+    stages.run("repair", 1.0, 1.0, [&](const detail::Tick& tick) {
+      RepairOptions repairOptions;  // the tick throws ImportCancelled when the import is cancelled
+      repairOptions.progress = [&tick](double f, const std::string&) { tick(f); return true; };
+      RepairResult r = repairMesh(mesh, repairOptions);
       rep.repaired = true;
       rep.notes.push_back("the mesh was not a clean solid; repairMesh: " +
                           (r.report.actions.empty() ? std::string("no action") : r.report.actions.back()));

@@ -20,6 +20,8 @@ std::string format(const char* fmt, double a, double b = 0, double c = 0, double
 RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options) {
   RepairResult result;
   RepairReport& rep = result.report;
+  const RepairProgress& progress = options.progress;
+  reportRepairProgress(progress, 0.0, 0.05, 0.0, "validation");
   rep.before = validateMesh(input);
   if (rep.before.isCleanSolid()) {
     result.mesh = input;
@@ -28,6 +30,7 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
     return result;
   }
 
+  reportRepairProgress(progress, 0.05, 0.1, 0.0, "topological repair");
   SoupRepairResult soup = repairSoupTopology(input, options.maxHoleBoundaryEdges);
   rep.mergedVertices = soup.verticesRemoved;
   rep.removedFaces = soup.facesRemoved;
@@ -50,6 +53,7 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
   if (soup.flippedToOutward) rep.actions.push_back("all faces flipped so that normals point outward");
 
   result.mesh = std::move(soup.mesh);
+  reportRepairProgress(progress, 0.1, 0.15, 0.0, "validation");
   rep.after = validateMesh(result.mesh);
   if (rep.after.isCleanSolid() || !options.allowRemesh) {
     if (!rep.after.isCleanSolid())
@@ -64,7 +68,10 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
     why += " " + std::to_string(*rep.after.selfIntersectingPairs) + " self-intersecting face pairs;";
   RemeshResult remesh;
   try {
-    remesh = volumetricRemesh(soup.orientedSoup, options.remesh);
+    RemeshOptions remeshOptions = options.remesh;
+    if (progress)  // the remesh's fractions mapped onto [0.15, 0.9] of the repair
+      remeshOptions.progress = [&progress](double f, const std::string& stage) { return progress(0.15 + 0.75 * f, stage); };
+    remesh = volumetricRemesh(soup.orientedSoup, remeshOptions);
   } catch (const std::invalid_argument& e) {
     // Refused before the work (a grid or band beyond its limit: wrong units, a stray vertex far away): the
     // report says why, and the caller keeps the mesh as the topological repair left it (not a clean solid).
@@ -85,7 +92,9 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
                                "to the result: max %.3f mm, mean %.3f mm",
                                s.maxOutputToInputMm, s.meanOutputToInputMm, s.maxInputToOutputMm, s.meanInputToOutputMm));
   result.mesh = std::move(remesh.mesh);
+  reportRepairProgress(progress, 0.9, 1.0, 0.0, "validation of the result");
   rep.after = validateMesh(result.mesh);
+  if (progress) progress(1.0, "done");  // informational: nothing is left to cancel
   return result;
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "reamsim/core/PatientFrame.h"
+#include "reamsim/mesh/RepairProgress.h"
 #include "reamsim/mesh/TriangleMesh.h"
 #include "reamsim/ream/ReamBackends.h"
 
@@ -42,8 +43,9 @@ class MeshImportInterface {
   virtual QStringList nameFilters() const = 0;  // for file dialogs, e.g. "Meshes (*.stl *.ply)"
   virtual QStringList extensions() const = 0;   // lower case, without dot
   // Runs on a worker thread. Throws reamsim::InputError naming the file and the problem. The frame is
-  // read back where the format keeps it (PLY written by ReamSim), else Unspecified.
-  virtual ImportedBone importBone(const std::string& path, bool repair) const = 0;
+  // read back where the format keeps it (PLY written by ReamSim), else Unspecified. `progress` follows the
+  // repair (minutes for a large dirty mesh) and stops it by returning false (RepairCancelled is thrown).
+  virtual ImportedBone importBone(const std::string& path, bool repair, const RepairProgress& progress = {}) const = 0;
   // Format from the extension; throws reamsim::InputError. `frame` is stored where the format allows (PLY).
   virtual void exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame) const = 0;
 };

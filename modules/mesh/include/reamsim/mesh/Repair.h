@@ -18,6 +18,10 @@ struct RepairOptions {
   std::size_t maxHoleBoundaryEdges = 40;  // holes with at most this many edges are triangulated
   bool allowRemesh = true;
   RemeshOptions remesh;
+  // Stages and fractions of the whole repair (the remesh's included); returning false stops the repair at
+  // its next check with RepairCancelled. Checks lie between stages and, in the remesh, between slices of
+  // its band; a validation or a decimation runs to its end.
+  RepairProgress progress;
 };
 
 struct RepairReport {
@@ -40,6 +44,8 @@ struct RepairResult {
   RepairReport report;
 };
 
+// Throws RepairCancelled when `options.progress` asks it to stop; never for a mesh it cannot repair (the
+// report says so).
 RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options = {});
 
 std::string toText(const RepairReport& report);

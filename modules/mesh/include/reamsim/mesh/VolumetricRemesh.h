@@ -12,6 +12,7 @@
 //    still has no self-intersection (otherwise a milder target is tried).
 #include <cstddef>
 
+#include "reamsim/mesh/RepairProgress.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
 namespace reamsim {
@@ -31,6 +32,8 @@ struct RemeshOptions {
   // Until session 47 the winding number was summed over every triangle at every band point: the 400k CT
   // skull at 0.5 mm would have taken 3.7e12 solid angles, hours on two cores.
   double maxWindingTerms = 2e10;
+  // Called between slices of the band and between stages; returning false throws RepairCancelled.
+  RepairProgress progress;
 };
 
 struct RemeshStats {
@@ -52,7 +55,8 @@ struct RemeshResult {
   RemeshStats stats;
 };
 
-// Throws std::invalid_argument for empty input, non-finite coordinates or a grid over the limit.
+// Throws std::invalid_argument for empty input, non-finite coordinates or a grid over the limit, and
+// RepairCancelled when `options.progress` asks it to stop.
 RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& options = {});
 
 // Decimation that keeps the surface closed and free of self-intersections; returns false (and leaves
