@@ -6,6 +6,7 @@
 #include "CliArgs.h"
 #include "Commands.h"
 #include "DefaultCase.h"
+#include "TerminalProgress.h"
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/mesh/MeshIO.h"
 #include "reamsim/mesh/Repair.h"
@@ -55,6 +56,7 @@ int runRepair(const std::vector<std::string>& args) {
   options.remesh.targetTriangles = static_cast<std::size_t>(a.number("target-faces", 0));
   options.maxHoleBoundaryEdges = static_cast<std::size_t>(a.number("max-hole-edges", double(options.maxHoleBoundaryEdges)));
   options.allowRemesh = !a.has("no-remesh");
+  options.progress = terminalProgress("repair");
   RepairResult r = repairMesh(m.mesh, options);
   try {
     writeMesh(r.mesh, out);
@@ -87,7 +89,9 @@ int runExport(const std::vector<std::string>& args) {
       if (c.rfind("reamsim ", 0) == 0) w.comments.push_back(std::move(c));
   }
   if (a.has("repair")) {
-    RepairResult r = repairMesh(mesh);
+    RepairOptions options;
+    options.progress = terminalProgress("export --repair");
+    RepairResult r = repairMesh(mesh, options);
     std::cerr << toText(r.report);
     mesh = std::move(r.mesh);
   }

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "CliArgs.h"
+#include "TerminalProgress.h"
 #include "Commands.h"
 #include "ReamedSurfaceJson.h"
 #include "reamsim/core/Document.h"
@@ -47,7 +48,9 @@ LoadedBone loadBone(const std::string& arg, Units units) {
   LoadedMesh m = readMesh(arg, options);
   for (const std::string& n : m.notes) std::fprintf(stderr, "note: %s: %s\n", arg.c_str(), n.c_str());
   b.original = std::make_shared<TriangleMesh>(m.mesh);
-  RepairResult r = repairMesh(m.mesh);
+  RepairOptions repairOptions;
+  repairOptions.progress = terminalProgress("ream: repair on import");
+  RepairResult r = repairMesh(m.mesh, repairOptions);
   b.importReport = toText(r.report);
   if (!r.report.actions.empty() && r.report.before.isCleanSolid() == false)
     std::fprintf(stderr, "note: %s: repaired on import:\n%s", arg.c_str(), b.importReport.c_str());

@@ -36,6 +36,25 @@ TEST(Cli, UsageErrors) {
   EXPECT_EQ(run("--help").exitCode, 0);
 }
 
+// A repair says where it is on a terminal (one line on stderr, rewritten in place) and nothing more when
+// stderr is a file or a pipe. `script` (util-linux) gives the command a terminal.
+TEST(Cli, RepairShowsProgressOnATerminalOnly) {
+  if (reamsim::test::runCommand("command -v script >/dev/null 2>&1").exitCode != 0) GTEST_SKIP() << "no script(1)";
+  const std::string original = kResources + "/bones/scapula_R_opensim.vtp";  // needs the remesh
+  const std::string command = std::string(REAMSIM_CLI) + " repair " + original + " --voxel 1.5 --out " +
+                              scratch("progress.ply").string();
+  const CliRun onTerminal = reamsim::test::runCommand("script -qec '" + command + "' /dev/null");
+  EXPECT_EQ(onTerminal.exitCode, 0) << onTerminal.out;
+  // "\r", clear to the end of the line, the command and the stage.
+  EXPECT_NE(onTerminal.out.find("\r\033[Krepair: remesh: inside and outside near the surface"), std::string::npos)
+      << onTerminal.out;
+  EXPECT_NE(onTerminal.out.find("result: closed, outward-oriented solid"), std::string::npos) << onTerminal.out;
+  const CliRun piped = run("repair " + original + " --voxel 1.5 --out " + scratch("progress2.ply").string());
+  EXPECT_EQ(piped.exitCode, 0) << piped.out;
+  EXPECT_EQ(piped.out.find("remesh: inside"), std::string::npos) << piped.out;
+  EXPECT_EQ(piped.out.find('\r'), std::string::npos);
+}
+
 TEST(Cli, InfoReportsTheBundledScapula) {
   const CliRun r = run("info " + kResources + "/bones/scapula_R_opensim.vtp --json");
   ASSERT_EQ(r.exitCode, 0) << r.out;
