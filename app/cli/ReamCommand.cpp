@@ -48,7 +48,7 @@ LoadedBone loadBone(const std::string& arg, Units units) {
   LoadedMesh m = readMesh(arg, options);
   for (const std::string& n : m.notes) std::fprintf(stderr, "note: %s: %s\n", arg.c_str(), n.c_str());
   b.original = std::make_shared<TriangleMesh>(m.mesh);
-  RepairOptions repairOptions;
+  RepairOptions repairOptions = importRepairOptions();
   repairOptions.progress = terminalProgress("ream: repair on import");
   RepairResult r = repairMesh(m.mesh, repairOptions);
   b.importReport = toText(r.report);

@@ -147,23 +147,50 @@ TEST(Repair, VolumetricRemeshChecksItsLimits) {
 
 // The 400k CT skull (open, 386 self-intersecting pairs after merging): its remesh summed the winding number
 // over every triangle at every band point (3.7e12 solid angles at 0.5 mm, hours; session 46 refused it at
-// once). Over the tree of clusters (FastWindingNumber) it is repaired: ~45 s at the 1 mm grid used here,
-// ~4 minutes at the default 0.5 mm (measured, session 47).
+// once). Over the tree of clusters (FastWindingNumber) it is repaired, with the import's options: the grid
+// coarsened from 0.5 mm to about 1 mm (at 0.5 mm: 17 million triangles out after ~4 minutes; at ~1 mm about
+// 4 million in about a minute, measured session 47).
 TEST(Repair, LargeDirtyMeshIsRemeshed) {
   const std::string file = std::string(REAMSIM_SHARED_DATA_DIR) + "/bone_cranium_ct_isosurface_400k.ply";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " not present";
-  RepairOptions options;
-  options.remesh.voxelMm = 1.0;
+  const RepairOptions options = importRepairOptions();
   const RepairResult r = repairMesh(readMesh(file).mesh, options);
   ASSERT_TRUE(r.report.remeshed) << toText(r.report);
   EXPECT_TRUE(r.report.success()) << toText(r.report);
   EXPECT_EQ(r.report.after.selfIntersectingPairs.value_or(1), 0u);
+  // Coarsened, and said so.
+  EXPECT_EQ(r.report.remesh->requestedVoxelMm, 0.5);
+  EXPECT_GT(r.report.remesh->voxelMm, 0.8);
+  EXPECT_LT(r.report.remesh->voxelMm, 1.2);
+  EXPECT_GT(r.report.remesh->requestedBandPoints, options.remesh.coarsenAboveBandPoints);
+  EXPECT_NE(toText(r.report).find("remesh grid coarsened from 0.5 to"), std::string::npos) << toText(r.report);
+  EXPECT_LT(r.mesh.triangles.size(), 5'000'000u);
   // The rebuilt surface follows the input: on average within about half a voxel of it.
   EXPECT_LT(r.report.remesh->meanOutputToInputMm, 0.75);
   EXPECT_LT(r.report.remesh->meanInputToOutputMm, 0.2);
   // The tree's point of it: a band point costs a few hundred terms, not the direct sum's 400k solid angles.
   EXPECT_GT(r.report.remesh->windingTermsPerPoint, 0.0);
   EXPECT_LT(r.report.remesh->windingTermsPerPoint, 4000.0);
+}
+
+TEST(Repair, ImportOptionsKeepSmallMeshesAtTheRequestedGrid) {
+  // The two boxes' band at 0.25 mm holds tens of thousands of points: under the import's budget, the grid
+  // is the one asked for; over a small budget it is coarsened until the band fits.
+  const TriangleMesh a = test::unitBox(10, 1);
+  const TriangleMesh boxes = test::merged(a, test::translated(a, {5, 5, 5}));
+  RepairOptions options = importRepairOptions();
+  options.remesh.voxelMm = 0.25;
+  const RepairResult kept = repairMesh(boxes, options);
+  ASSERT_TRUE(kept.report.success()) << toText(kept.report);
+  EXPECT_EQ(kept.report.remesh->voxelMm, 0.25);
+  EXPECT_EQ(toText(kept.report).find("coarsened"), std::string::npos);
+  options.remesh.coarsenAboveBandPoints = 5000;
+  const RepairResult coarse = repairMesh(boxes, options);
+  ASSERT_TRUE(coarse.report.success()) << toText(coarse.report);
+  EXPECT_GT(coarse.report.remesh->voxelMm, 0.25);
+  EXPECT_GT(coarse.report.remesh->requestedBandPoints, 5000u);
+  EXPECT_NE(toText(coarse.report).find("remesh grid coarsened from 0.25 to"), std::string::npos) << toText(coarse.report);
+  EXPECT_LT(coarse.mesh.triangles.size(), kept.mesh.triangles.size());
 }
 
 TEST(Repair, ReportsProgressAndStopsWhenCancelled) {

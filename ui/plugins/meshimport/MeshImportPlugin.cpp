@@ -57,7 +57,7 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, 
                     "); shown as read, cutting disabled\n";
     return out;
   }
-  RepairOptions options;
+  RepairOptions options = importRepairOptions();
   options.progress = progress;
   RepairResult r = repairMesh(loaded.mesh, options);
   out.report += toText(r.report);

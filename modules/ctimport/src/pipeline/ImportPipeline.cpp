@@ -205,7 +205,7 @@ ImportResult importBone(const CtVolume& volume, const ImportOptions& o, const Pr
 
   if (!rep.validation.isCleanSolid()) {
     stages.run("repair", 1.0, 1.0, [&](const detail::Tick& tick) {
-      RepairOptions repairOptions;  // the tick throws ImportCancelled when the import is cancelled
+      RepairOptions repairOptions = importRepairOptions();  // the tick throws ImportCancelled when cancelled
       repairOptions.progress = [&tick](double f, const std::string&) { tick(f); return true; };
       RepairResult r = repairMesh(mesh, repairOptions);
       rep.repaired = true;

@@ -85,6 +85,11 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
   rep.actions.push_back("after topological repair the surface was still" + why.substr(0, why.size() - 1) +
                         format(": rebuilt by volumetric remesh (winding-number sign, %.3g mm grid, marching "
                                "tetrahedra)", s.voxelMm));
+  if (s.voxelMm != s.requestedVoxelMm)
+    rep.actions.push_back(format("remesh grid coarsened from %.3g to %.3g mm: at %.3g mm its band near the surface "
+                                 "would have held %.3g million points, and the surface out roughly twice as many triangles; "
+                                 "`reamsim-cli repair --voxel MM` repairs at any grid",
+                                 s.requestedVoxelMm, s.voxelMm, s.requestedVoxelMm, double(s.requestedBandPoints) / 1e6));
   if (s.trianglesAfter != s.trianglesBeforeDecimation)
     rep.actions.push_back("remeshed surface decimated from " + std::to_string(s.trianglesBeforeDecimation) + " to " +
                           std::to_string(s.trianglesAfter) + " triangles (checked free of self-intersections)");
@@ -96,6 +101,12 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
   rep.after = validateMesh(result.mesh);
   if (progress) progress(1.0, "done");  // informational: nothing is left to cancel
   return result;
+}
+
+RepairOptions importRepairOptions() {
+  RepairOptions options;
+  options.remesh.coarsenAboveBandPoints = 2'500'000;
+  return options;
 }
 
 std::string toText(const RepairReport& r) {
@@ -125,6 +136,7 @@ std::string toJson(const RepairReport& r, int indent) {
     const RemeshStats& s = *r.remesh;
     j["remesh"] = {{"voxel_mm", s.voxelMm},
                    {"grid", {s.grid[0], s.grid[1], s.grid[2]}},
+                   {"requested_voxel_mm", s.requestedVoxelMm},
                    {"band_points", s.bandPoints},
                    {"winding_terms_per_point", s.windingTermsPerPoint},
                    {"band_ms", s.windingMilliseconds},

@@ -44,12 +44,12 @@ std::string extentText(const Bounds& b, double voxelMm) {
   return buf;
 }
 
-ScalarGrid makeGrid(const TriangleMesh& soup, const RemeshOptions& options) {
-  if (!(options.voxelMm > 0) || !std::isfinite(options.voxelMm))
+ScalarGrid makeGrid(const TriangleMesh& soup, double voxelMm, const RemeshOptions& options) {
+  if (!(voxelMm > 0) || !std::isfinite(voxelMm))
     throw std::invalid_argument("remesh voxel size must be a positive number of mm");
   const Bounds bounds = computeBounds(soup);
   ScalarGrid grid;
-  grid.h = options.voxelMm;
+  grid.h = voxelMm;
   const double pad = 3 * grid.h;  // room for the band and an all-outside border
   grid.origin = bounds.min - Vec3{pad, pad, pad};
   double points = 1;
@@ -119,12 +119,24 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
   for (const Vec3& p : soup.vertices)
     if (!isFinite(p)) throw std::invalid_argument("cannot remesh a mesh with non-finite coordinates");
 
-  ScalarGrid grid = makeGrid(soup, options);
+  ScalarGrid grid = makeGrid(soup, options.voxelMm, options);
   // Every grid edge (up to a cell diagonal, h√3) that the surface crosses has both ends in the band.
-  const double bandWidth = grid.h * 1.75;
+  double bandWidth = grid.h * 1.75;
   std::vector<std::uint8_t> mark = candidateBand(soup, grid, bandWidth);
   std::size_t bandSize = 0;
   for (std::uint8_t m : mark) bandSize += m == kBand;
+  // A band beyond the budget asks for a coarser grid: it grows as the surface's area over h², and the
+  // output (about two triangles a band point) with it.
+  std::size_t requestedBand = bandSize;
+  for (int attempt = 0; options.coarsenAboveBandPoints > 0 && bandSize > options.coarsenAboveBandPoints && attempt < 8;
+       ++attempt) {
+    const double h = grid.h * std::sqrt(double(bandSize) / double(options.coarsenAboveBandPoints)) * 1.02;
+    grid = makeGrid(soup, h, options);
+    bandWidth = grid.h * 1.75;
+    mark = candidateBand(soup, grid, bandWidth);
+    bandSize = 0;
+    for (std::uint8_t m : mark) bandSize += m == kBand;
+  }
   // Checked before any distance is taken: that pass costs microseconds a point (the grid's own limit lets a
   // long thin mesh through, whose band is nearly all of it).
   if (bandSize > options.maxBandPoints)
@@ -178,6 +190,8 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
   reportRepairProgress(options.progress, 0.65, 0.65, 0.0, "remesh: marching tetrahedra");
 
   RemeshResult result;
+  result.stats.requestedVoxelMm = options.voxelMm;
+  result.stats.requestedBandPoints = requestedBand;
   result.stats.windingTermsPerPoint = band.empty() ? 0.0 : terms / double(band.size());
   result.stats.windingMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - bandStart).count();

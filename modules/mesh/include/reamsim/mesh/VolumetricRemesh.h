@@ -32,12 +32,19 @@ struct RemeshOptions {
   // Until session 47 the winding number was summed over every triangle at every band point: the 400k CT
   // skull at 0.5 mm would have taken 3.7e12 solid angles, hours on two cores.
   double maxWindingTerms = 2e10;
+  // 0: the grid is `voxelMm` (or refused by the limits above). Otherwise a grid whose band near the surface
+  // would hold more points than this is coarsened until it does not, and the stats say so: what an import
+  // uses (importRepairOptions(), Repair.h), where a 400k CT mesh at 0.5 mm would come out at 17 million
+  // triangles after minutes of work.
+  std::size_t coarsenAboveBandPoints = 0;
   // Called between slices of the band and between stages; returning false throws RepairCancelled.
   RepairProgress progress;
 };
 
 struct RemeshStats {
-  double voxelMm = 0;
+  double voxelMm = 0;           // the grid used
+  double requestedVoxelMm = 0;  // the grid asked for (larger when coarsened, see coarsenAboveBandPoints)
+  std::size_t requestedBandPoints = 0;  // candidate band points at the requested grid
   int grid[3] = {0, 0, 0};
   std::size_t bandPoints = 0;
   double windingTermsPerPoint = 0;  // estimated from the sample the limit is checked on
