@@ -84,6 +84,23 @@ std::vector<std::uint8_t> candidateBand(const TriangleMesh& soup, const ScalarGr
   return mark;
 }
 
+// The grid at `voxelMm` and the candidate band near the surface: every grid edge (up to a cell diagonal,
+// h√3) that the surface crosses has both ends in it.
+struct Banded {
+  ScalarGrid grid;
+  std::vector<std::uint8_t> mark;
+  std::size_t size = 0;
+  double width = 0;
+};
+Banded bandAt(const TriangleMesh& soup, double voxelMm, const RemeshOptions& options) {
+  Banded b;
+  b.grid = makeGrid(soup, voxelMm, options);
+  b.width = b.grid.h * 1.75;
+  b.mark = candidateBand(soup, b.grid, b.width);
+  for (std::uint8_t m : b.mark) b.size += m == kBand;
+  return b;
+}
+
 // Labels each 6-connected region of far points with the winding number at its first point.
 void signFarRegions(const FastWindingNumber& winding, const TriangleMesh& soup, ScalarGrid& grid,
                     const std::vector<std::uint8_t>& mark, double farValue) {
@@ -119,24 +136,18 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
   for (const Vec3& p : soup.vertices)
     if (!isFinite(p)) throw std::invalid_argument("cannot remesh a mesh with non-finite coordinates");
 
-  ScalarGrid grid = makeGrid(soup, options.voxelMm, options);
-  // Every grid edge (up to a cell diagonal, h√3) that the surface crosses has both ends in the band.
-  double bandWidth = grid.h * 1.75;
-  std::vector<std::uint8_t> mark = candidateBand(soup, grid, bandWidth);
-  std::size_t bandSize = 0;
-  for (std::uint8_t m : mark) bandSize += m == kBand;
+  Banded banded = bandAt(soup, options.voxelMm, options);
+  const std::size_t requestedBand = banded.size;
   // A band beyond the budget asks for a coarser grid: it grows as the surface's area over h², and the
   // output (about two triangles a band point) with it.
-  std::size_t requestedBand = bandSize;
-  for (int attempt = 0; options.coarsenAboveBandPoints > 0 && bandSize > options.coarsenAboveBandPoints && attempt < 8;
-       ++attempt) {
-    const double h = grid.h * std::sqrt(double(bandSize) / double(options.coarsenAboveBandPoints)) * 1.02;
-    grid = makeGrid(soup, h, options);
-    bandWidth = grid.h * 1.75;
-    mark = candidateBand(soup, grid, bandWidth);
-    bandSize = 0;
-    for (std::uint8_t m : mark) bandSize += m == kBand;
-  }
+  for (int attempt = 0; options.coarsenAboveBandPoints > 0 && banded.size > options.coarsenAboveBandPoints && attempt < 8;
+       ++attempt)
+    banded = bandAt(soup, banded.grid.h * std::sqrt(double(banded.size) / double(options.coarsenAboveBandPoints)) * 1.02,
+                    options);
+  ScalarGrid& grid = banded.grid;
+  std::vector<std::uint8_t>& mark = banded.mark;
+  const std::size_t bandSize = banded.size;
+  const double bandWidth = banded.width;
   // Checked before any distance is taken: that pass costs microseconds a point (the grid's own limit lets a
   // long thin mesh through, whose band is nearly all of it).
   if (bandSize > options.maxBandPoints)
