@@ -123,9 +123,9 @@ void MainWindow::waitImport() {
   QCoreApplication::processEvents();  // delivers finished()
 }
 
-// Cancel gives the window back at once; the worker stops at the repair's next check (between its stages,
-// and between slices of the remesh's band: well under a second), and whatever it returns is discarded.
-// Reading the file is not interrupted.
+// Cancel gives the window back at once; the worker stops at the repair's next check (RepairOptions::progress:
+// within a second in the remesh's band, at the end of a later stage otherwise) and whatever it returns is
+// discarded. Reading the file is not interrupted.
 void MainWindow::cancelImport() {
   if (!importWatcher_.isRunning()) return;
   importCancelled_ = true;

@@ -222,7 +222,7 @@ TEST(Repair, ReportsProgressAndStopsWhenCancelled) {
     repairMesh(boxes, options);
     FAIL() << "expected the repair to stop";
   } catch (const RepairCancelled& e) {
-    EXPECT_EQ(e.stage(), "remesh: inside and outside near the surface");
+    EXPECT_EQ(e.stage(), "remesh: winding-number tree");  // the remesh's first check
     EXPECT_NE(std::string(e.what()).find("cancelled"), std::string::npos);
   }
 }

@@ -11,13 +11,15 @@ Vec3 centroid(const Vec3& a, const Vec3& b, const Vec3& c) { return (a + b + c) 
 
 FastWindingNumber::FastWindingNumber(const TriangleMesh& mesh) {
   if (mesh.triangles.empty()) return;
+  if (mesh.triangles.size() >= std::size_t(0xffffffffu))
+    throw std::length_error("FastWindingNumber: more triangles than 32-bit indices address");
   std::vector<Corners> triangles;
   triangles.reserve(mesh.triangles.size());
   for (const Triangle& t : mesh.triangles)
     triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
   std::vector<std::uint32_t> order(triangles.size());
   for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  nodes_.reserve(2 * triangles.size() / kLeafSize + 2);
+  nodes_.reserve(triangles.size() / 2 + 2);  // leaves hold 4 to 8 triangles
   corners_.reserve(triangles.size());
   build(order, 0, std::uint32_t(order.size()), triangles);
 }

@@ -1,6 +1,7 @@
 #include "reamsim/mesh/Repair.h"
 
 #include <cstdio>
+#include <exception>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -21,6 +22,19 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
   RepairResult result;
   RepairReport& rep = result.report;
   const RepairProgress& progress = options.progress;
+  // "done" on every return, so that a caller's progress display can close (not while an exception
+  // unwinds: the callback may throw to cancel).
+  struct Done {
+    const RepairProgress& progress;
+    int exceptions = std::uncaught_exceptions();
+    ~Done() {
+      if (!progress || std::uncaught_exceptions() != exceptions) return;
+      try {
+        progress(1.0, "done");
+      } catch (...) {  // a cancel asked for now comes too late to matter: the work is done
+      }
+    }
+  } done{progress};
   reportRepairProgress(progress, 0.0, 0.05, 0.0, "validation");
   rep.before = validateMesh(input);
   if (rep.before.isCleanSolid()) {
@@ -99,7 +113,6 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
   result.mesh = std::move(remesh.mesh);
   reportRepairProgress(progress, 0.9, 1.0, 0.0, "validation of the result");
   rep.after = validateMesh(result.mesh);
-  if (progress) progress(1.0, "done");  // informational: nothing is left to cancel
   return result;
 }
 

@@ -20,10 +20,11 @@ namespace {
 enum : std::uint8_t { kFar = 0, kBand = 1 };
 
 // Inside where the winding number is at least ½. The tree's value (beta 2) was within 0.04 of the direct sum
-// on every mesh measured (tests/mesh/test_winding_number.cpp); where it lies within kAmbiguous of ½ (near
-// holes and overlaps) the point is decided again, by the direct sum on meshes small enough for it to be
-// cheap and otherwise by the tree at beta 8, so that the remesh decides as the direct sum would. `terms`
-// counts the work (solid angles and cluster expansions).
+// on the meshes measured (tests/mesh/test_winding_number.cpp: boxes, dirty boxes, the bundled scapula);
+// where it lies within kAmbiguous of ½ (near holes and overlaps) the point is decided again: by the direct
+// sum on meshes small enough for it to be cheap (the decision is then the direct sum's wherever the tree is
+// within 0.1 of it), otherwise by the tree at beta 8 (within 0.005 on the scapula). `terms` counts the work
+// (solid angles and cluster expansions).
 constexpr double kAmbiguous = 0.1;
 constexpr std::size_t kDirectSumTriangles = 20'000;
 bool insideSoup(const FastWindingNumber& winding, const TriangleMesh& soup, const Vec3& p, std::size_t* terms = nullptr) {
@@ -138,6 +139,13 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
 
   Banded banded = bandAt(soup, options.voxelMm, options);
   const std::size_t requestedBand = banded.size;
+  // Checked before any distance is taken (that pass costs microseconds a point; the grid's own limit lets a
+  // long thin mesh through, whose band is nearly all of it), and at the grid asked for, before any
+  // coarsening: a band this large means wrong units or a stray vertex far away, which a coarser grid would hide.
+  if (requestedBand > options.maxBandPoints)
+    throw std::invalid_argument("remesh band of " + std::to_string(requestedBand) + " grid points near the surface exceeds the limit of " +
+                                std::to_string(options.maxBandPoints) + " (" + extentText(computeBounds(soup), banded.grid.h) +
+                                "); check the mesh's units, or use a larger voxel size");
   // A band beyond the budget asks for a coarser grid: it grows as the surface's area over h², and the
   // output (about two triangles a band point) with it.
   for (int attempt = 0; options.coarsenAboveBandPoints > 0 && banded.size > options.coarsenAboveBandPoints && attempt < 8;
@@ -148,12 +156,6 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
   std::vector<std::uint8_t>& mark = banded.mark;
   const std::size_t bandSize = banded.size;
   const double bandWidth = banded.width;
-  // Checked before any distance is taken: that pass costs microseconds a point (the grid's own limit lets a
-  // long thin mesh through, whose band is nearly all of it).
-  if (bandSize > options.maxBandPoints)
-    throw std::invalid_argument("remesh band of " + std::to_string(bandSize) + " grid points near the surface exceeds the limit of " +
-                                std::to_string(options.maxBandPoints) + " (" + extentText(computeBounds(soup), grid.h) +
-                                "); check the mesh's units, or use a larger voxel size");
   std::vector<std::size_t> band;
   band.reserve(bandSize);
   for (std::size_t i = 0; i < mark.size(); ++i)
@@ -161,6 +163,7 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
 
   // The winding number's cost a point depends on the mesh's shape (how much of it is near), so it is
   // measured on a sample of the band before the band is evaluated.
+  reportRepairProgress(options.progress, 0.0, 0.0, 0.0, "remesh: winding-number tree");
   const FastWindingNumber winding(soup);
   std::size_t sampledTerms = 0, sampled = 0;
   const std::size_t step = std::max<std::size_t>(1, band.size() / 512);
@@ -178,6 +181,7 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
   grid.value.assign(grid.size(), 0.0);
 
   const auto bandStart = std::chrono::steady_clock::now();
+  reportRepairProgress(options.progress, 0.0, 0.0, 0.0, "remesh: distance tree");
   DistanceOracle oracle(soup);
   auto sample = [&](std::size_t b) {
     const std::size_t idx = band[b];

@@ -18,9 +18,11 @@ struct RepairOptions {
   std::size_t maxHoleBoundaryEdges = 40;  // holes with at most this many edges are triangulated
   bool allowRemesh = true;
   RemeshOptions remesh;
-  // Stages and fractions of the whole repair (the remesh's included); returning false stops the repair at
-  // its next check with RepairCancelled. Checks lie between stages and, in the remesh, between slices of
-  // its band; a validation or a decimation runs to its end.
+  // Stages and fractions of the whole repair (the remesh's included), and (1.0, "done") on every return;
+  // returning false stops the repair at its next check with RepairCancelled. Checks lie between stages and,
+  // in the remesh, between slices of its band (a second or less); the stages after the band (marching
+  // tetrahedra, the distances to the input, a decimation, the final validation) each run to their end:
+  // seconds for a result of millions of triangles.
   RepairProgress progress;
 };
 
