@@ -204,9 +204,14 @@ ImportResult importBone(const CtVolume& volume, const ImportOptions& o, const Pr
   });
 
   if (!rep.validation.isCleanSolid()) {
-    stages.run("repair", 1.0, 1.0, [&](const detail::Tick& tick) {
-      RepairOptions repairOptions = importRepairOptions();  // the tick throws ImportCancelled when cancelled
-      repairOptions.progress = [&tick](double f, const std::string&) { tick(f); return true; };
+    stages.run("repair", 1.0, 1.0, [&](const detail::Tick&) {
+      // The repair is rare here (the pipeline's own surface is closed) and has no share of the bar, so its
+      // progress shows as the stage's name ("repair: remesh: …"); a cancel throws ImportCancelled from it.
+      RepairOptions repairOptions = importRepairOptions();
+      repairOptions.progress = [&stages](double, const std::string& stage) {
+        stages.report("repair: " + stage, 1.0);
+        return true;
+      };
       RepairResult r = repairMesh(mesh, repairOptions);
       rep.repaired = true;
       rep.notes.push_back("the mesh was not a clean solid; repairMesh: " +
