@@ -12,6 +12,7 @@
 #include <numeric>
 #include <random>
 
+#include "BenchStats.h"
 #include "CliArgs.h"
 #include "Commands.h"
 #include "HandHeldPath.h"
@@ -39,13 +40,6 @@ constexpr double kPi = 3.14159265358979323846;
 
 double microsSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t i = std::min(v.size() - 1, static_cast<std::size_t>(std::ceil(q * double(v.size())) - 1));
-  return v[q <= 0 ? 0 : i];
 }
 
 // `within_20us`: how many samples meet the 20 µs target. A median near the line moves with the

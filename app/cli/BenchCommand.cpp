@@ -12,11 +12,12 @@ std::string allocatorName() {
 }
 
 int runBench(const std::vector<std::string>& args) {
-  if (args.empty()) throw UsageError("bench needs a kind: cut, collision");
+  if (args.empty()) throw UsageError("bench needs a kind: cut, collision, winding");
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (args[0] == "cut") return runBenchCut(rest);
   if (args[0] == "collision") return runBenchCollision(rest);
-  throw UsageError("unknown bench kind '" + args[0] + "' (known: cut, collision)");
+  if (args[0] == "winding") return runBenchWinding(rest);
+  throw UsageError("unknown bench kind '" + args[0] + "' (known: cut, collision, winding)");
 }
 
 }  // namespace reamsim::cli

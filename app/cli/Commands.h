@@ -22,6 +22,7 @@ int runImportCt(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);     // bench KIND: dispatch (BenchCommand.cpp)
 int runBenchCut(const std::vector<std::string>& args);  // bench cut (BenchCutCommand.cpp)
 int runBenchCollision(const std::vector<std::string>& args);  // bench collision (BenchCollisionCommand.cpp)
+int runBenchWinding(const std::vector<std::string>& args);    // bench winding (BenchWindingCommand.cpp)
 // The allocator serving malloc in this process, which the benchmarks report (BenchCommand.cpp).
 std::string allocatorName();
 

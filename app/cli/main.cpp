@@ -35,6 +35,7 @@ const char* kUsageText =
     "            [--cleanup-deviation-mm MM] [--cleanup-min-edge-mm MM] [--cleanup-min-angle-deg DEG]\n"
     "            [--check-every N] [--table-5-1] [--loop] [--export-sequence DIR] [--json]\n"
     "      time the local CSG engine on a reaming path; one JSON object (docs/BENCHMARKS.md)\n"
+    "  bench winding --mesh MESH|default [--units ...] [--points N] [--seed S] [--json]\n"
     "  bench collision --bone MESH|default [--reamer PRESET|MESH [--solid-only]] [--segments N --rings M] [--poses N] [--cut-site glenoid|random] [--json]\n"
     "      time the collision queries vs the thesis brute force and CGAL AABB_tree; one JSON object (docs/COLLISION.md)\n"
     "\n"

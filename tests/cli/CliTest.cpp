@@ -55,6 +55,28 @@ TEST(Cli, RepairShowsProgressOnATerminalOnly) {
   EXPECT_EQ(piped.out.find('\r'), std::string::npos);
 }
 
+TEST(Cli, BenchWindingComparesTheTreeWithTheDirectSum) {
+  const CliRun r = run("bench winding --mesh " + kResources + "/bones/scapula_R_opensim.vtp --points 200 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+  EXPECT_EQ(j.at("bench"), "winding");
+  EXPECT_EQ(j.at("triangles"), 1543);
+  EXPECT_EQ(j.at("points"), 200);
+  EXPECT_EQ(j.at("direct").at("terms_per_point"), 1543);
+  for (const char* k : {"tree_beta2", "tree_beta8"}) {
+    const nlohmann::json& t = j.at(k);
+    EXPECT_EQ(t.at("sign_disagreements"), 0) << k;
+    EXPECT_LT(t.at("max_abs_error").get<double>(), 0.05) << k;
+    EXPECT_GT(t.at("terms_per_point").get<double>(), 0.0) << k;
+    EXPECT_GT(t.at("median_us").get<double>(), 0.0) << k;
+  }
+  // The tree sums fewer terms than the direct sum, and fewer at beta 2 than at beta 8 (counts, not times).
+  EXPECT_LT(j.at("tree_beta2").at("terms_per_point").get<double>(), j.at("tree_beta8").at("terms_per_point").get<double>());
+  EXPECT_LT(j.at("tree_beta8").at("terms_per_point").get<double>(), 1543.0);
+  EXPECT_LT(j.at("tree_beta8").at("max_abs_error").get<double>(), j.at("tree_beta2").at("max_abs_error").get<double>());
+  EXPECT_EQ(run("bench winding --mesh " + kResources + "/bones/scapula_R_opensim.vtp --points 3").exitCode, 2);
+}
+
 TEST(Cli, InfoReportsTheBundledScapula) {
   const CliRun r = run("info " + kResources + "/bones/scapula_R_opensim.vtp --json");
   ASSERT_EQ(r.exitCode, 0) << r.out;
