@@ -15,6 +15,7 @@
 #include "BenchStats.h"
 #include "CliArgs.h"
 #include "Commands.h"
+#include "DefaultCase.h"
 #include "HandHeldPath.h"
 #include "MachineSpeed.h"
 #include "reamsim/collision/BoneCollider.h"
@@ -26,7 +27,6 @@
 #include "reamsim/csg/ReferenceSubtractor.h"
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/mesh/MeshIO.h"
-#include "reamsim/ream/DefaultCase.h"
 #include "reamsim/tools/ReamerFile.h"
 #include "reamsim/tools/ReamerGeometry.h"
 #include "reamsim/tools/ReamerPresets.h"
@@ -323,18 +323,12 @@ int runBenchCollision(const std::vector<std::string>& args) {
   if (handApproaches < 0) throw UsageError("--hand-held-approaches must be 0 (none) or more");
 
   // Bone: used as given (no repair): the bench measures the mesh it is pointed at.
-  TriangleMesh mesh;
+  std::vector<std::string> notes;
+  const TriangleMesh mesh = benchMesh(boneArg, a.value("units", "auto"), &notes);
+  for (const std::string& note : notes) std::fprintf(stderr, "note: %s: %s\n", boneArg.c_str(), note.c_str());
   std::string label = a.value("label", boneArg);
-  if (boneArg == "default") {
-    mesh = loadDefaultBone().mesh;
-    if (!a.has("label")) label = "bundled default scapula (repaired), resources/" + std::string(kDefaultBoneFile);
-  } else {
-    ReadOptions options;
-    options.units = parseUnits(a.value("units", "auto"));
-    LoadedMesh m = readMesh(boneArg, options);
-    for (const std::string& note : m.notes) std::fprintf(stderr, "note: %s: %s\n", boneArg.c_str(), note.c_str());
-    mesh = std::move(m.mesh);
-  }
+  if (boneArg == "default" && !a.has("label"))
+    label = "bundled default scapula (repaired), resources/" + std::string(kDefaultBoneFile);
   if (mesh.triangles.empty()) throw InputError(boneArg, "the mesh has no triangles");
   const std::string reamerArg = a.value("reamer", "glenoid-36-R30");
   if ((a.has("segments") || a.has("rings")) && std::filesystem::is_regular_file(reamerArg))

@@ -18,6 +18,7 @@
 
 #include "CliArgs.h"
 #include "Commands.h"
+#include "DefaultCase.h"
 #include "MachineSpeed.h"
 #include "NodePeers.h"
 #include "ReamedSurfaceJson.h"
@@ -30,7 +31,6 @@
 #include "reamsim/mesh/TriangleMesh.h"
 #include "reamsim/ream/Approach.h"
 #include "reamsim/ream/CutLogIO.h"
-#include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/LocalCutBackend.h"
 #include "reamsim/ream/ReamController.h"
 #include "reamsim/ream/ReamEngine.h"
@@ -514,14 +514,7 @@ int runBenchCut(const std::vector<std::string>& args) {
   if (steps < 1 || subdivisions < 0 || subdivisions > 3 || checkEvery < 0)
     throw UsageError("--steps >= 1, --subdivide 0..3, --check-every >= 0");
 
-  TriangleMesh bone;
-  if (boneArg == "default") {
-    bone = loadDefaultBone().mesh;
-  } else {
-    ReadOptions options;
-    options.units = parseUnits(a.value("units", "auto"));
-    bone = readMesh(boneArg, options).mesh;  // as is: the local engine takes dirty bones
-  }
+  TriangleMesh bone = benchMesh(boneArg, a.value("units", "auto"));  // as is: the local engine takes dirty bones
   // --merge-coincident: the first step of `ream`'s repair alone (vertices at one position, another index,
   // made one), so a CT mesh written strip by strip is cut as the application sees it; the peers get the
   // merged mesh too. Nothing else is repaired: borders and self-intersections stay.

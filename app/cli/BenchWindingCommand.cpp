@@ -55,14 +55,9 @@ int runBenchWinding(const std::vector<std::string>& args) {
   const std::string meshArg = a.required("mesh");
   const std::size_t n = static_cast<std::size_t>(a.number("points", 500));
   if (n < 10) throw UsageError("--points must be at least 10");
-  TriangleMesh mesh;
-  if (meshArg == "default") {
-    mesh = loadDefaultBone().mesh;
-  } else {
-    ReadOptions options;
-    options.units = parseUnits(a.value("units", "auto"));
-    mesh = readMesh(meshArg, options).mesh;
-  }
+  std::vector<std::string> notes;
+  const TriangleMesh mesh = benchMesh(meshArg, a.value("units", "auto"), &notes);
+  for (const std::string& note : notes) std::fprintf(stderr, "note: %s: %s\n", meshArg.c_str(), note.c_str());
   if (mesh.triangles.empty()) throw InputError(meshArg, "the mesh has no triangles");
   const std::vector<Vec3> points = samplePoints(mesh, n, static_cast<std::uint64_t>(a.number("seed", 1)));
 
