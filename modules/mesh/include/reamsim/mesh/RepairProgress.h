@@ -1,22 +1,31 @@
 #pragma once
-// Progress and cancellation of a repair (and of the volumetric remesh inside it), which can take minutes
-// on a large dirty mesh. The callback is called from the calling thread with the fraction done (0..1) and
-// the stage's name; returning false stops the work at its next check with RepairCancelled.
+// Progress and cancellation of long operations: a repair (and the volumetric remesh inside it), which can
+// take minutes on a large dirty mesh, and the CT import (reamsim/ctimport/Progress.h names the same types).
+// The callback is called from the calling thread with the fraction done (0..1) and the stage's name;
+// returning false stops the work at its next check with an exception derived from StageCancelled.
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace reamsim {
 
-using RepairProgress = std::function<bool(double fraction, const std::string& stage)>;
+using ProgressCallback = std::function<bool(double fraction, const std::string& stage)>;
+using RepairProgress = ProgressCallback;
 
-class RepairCancelled : public std::runtime_error {
+// Thrown where a progress callback asked to stop; says at which stage.
+class StageCancelled : public std::runtime_error {
  public:
-  explicit RepairCancelled(const std::string& stage) : std::runtime_error("repair cancelled during " + stage), stage_(stage) {}
+  StageCancelled(const std::string& what, std::string stage) : std::runtime_error(what), stage_(std::move(stage)) {}
   const std::string& stage() const { return stage_; }
 
  private:
   std::string stage_;
+};
+
+class RepairCancelled : public StageCancelled {
+ public:
+  explicit RepairCancelled(const std::string& stage) : StageCancelled("repair cancelled during " + stage, stage) {}
 };
 
 // Reports `fraction` of a stage that spans [begin, end] of the whole; throws RepairCancelled when asked to stop.
