@@ -118,7 +118,7 @@ class MainWindow : public QMainWindow {
   bool confirmDiscardChanges(const QString& action);
   bool saveBoneAndCutLogInteractive();  // "Save" in that question: the bone, and its cut log beside it
   void importFinished();
-  void showImportProgress(int permille, const QString& stage);
+  void showImportProgress(double fraction, const QString& stage);
   void updateStatus();
   void updateTitle();
   void addRecent(const QString& path);

@@ -9,7 +9,6 @@
 #include <QFileInfo>
 #include <QMenu>
 #include <QMessageBox>
-#include <QMetaObject>
 #include <QMimeData>
 #include <QProgressBar>
 #include <QPushButton>
@@ -18,7 +17,6 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <atomic>
 #include <cmath>
-#include <cstdlib>
 #include <utility>
 
 #include "BonePlacement.h"
@@ -28,6 +26,7 @@
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/tools/ReamerPresets.h"
+#include "reamsim/ui/ProgressRelay.h"
 
 namespace reamsim::ui {
 namespace {
@@ -79,25 +78,9 @@ void MainWindow::openFile(const QString& path, bool repair) {
   importCancel_->setVisible(true);
   const MeshImportInterface* importer = plugins_.meshImport();
   const std::string file = path.toStdString();
-  auto stop = std::make_shared<std::atomic<bool>>(false);
-  importStop_ = stop;
-  // Called on the worker only: posts what changed (a new stage, or half a per cent) to the window and
-  // tells the repair whether to go on. The window outlives the worker (its destructor stops and waits).
-  struct Relay {
-    int permille = -1000;
-    std::string stage;
-  };
-  auto relay = std::make_shared<Relay>();
-  RepairProgress progress = [this, stop, relay](double fraction, const std::string& stage) {
-    const int permille = int(std::lround(fraction * 1000));
-    if (stage != relay->stage || std::abs(permille - relay->permille) >= 5) {
-      relay->stage = stage;
-      relay->permille = permille;
-      const QString text = QString::fromStdString(stage);
-      QMetaObject::invokeMethod(this, [this, permille, text] { showImportProgress(permille, text); }, Qt::QueuedConnection);
-    }
-    return !stop->load();
-  };
+  importStop_ = std::make_shared<std::atomic<bool>>(false);
+  const RepairProgress progress = progressRelay(
+      this, [this](double fraction, const QString& stage) { showImportProgress(fraction, stage); }, importStop_);
   importWatcher_.setFuture(QtConcurrent::run([importer, file, repair, progress] {
     ImportOutcome out;
     try {
@@ -111,10 +94,10 @@ void MainWindow::openFile(const QString& path, bool repair) {
   }));
 }
 
-void MainWindow::showImportProgress(int permille, const QString& stage) {
+void MainWindow::showImportProgress(double fraction, const QString& stage) {
   if (!importWatcher_.isRunning() || importCancelled_) return;
   importBusy_->setRange(0, 1000);
-  importBusy_->setValue(permille);
+  importBusy_->setValue(int(std::lround(fraction * 1000)));
   statusBar()->showMessage(tr("Importing %1: %2").arg(QFileInfo(importPath_).fileName(), stage));
 }
 

@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include "CliArgs.h"
-#include "TerminalProgress.h"
 #include "Commands.h"
 #include "ReamedSurfaceJson.h"
+#include "TerminalProgress.h"
 #include "reamsim/core/Document.h"
 #include "reamsim/core/PlanNode.h"
 #include "reamsim/mesh/MeshError.h"

@@ -1,10 +1,8 @@
 #include "VolumeJobs.h"
 
-#include <QMetaObject>
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <mutex>
 #include <vector>
 
 #include "reamsim/ctimport/Preview.h"
@@ -70,35 +68,6 @@ ImportOutcome runImport(const VolumePtr& volume, const ct::ImportOptions& option
     out.error = QString::fromStdString(e.what());
   }
   return out;
-}
-
-ct::ProgressCallback progressRelay(QObject* receiver, std::function<void(double, QString)> apply,
-                                   std::shared_ptr<std::atomic<bool>> cancel) {
-  struct State {
-    std::mutex mutex;
-    int lastPermille = -1000;
-    std::string lastStage;
-  };
-  auto state = std::make_shared<State>();
-  QPointer<QObject> target(receiver);
-  return [state, target, apply = std::move(apply), cancel](double fraction, const std::string& stage) {
-    const int permille = int(std::lround(fraction * 1000));
-    bool post = false;
-    {
-      std::lock_guard<std::mutex> lock(state->mutex);
-      if (stage != state->lastStage || std::abs(permille - state->lastPermille) >= 5) {
-        state->lastStage = stage;
-        state->lastPermille = permille;
-        post = true;
-      }
-    }
-    // A queued call to a deleted receiver is dropped by Qt; `target` only avoids posting to one.
-    if (post && target)
-      QMetaObject::invokeMethod(
-          target.data(), [apply, fraction, s = QString::fromStdString(stage)] { apply(fraction, s); },
-          Qt::QueuedConnection);
-    return !cancel->load();
-  };
 }
 
 }  // namespace reamsim::ui::ct_import

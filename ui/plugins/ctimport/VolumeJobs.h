@@ -13,6 +13,7 @@
 #include "reamsim/ctimport/CtImport.h"
 #include "reamsim/ctimport/CtVolume.h"
 #include "reamsim/ctimport/Progress.h"
+#include "reamsim/ui/ProgressRelay.h"  // progressRelay
 
 namespace reamsim::ui::ct_import {
 
@@ -41,11 +42,5 @@ struct ImportOutcome {
   QString cancelledStage;  // non-empty: cancelled by the user during this stage
 };
 ImportOutcome runImport(const VolumePtr& volume, const ct::ImportOptions& options, const ct::ProgressCallback& progress);
-
-// A ct::ProgressCallback for a worker: forwards (fraction, stage) to `apply` on the receiver's thread,
-// at most every 0.5 % or on a new stage (the UI is not flooded), and cancels when `cancel` is set.
-// Safe if the receiver is gone by the time an update arrives (it is then dropped).
-ct::ProgressCallback progressRelay(QObject* receiver, std::function<void(double, QString)> apply,
-                                   std::shared_ptr<std::atomic<bool>> cancel);
 
 }  // namespace reamsim::ui::ct_import

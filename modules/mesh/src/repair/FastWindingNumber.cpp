@@ -6,26 +6,42 @@
 namespace reamsim {
 namespace {
 constexpr std::uint32_t kLeafSize = 8;
-Vec3 centroid(const Vec3& a, const Vec3& b, const Vec3& c) { return (a + b + c) / 3.0; }
 }  // namespace
+
+// Computed once a triangle: the build sums them at every level of the tree.
+struct FastWindingNumber::Facet {
+  Corners corners;
+  Vec3 areaVector;     // ½ (b − a) × (c − a)
+  double area = 0;     // its length
+  Vec3 cornerSum;      // a + b + c: what the median split orders by
+  Vec3 centroid;       // cornerSum / 3
+};
 
 FastWindingNumber::FastWindingNumber(const TriangleMesh& mesh) {
   if (mesh.triangles.empty()) return;
   if (mesh.triangles.size() >= std::size_t(0xffffffffu))
     throw std::length_error("FastWindingNumber: more triangles than 32-bit indices address");
-  std::vector<Corners> triangles;
-  triangles.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles)
-    triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
-  std::vector<std::uint32_t> order(triangles.size());
+  std::vector<Facet> facets;
+  facets.reserve(mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles) {
+    Facet f;
+    f.corners = {mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
+    const Corners& c = f.corners;
+    f.areaVector = cross(c.b - c.a, c.c - c.a) * 0.5;
+    f.area = norm(f.areaVector);
+    f.cornerSum = c.a + c.b + c.c;
+    f.centroid = f.cornerSum / 3.0;
+    facets.push_back(f);
+  }
+  std::vector<std::uint32_t> order(facets.size());
   for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  nodes_.reserve(triangles.size() / 2 + 2);  // leaves hold 4 to 8 triangles
-  corners_.reserve(triangles.size());
-  build(order, 0, std::uint32_t(order.size()), triangles);
+  nodes_.reserve(facets.size() / 2 + 2);  // leaves hold 4 to 8 triangles
+  corners_.reserve(facets.size());
+  build(order, 0, std::uint32_t(order.size()), facets);
 }
 
 std::uint32_t FastWindingNumber::build(std::vector<std::uint32_t>& order, std::uint32_t begin, std::uint32_t end,
-                                       const std::vector<Corners>& triangles) {
+                                       const std::vector<Facet>& facets) {
   const std::uint32_t index = std::uint32_t(nodes_.size());
   nodes_.emplace_back();
   // The cluster's moments, from its own triangles (O(n log n) in all; a build is a small part of a remesh).
@@ -33,49 +49,39 @@ std::uint32_t FastWindingNumber::build(std::vector<std::uint32_t>& order, std::u
   double area = 0;
   Vec3 weighted, plain;
   for (std::uint32_t i = begin; i < end; ++i) {
-    const Corners& t = triangles[order[i]];
-    const Vec3 n = cross(t.b - t.a, t.c - t.a) * 0.5;
-    const double w = norm(n);
-    const Vec3 c = centroid(t.a, t.b, t.c);
-    node.areaVector += n;
-    weighted += c * w;
-    plain += c;
-    area += w;
+    const Facet& f = facets[order[i]];
+    node.areaVector += f.areaVector;
+    weighted += f.centroid * f.area;
+    plain += f.centroid;
+    area += f.area;
   }
   node.center = area > 0 ? weighted / area : plain / double(end - begin);
   for (std::uint32_t i = begin; i < end; ++i) {
-    const Corners& t = triangles[order[i]];
-    const Vec3 n = cross(t.b - t.a, t.c - t.a) * 0.5;
-    const Vec3 d = centroid(t.a, t.b, t.c) - node.center;
+    const Facet& f = facets[order[i]];
+    const Vec3 d = f.centroid - node.center;
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) node.moment[3 * r + c] += n[r] * d[c];
-    for (const Vec3* p : {&t.a, &t.b, &t.c}) node.radius = std::max(node.radius, norm(*p - node.center));
+      for (int c = 0; c < 3; ++c) node.moment[3 * r + c] += f.areaVector[r] * d[c];
+    for (const Vec3* p : {&f.corners.a, &f.corners.b, &f.corners.c})
+      node.radius = std::max(node.radius, norm(*p - node.center));
   }
 
   if (end - begin <= kLeafSize) {
     node.first = std::uint32_t(corners_.size());
     node.count = end - begin;
-    for (std::uint32_t i = begin; i < end; ++i) corners_.push_back(triangles[order[i]]);
+    for (std::uint32_t i = begin; i < end; ++i) corners_.push_back(facets[order[i]].corners);
     nodes_[index] = node;
     return index;
   }
   // Median split along the longest axis of the centroids' bounds.
   Bounds b;
-  for (std::uint32_t i = begin; i < end; ++i) {
-    const Corners& t = triangles[order[i]];
-    b.add(centroid(t.a, t.b, t.c));
-  }
+  for (std::uint32_t i = begin; i < end; ++i) b.add(facets[order[i]].centroid);
   const Vec3 extent = b.max - b.min;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   const std::uint32_t mid = begin + (end - begin) / 2;
   std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                   [&](std::uint32_t i, std::uint32_t j) {
-                     const Corners& s = triangles[i];
-                     const Corners& t = triangles[j];
-                     return s.a[axis] + s.b[axis] + s.c[axis] < t.a[axis] + t.b[axis] + t.c[axis];
-                   });
-  node.left = build(order, begin, mid, triangles);
-  node.right = build(order, mid, end, triangles);
+                   [&](std::uint32_t i, std::uint32_t j) { return facets[i].cornerSum[axis] < facets[j].cornerSum[axis]; });
+  node.left = build(order, begin, mid, facets);
+  node.right = build(order, mid, end, facets);
   nodes_[index] = node;
   return index;
 }

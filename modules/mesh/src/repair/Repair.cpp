@@ -35,7 +35,7 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
       }
     }
   } done{progress};
-  reportRepairProgress(progress, 0.0, 0.05, 0.0, "validation");
+  reportRepairProgress(progress, 0.0, "validation");
   rep.before = validateMesh(input);
   if (rep.before.isCleanSolid()) {
     result.mesh = input;
@@ -44,7 +44,7 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
     return result;
   }
 
-  reportRepairProgress(progress, 0.05, 0.1, 0.0, "topological repair");
+  reportRepairProgress(progress, 0.05, "topological repair");
   SoupRepairResult soup = repairSoupTopology(input, options.maxHoleBoundaryEdges);
   rep.mergedVertices = soup.verticesRemoved;
   rep.removedFaces = soup.facesRemoved;
@@ -67,7 +67,7 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
   if (soup.flippedToOutward) rep.actions.push_back("all faces flipped so that normals point outward");
 
   result.mesh = std::move(soup.mesh);
-  reportRepairProgress(progress, 0.1, 0.15, 0.0, "validation");
+  reportRepairProgress(progress, 0.1, "validation");
   rep.after = validateMesh(result.mesh);
   if (rep.after.isCleanSolid() || !options.allowRemesh) {
     if (!rep.after.isCleanSolid())
@@ -111,7 +111,7 @@ RepairResult repairMesh(const TriangleMesh& input, const RepairOptions& options)
                                "to the result: max %.3f mm, mean %.3f mm",
                                s.maxOutputToInputMm, s.meanOutputToInputMm, s.maxInputToOutputMm, s.meanInputToOutputMm));
   result.mesh = std::move(remesh.mesh);
-  reportRepairProgress(progress, 0.9, 1.0, 0.0, "validation of the result");
+  reportRepairProgress(progress, 0.9, "validation of the result");
   rep.after = validateMesh(result.mesh);
   return result;
 }

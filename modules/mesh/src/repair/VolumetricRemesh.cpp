@@ -163,25 +163,26 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
 
   // The winding number's cost a point depends on the mesh's shape (how much of it is near), so it is
   // measured on a sample of the band before the band is evaluated.
-  reportRepairProgress(options.progress, 0.0, 0.0, 0.0, "remesh: winding-number tree");
+  reportRepairProgress(options.progress, 0.0, "remesh: winding-number tree");
   const FastWindingNumber winding(soup);
   std::size_t sampledTerms = 0, sampled = 0;
   const std::size_t step = std::max<std::size_t>(1, band.size() / 512);
   for (std::size_t b = 0; b < band.size(); b += step, ++sampled) (void)insideSoup(winding, soup, grid.point(band[b]), &sampledTerms);
-  const double terms = sampled ? double(sampledTerms) / double(sampled) * double(band.size()) : 0.0;
+  const double termsPerPoint = sampled ? double(sampledTerms) / double(sampled) : 0.0;
+  const double terms = termsPerPoint * double(band.size());
   if (terms > options.maxWindingTerms) {
     char buf[320];
     std::snprintf(buf, sizeof buf,
                   "remesh would sum about %.3g winding-number terms (%zu grid points near the surface, %.0f terms a "
                   "point over %zu triangles), over the limit of %.3g: use a larger voxel size, or repair the mesh "
                   "elsewhere",
-                  terms, band.size(), terms / double(band.size()), soup.triangles.size(), options.maxWindingTerms);
+                  terms, band.size(), termsPerPoint, soup.triangles.size(), options.maxWindingTerms);
     throw std::invalid_argument(buf);
   }
   grid.value.assign(grid.size(), 0.0);
 
   const auto bandStart = std::chrono::steady_clock::now();
-  reportRepairProgress(options.progress, 0.0, 0.0, 0.0, "remesh: distance tree");
+  reportRepairProgress(options.progress, 0.0, "remesh: distance tree");
   DistanceOracle oracle(soup);
   auto sample = [&](std::size_t b) {
     const std::size_t idx = band[b];
@@ -196,37 +197,36 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
   // In slices, so that a cancel is seen within a fraction of a second (a slice at 400k: ~0.5 s on two cores).
   constexpr std::size_t kSlice = std::size_t(1) << 16;
   for (std::size_t first = 0; first < band.size(); first += kSlice) {
-    reportRepairProgress(options.progress, 0.0, 0.6, double(first) / double(band.size()),
+    reportRepairProgress(options.progress, 0.6 * double(first) / double(band.size()),
                          "remesh: inside and outside near the surface");
     tbb::parallel_for(first, std::min(band.size(), first + kSlice), sample);
   }
-  reportRepairProgress(options.progress, 0.6, 0.6, 0.0, "remesh: inside and outside away from the surface");
+  reportRepairProgress(options.progress, 0.6, "remesh: inside and outside away from the surface");
   signFarRegions(winding, soup, grid, mark, 2 * bandWidth);
-  reportRepairProgress(options.progress, 0.65, 0.65, 0.0, "remesh: marching tetrahedra");
+  reportRepairProgress(options.progress, 0.65, "remesh: marching tetrahedra");
 
   RemeshResult result;
-  result.stats.requestedVoxelMm = options.voxelMm;
-  result.stats.requestedBandPoints = requestedBand;
-  result.stats.windingTermsPerPoint = band.empty() ? 0.0 : terms / double(band.size());
-  result.stats.windingMilliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - bandStart).count();
-  result.mesh = marchingTetrahedra(grid);
   RemeshStats& s = result.stats;
+  s.windingMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - bandStart).count();
+  result.mesh = marchingTetrahedra(grid);
   s.voxelMm = grid.h;
+  s.requestedVoxelMm = options.voxelMm;
+  s.requestedBandPoints = requestedBand;
+  s.windingTermsPerPoint = termsPerPoint;
   for (int a = 0; a < 3; ++a) s.grid[a] = grid.n[a];
   s.bandPoints = 0;
   for (std::uint8_t m : mark) s.bandPoints += m == kBand;
   s.trianglesBeforeDecimation = result.mesh.triangles.size();
   if (options.targetTriangles > 0 && options.targetTriangles < result.mesh.triangles.size()) {
-    reportRepairProgress(options.progress, 0.75, 0.75, 0.0, "remesh: decimation");
+    reportRepairProgress(options.progress, 0.75, "remesh: decimation");
     decimateWithoutSelfIntersections(result.mesh, options.targetTriangles);
   }
   s.trianglesAfter = result.mesh.triangles.size();
-  reportRepairProgress(options.progress, 0.85, 0.85, 0.0, "remesh: distance to the input");
+  reportRepairProgress(options.progress, 0.85, "remesh: distance to the input");
   surfaceDistance(result.mesh, soup, s.maxOutputToInputMm, s.meanOutputToInputMm);
-  reportRepairProgress(options.progress, 0.92, 0.92, 0.0, "remesh: distance to the input");
+  reportRepairProgress(options.progress, 0.92, "remesh: distance to the input");
   surfaceDistance(soup, result.mesh, s.maxInputToOutputMm, s.meanInputToOutputMm);
-  reportRepairProgress(options.progress, 1.0, 1.0, 0.0, "remesh: done");
+  reportRepairProgress(options.progress, 1.0, "remesh: done");
   s.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -28,10 +28,9 @@ class RepairCancelled : public StageCancelled {
   explicit RepairCancelled(const std::string& stage) : StageCancelled("repair cancelled during " + stage, stage) {}
 };
 
-// Reports `fraction` of a stage that spans [begin, end] of the whole; throws RepairCancelled when asked to stop.
-inline void reportRepairProgress(const RepairProgress& progress, double begin, double end, double fraction,
-                                 const std::string& stage) {
-  if (progress && !progress(begin + (end - begin) * fraction, stage)) throw RepairCancelled(stage);
+// Reports `fraction` (of the whole) at `stage`; throws RepairCancelled when asked to stop.
+inline void reportRepairProgress(const RepairProgress& progress, double fraction, const std::string& stage) {
+  if (progress && !progress(fraction, stage)) throw RepairCancelled(stage);
 }
 
 }  // namespace reamsim

@@ -3,7 +3,8 @@
 // self-intersection-free surface.
 //  - inside/outside from the generalized winding number (robust to holes, flipped and overlapping
 //    faces; summed over a tree of clusters, reamsim/mesh/WindingNumber.h), distance from an AABB tree;
-//    both sampled on a regular grid of `voxelMm`, only in a narrow band around the input (the rest is labelled by connected components);
+//    both sampled on a regular grid of `voxelMm`, only in a narrow band around the input (the rest is
+//    labelled by connected components);
 //  - marching tetrahedra on the Kuhn (6-tetrahedra) subdivision of the grid: the zero set of a
 //    piecewise-linear field with no zero at the grid points is a closed 2-manifold whose triangles lie
 //    in disjoint tetrahedra, so it cannot self-intersect; crossing points are kept at least 0.1 % of an

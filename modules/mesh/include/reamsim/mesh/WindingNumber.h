@@ -6,8 +6,8 @@
 // `windingNumber` sums every triangle: exact up to rounding, O(n) a point. `FastWindingNumber` (Barill et
 // al. 2018) sums a tree instead: a cluster of triangles far from the point (farther than `beta` times its
 // radius) contributes its flux expanded about its centre (the dipole term and the first correction, from
-// the clusters' area vector and first moment), near ones are summed exactly, so a point costs O(log n) terms. The 400k CT skull's remesh band (9.3 million points) was hours by the
-// direct sum; the tree makes it seconds.
+// the cluster's area vector and first moment), near ones are summed exactly, so a point costs O(log n)
+// terms. The 400k CT skull's remesh band was hours by the direct sum; the tree makes it about a minute.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -41,8 +41,9 @@ class FastWindingNumber {
   // beta: how far (in cluster radii) a cluster must be to be expanded rather than summed. 2 is Barill's
   // default, which they pair with one more order of the expansion than this one keeps (a far cluster's
   // relative error here ~(r/d)²); measured here within 0.04 of the direct sum on boxes, dirty boxes and the
-  // bundled scapula, and within 0.005 at beta 8. Larger is closer and slower. `terms`, when given, is increased by the number of exact solid angles and
-  // cluster expansions summed. Throws std::invalid_argument for beta < 1.
+  // bundled scapula, and within 0.005 at beta 8. Larger is closer and slower. `terms`, when given, is
+  // increased by the number of exact solid angles and cluster expansions summed. Throws
+  // std::invalid_argument for beta < 1.
   double evaluate(const Vec3& p, double beta = 2.0, std::size_t* terms = nullptr) const;
   double operator()(const Vec3& p) const { return evaluate(p); }
 
@@ -60,8 +61,9 @@ class FastWindingNumber {
   struct Corners {
     Vec3 a, b, c;
   };
+  struct Facet;  // a triangle's corners and the moments the build sums (FastWindingNumber.cpp)
   std::uint32_t build(std::vector<std::uint32_t>& order, std::uint32_t begin, std::uint32_t end,
-                      const std::vector<Corners>& triangles);
+                      const std::vector<Facet>& facets);
 
   std::vector<Node> nodes_;
   std::vector<Corners> corners_;  // leaf triangles, in leaf order
