@@ -227,6 +227,40 @@ TEST(Repair, ReportsProgressAndStopsWhenCancelled) {
   }
 }
 
+// The stages after the band (marching tetrahedra, decimation, the distances to the input: seconds each at
+// millions of triangles) report inside their share of the progress and stop there when asked, not only
+// at their start.
+TEST(Repair, StopsInsideTheRemeshsLaterStagesWhenCancelled) {
+  const TriangleMesh a = test::unitBox(10, 1);
+  const TriangleMesh boxes = test::merged(a, test::translated(a, {5, 5, 5}));
+  struct Stage {
+    const char* name;
+    std::size_t targetTriangles;
+  };
+  for (const Stage& stage : {Stage{"remesh: marching tetrahedra", 0}, Stage{"remesh: decimation", 4000},
+                             Stage{"remesh: distance to the input", 0}}) {
+    SCOPED_TRACE(stage.name);
+    RepairOptions options;
+    options.remesh.voxelMm = 0.25;  // ~38,000 triangles, ~19,000 vertices
+    options.remesh.targetTriangles = stage.targetTriangles;
+    double first = -1, stoppedAt = -1;  // the stage's first report, and a later one past it
+    options.progress = [&](double f, const std::string& name) {
+      if (name != stage.name) return true;
+      if (first < 0) first = f;
+      if (f <= first) return true;
+      stoppedAt = f;
+      return false;
+    };
+    try {
+      repairMesh(boxes, options);
+      ADD_FAILURE() << "expected the repair to stop";
+    } catch (const RepairCancelled& e) {
+      EXPECT_EQ(e.stage(), stage.name);
+    }
+    EXPECT_GT(stoppedAt, first);
+  }
+}
+
 TEST(Repair, RemeshWithDecimationStaysClean) {
   const TriangleMesh a = test::unitBox(10, 1);
   RepairOptions options;

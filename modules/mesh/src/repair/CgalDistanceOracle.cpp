@@ -40,10 +40,17 @@ double DistanceOracle::distance(const Vec3& p) const {
   return std::sqrt(impl_->tree.squared_distance(K::Point_3(p.x, p.y, p.z)));
 }
 
-void surfaceDistance(const TriangleMesh& from, const TriangleMesh& to, double& maxMm, double& meanMm) {
+void surfaceDistance(const TriangleMesh& from, const TriangleMesh& to, double& maxMm, double& meanMm,
+                     const StageProgress& progress) {
+  progress.check(0);
   DistanceOracle oracle(to);
   std::vector<double> d(from.vertices.size());
-  tbb::parallel_for(std::size_t(0), d.size(), [&](std::size_t i) { d[i] = oracle.distance(from.vertices[i]); });
+  // In slices, so that a cancel is seen within a fraction of a second at millions of vertices.
+  constexpr std::size_t kSlice = std::size_t(1) << 14;
+  for (std::size_t first = 0; first < d.size(); first += kSlice) {
+    progress.check(double(first) / double(d.size()));
+    tbb::parallel_for(first, std::min(d.size(), first + kSlice), [&](std::size_t i) { d[i] = oracle.distance(from.vertices[i]); });
+  }
   maxMm = 0;
   double sum = 0;
   for (double x : d) { maxMm = std::max(maxMm, x); sum += x; }

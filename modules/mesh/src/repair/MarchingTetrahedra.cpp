@@ -45,12 +45,13 @@ void addOriented(TriangleMesh& out, std::uint32_t a, std::uint32_t b, std::uint3
 
 }  // namespace
 
-TriangleMesh marchingTetrahedra(const ScalarGrid& grid) {
+TriangleMesh marchingTetrahedra(const ScalarGrid& grid, const StageProgress& progress) {
   TriangleMesh out;
   EdgePoints edges(grid, out);
   // Cell corner c (bits x=1, y=2, z=4); the six tetrahedra are the monotone paths 0 → 7.
   static const int kTets[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
-  for (int k = 0; k + 1 < grid.n[2]; ++k)
+  for (int k = 0; k + 1 < grid.n[2]; ++k) {
+    progress.check(double(k) / double(grid.n[2]));
     for (int j = 0; j + 1 < grid.n[1]; ++j)
       for (int i = 0; i + 1 < grid.n[0]; ++i) {
         std::size_t corner[8];
@@ -93,6 +94,7 @@ TriangleMesh marchingTetrahedra(const ScalarGrid& grid) {
           }
         }
       }
+  }
   return out;
 }
 

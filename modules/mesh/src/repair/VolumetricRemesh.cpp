@@ -104,11 +104,12 @@ Banded bandAt(const TriangleMesh& soup, double voxelMm, const RemeshOptions& opt
 
 // Labels each 6-connected region of far points with the winding number at its first point.
 void signFarRegions(const FastWindingNumber& winding, const TriangleMesh& soup, ScalarGrid& grid,
-                    const std::vector<std::uint8_t>& mark, double farValue) {
+                    const std::vector<std::uint8_t>& mark, double farValue, const StageProgress& progress) {
   std::vector<std::uint8_t> seen(grid.size(), 0);
   std::deque<std::size_t> queue;
   const std::size_t stride[3] = {1, std::size_t(grid.n[0]), std::size_t(grid.n[0]) * grid.n[1]};
   for (std::size_t seed = 0; seed < grid.size(); ++seed) {
+    if (seed % (std::size_t(1) << 22) == 0) progress.check(double(seed) / double(grid.size()));
     if (mark[seed] != kFar || seen[seed]) continue;
     const double value = insideSoup(winding, soup, grid.point(seed)) ? -farValue : farValue;
     seen[seed] = 1;
@@ -201,14 +202,15 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
                          "remesh: inside and outside near the surface");
     tbb::parallel_for(first, std::min(band.size(), first + kSlice), sample);
   }
-  reportRepairProgress(options.progress, 0.6, "remesh: inside and outside away from the surface");
-  signFarRegions(winding, soup, grid, mark, 2 * bandWidth);
-  reportRepairProgress(options.progress, 0.65, "remesh: marching tetrahedra");
+  const auto stage = [&](double begin, double end, const char* name) {
+    return StageProgress{&options.progress, begin, end, name};
+  };
+  signFarRegions(winding, soup, grid, mark, 2 * bandWidth, stage(0.6, 0.65, "remesh: inside and outside away from the surface"));
 
   RemeshResult result;
   RemeshStats& s = result.stats;
   s.windingMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - bandStart).count();
-  result.mesh = marchingTetrahedra(grid);
+  result.mesh = marchingTetrahedra(grid, stage(0.65, 0.75, "remesh: marching tetrahedra"));
   s.voxelMm = grid.h;
   s.requestedVoxelMm = options.voxelMm;
   s.requestedBandPoints = requestedBand;
@@ -218,14 +220,13 @@ RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& opt
   for (std::uint8_t m : mark) s.bandPoints += m == kBand;
   s.trianglesBeforeDecimation = result.mesh.triangles.size();
   if (options.targetTriangles > 0 && options.targetTriangles < result.mesh.triangles.size()) {
-    reportRepairProgress(options.progress, 0.75, "remesh: decimation");
-    decimateWithoutSelfIntersections(result.mesh, options.targetTriangles);
+    decimateWithoutSelfIntersections(result.mesh, options.targetTriangles, stage(0.75, 0.85, "remesh: decimation"));
   }
   s.trianglesAfter = result.mesh.triangles.size();
-  reportRepairProgress(options.progress, 0.85, "remesh: distance to the input");
-  surfaceDistance(result.mesh, soup, s.maxOutputToInputMm, s.meanOutputToInputMm);
-  reportRepairProgress(options.progress, 0.92, "remesh: distance to the input");
-  surfaceDistance(soup, result.mesh, s.maxInputToOutputMm, s.meanInputToOutputMm);
+  surfaceDistance(result.mesh, soup, s.maxOutputToInputMm, s.meanOutputToInputMm,
+                  stage(0.85, 0.92, "remesh: distance to the input"));
+  surfaceDistance(soup, result.mesh, s.maxInputToOutputMm, s.meanInputToOutputMm,
+                  stage(0.92, 1.0, "remesh: distance to the input"));
   reportRepairProgress(options.progress, 1.0, "remesh: done");
   s.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -33,4 +33,20 @@ inline void reportRepairProgress(const RepairProgress& progress, double fraction
   if (progress && !progress(fraction, stage)) throw RepairCancelled(stage);
 }
 
+// One stage's share [begin, end] of the whole, for work that checks as it goes (the remesh's marching
+// tetrahedra, far-region signs, decimation and distances: seconds each at millions of triangles).
+// keepGoing(f) reports begin + f (end - begin) at `stage` and says whether to go on; check(f) throws
+// RepairCancelled instead. Made without a callback, it reports nothing and always goes on.
+struct StageProgress {
+  const RepairProgress* progress = nullptr;
+  double begin = 0, end = 1;
+  std::string stage;
+  bool keepGoing(double fraction) const {
+    return !progress || !*progress || (*progress)(begin + fraction * (end - begin), stage);
+  }
+  void check(double fraction) const {
+    if (!keepGoing(fraction)) throw RepairCancelled(stage);
+  }
+};
+
 }  // namespace reamsim

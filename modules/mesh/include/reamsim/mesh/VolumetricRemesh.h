@@ -68,10 +68,14 @@ struct RemeshResult {
 RemeshResult volumetricRemesh(const TriangleMesh& soup, const RemeshOptions& options = {});
 
 // Decimation that keeps the surface closed and free of self-intersections; returns false (and leaves
-// `mesh` unchanged) if no acceptable decimation was found. Used by volumetricRemesh.
-bool decimateWithoutSelfIntersections(TriangleMesh& mesh, std::size_t targetTriangles);
+// `mesh` unchanged) if no acceptable decimation was found. Used by volumetricRemesh. Checks `progress`
+// between attempts and every few thousand collapses (RepairCancelled, `mesh` unchanged).
+bool decimateWithoutSelfIntersections(TriangleMesh& mesh, std::size_t targetTriangles,
+                                      const StageProgress& progress = {});
 
-// Distance from each vertex of `from` to the surface `to` (CGAL AABB tree): max and mean.
-void surfaceDistance(const TriangleMesh& from, const TriangleMesh& to, double& maxMm, double& meanMm);
+// Distance from each vertex of `from` to the surface `to` (CGAL AABB tree): max and mean. Checks
+// `progress` between slices of vertices.
+void surfaceDistance(const TriangleMesh& from, const TriangleMesh& to, double& maxMm, double& meanMm,
+                     const StageProgress& progress = {});
 
 }  // namespace reamsim
