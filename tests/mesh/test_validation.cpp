@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "RepairTestMeshes.h"
 #include "reamsim/mesh/Validation.h"
 
@@ -104,6 +107,50 @@ TEST(Validation, JsonAndTextNameEveryField) {
                           "bounds_mm"})
     EXPECT_NE(json.find(key), std::string::npos) << key;
   EXPECT_NE(toText(r).find("self-intersecting pairs: 0"), std::string::npos);
+}
+
+// The count runs slab by slab along the longest axis (so that a cancel is seen between slabs): a pair is
+// counted in one slab only, whichever the slabs. Two overlapping boxes cross along lines through many slabs.
+TEST(Validation, SelfIntersectionCountDoesNotDependOnTheSlabs) {
+  const TriangleMesh a = test::unitBox(10, 20);
+  const TriangleMesh boxes = test::merged(a, test::translated(a, {5, 3.3, 2.7}));
+  const std::size_t n = boxes.triangles.size();
+  const std::size_t whole = detail::countSelfIntersectionsInSlabs(boxes, 1000000, {}, n);  // one slab
+  EXPECT_GT(whole, 100u);
+  EXPECT_EQ(whole, countSelfIntersections(boxes));
+  for (std::size_t perSlab : {n / 3, std::size_t(500), std::size_t(97)}) {
+    SCOPED_TRACE(perSlab);
+    EXPECT_EQ(detail::countSelfIntersectionsInSlabs(boxes, 1000000, {}, perSlab), whole);
+    EXPECT_EQ(detail::countSelfIntersectionsInSlabs(boxes, 7, {}, perSlab), 7u);  // the limit still holds
+  }
+}
+
+TEST(Validation, SelfIntersectionCountStopsWhenCancelled) {
+  const TriangleMesh a = test::unitBox(10, 20);
+  const TriangleMesh boxes = test::merged(a, test::translated(a, {5, 3.3, 2.7}));
+  std::vector<double> seen;
+  const RepairProgress progress = [&](double f, const std::string&) {
+    seen.push_back(f);
+    return seen.size() < 4;  // the start, the mesh built, a first slab: then stop
+  };
+  ValidationOptions options;
+  options.progress = StageProgress{&progress, 0.2, 0.4, "validation"};
+  try {
+    detail::countSelfIntersectionsInSlabs(boxes, 1000000, options.progress, 500);
+    ADD_FAILURE() << "expected the count to stop";
+  } catch (const RepairCancelled& e) {
+    EXPECT_EQ(e.stage(), "validation");
+  }
+  ASSERT_EQ(seen.size(), 4u);
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    EXPECT_GE(seen[i], 0.2);
+    EXPECT_LT(seen[i], 0.4);
+    if (i > 0) EXPECT_GE(seen[i], seen[i - 1]);  // never goes back
+  }
+  EXPECT_GT(seen.back(), seen.front());
+  const RepairProgress stopAtOnce = [](double, const std::string&) { return false; };
+  options.progress.progress = &stopAtOnce;
+  EXPECT_THROW(validateMesh(boxes, options), RepairCancelled);  // validateMesh passes it on
 }
 
 }  // namespace

@@ -6,7 +6,9 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
 #include <iterator>
+#include <vector>
 
 #include "reamsim/mesh/Validation.h"
 
@@ -16,23 +18,40 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<K::Point_3>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-// Stops the traversal once enough pairs are known (the count is then a lower bound).
+// Counts the pairs CGAL reports in slab `slab` whose canonical slab it is (below), and stops the traversal
+// once enough pairs are known (the count is then a lower bound).
 struct CountingOutput {
+  const std::vector<double>* lo;       // each face's lowest coordinate along the slabs' axis
+  const std::vector<double>* inner;    // the slabs' inner boundaries, ascending
+  std::size_t slab;
   std::size_t* count;
   std::size_t limit;
   CountingOutput& operator*() { return *this; }
   CountingOutput& operator++() { return *this; }
   CountingOutput operator++(int) { return *this; }
   template <class Pair>
-  CountingOutput& operator=(const Pair&) {
+  CountingOutput& operator=(const Pair& p) {
+    const double x = std::max((*lo)[std::size_t(p.first)], (*lo)[std::size_t(p.second)]);
+    if (slabOf(*inner, x) != slab) return *this;
     if (++*count >= limit) throw LimitReached{};
     return *this;
   }
+  static std::size_t slabOf(const std::vector<double>& inner, double x) {
+    return std::size_t(std::upper_bound(inner.begin(), inner.end(), x) - inner.begin());
+  }
   struct LimitReached {};
 };
+
 }  // namespace
 
-std::size_t countSelfIntersections(const TriangleMesh& input, std::size_t maxPairs) {
+std::size_t countSelfIntersections(const TriangleMesh& input, std::size_t maxPairs, const StageProgress& progress) {
+  // About 200,000 faces a slab: a second or less each, so a cancel is seen between them.
+  return detail::countSelfIntersectionsInSlabs(input, maxPairs, progress, 200000);
+}
+
+std::size_t detail::countSelfIntersectionsInSlabs(const TriangleMesh& input, std::size_t maxPairs,
+                                                  const StageProgress& progress, std::size_t facesPerSlab) {
+  progress.check(0);
   std::vector<K::Point_3> points;
   points.reserve(input.vertices.size());
   for (const Vec3& p : input.vertices) points.emplace_back(p.x, p.y, p.z);
@@ -42,13 +61,47 @@ std::size_t countSelfIntersections(const TriangleMesh& input, std::size_t maxPai
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;  // counted as degenerate elsewhere
     faces.push_back({t[0], t[1], t[2]});
   }
-  // Non-manifold edges and vertices are split so that CGAL can build a valid halfedge structure.
+  // Non-manifold edges and vertices are split so that CGAL can build a valid halfedge structure. (Asking
+  // first whether the soup is already a valid mesh cost more than orienting it: session 48, the skull.)
   PMP::orient_polygon_soup(points, faces);
   Mesh mesh;
   PMP::polygon_soup_to_polygon_mesh(points, faces, mesh);
+  progress.check(0.1);
+
+  // The faces in slabs of about equal counts along the mesh's longest axis, each slab checked on its own
+  // with the faces that reach into it. An intersecting pair's ranges along the axis overlap, so both faces
+  // lie in the slab of the larger of their two lower ends, and the pair is counted there only: the same
+  // count as one pass over the whole mesh.
+  const std::size_t n = mesh.number_of_faces();
+  Bounds bounds = computeBounds(input);
+  const Vec3 extent = bounds.max - bounds.min;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  std::vector<double> lo(n), hi(n);
+  for (Mesh::Face_index f : mesh.faces()) {
+    const auto h = mesh.halfedge(f);
+    const double a = mesh.point(mesh.target(h))[axis], b = mesh.point(mesh.target(mesh.next(h)))[axis],
+                 c = mesh.point(mesh.source(h))[axis];
+    lo[std::size_t(f)] = std::min({a, b, c});
+    hi[std::size_t(f)] = std::max({a, b, c});
+  }
+  const std::size_t slabs = std::max<std::size_t>(1, std::min<std::size_t>(64, n / std::max<std::size_t>(1, facesPerSlab)));
+  std::vector<double> inner;
+  if (slabs > 1) {
+    std::vector<double> sorted = lo;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 1; i < slabs; ++i) inner.push_back(sorted[i * n / slabs]);
+  }
+  std::vector<std::vector<Mesh::Face_index>> inSlab(slabs);
+  for (Mesh::Face_index f : mesh.faces())
+    for (std::size_t s = CountingOutput::slabOf(inner, lo[std::size_t(f)]); s <= CountingOutput::slabOf(inner, hi[std::size_t(f)]); ++s)
+      inSlab[s].push_back(f);
+
   std::size_t count = 0;
   try {
-    PMP::self_intersections(mesh, CountingOutput{&count, std::max<std::size_t>(maxPairs, 1)});
+    for (std::size_t s = 0; s < slabs; ++s) {
+      progress.check(0.1 + 0.9 * double(s) / double(slabs));
+      PMP::self_intersections(inSlab[s], mesh, CountingOutput{&lo, &inner, s, &count, std::max<std::size_t>(maxPairs, 1)});
+    }
   } catch (const CountingOutput::LimitReached&) {
   }
   return count;

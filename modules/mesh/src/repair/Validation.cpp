@@ -20,9 +20,12 @@ ValidationReport validateMesh(const TriangleMesh& mesh, const ValidationOptions&
     r.outwardOriented = v > 0;
     r.volumeMm3 = std::abs(v);
   }
-  if (options.checkSelfIntersections)
-    r.selfIntersectingPairs = countSelfIntersections(mesh, options.maxSelfIntersectionPairs);
   r.coincidentVertices = countCoincidentVertices(mesh);
+  // With coincident vertices the count runs twice (as read, then merged): each gets half the progress.
+  StageProgress first = options.progress, second = options.progress;
+  if (r.coincidentVertices > 0) first.end = second.begin = 0.5 * (options.progress.begin + options.progress.end);
+  if (options.checkSelfIntersections)
+    r.selfIntersectingPairs = countSelfIntersections(mesh, options.maxSelfIntersectionPairs, first);
   if (r.coincidentVertices > 0) {
     const TriangleMesh merged = mergeCoincidentVertices(mesh);
     const EdgeTopology t = analyzeEdges(merged);
@@ -30,7 +33,7 @@ ValidationReport validateMesh(const TriangleMesh& mesh, const ValidationOptions&
     a.boundaryEdges = t.boundaryEdges;
     a.nonManifoldEdges = t.nonManifoldEdges;
     if (options.checkSelfIntersections)
-      a.selfIntersectingPairs = countSelfIntersections(merged, options.maxSelfIntersectionPairs);
+      a.selfIntersectingPairs = countSelfIntersections(merged, options.maxSelfIntersectionPairs, second);
     r.afterMergingCoincident = a;
   }
   return r;

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "reamsim/mesh/RepairProgress.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
 namespace reamsim {
@@ -25,6 +26,9 @@ EdgeTopology analyzeEdges(const TriangleMesh& mesh);
 struct ValidationOptions {
   bool checkSelfIntersections = true;
   std::size_t maxSelfIntersectionPairs = 1000000;  // stop counting beyond this
+  // Reported while self-intersections are counted (seconds at millions of triangles); throws
+  // RepairCancelled when asked to stop.
+  StageProgress progress;
 };
 
 struct ValidationReport {
@@ -58,8 +62,16 @@ struct ValidationReport {
 ValidationReport validateMesh(const TriangleMesh& mesh, const ValidationOptions& options = {});
 
 // Number of pairs of triangles that intersect other than along a shared edge or vertex (CGAL, exact
-// predicates). Non-manifold input is first split into a valid polygon mesh, as CGAL requires.
-std::size_t countSelfIntersections(const TriangleMesh& mesh, std::size_t maxPairs = 1000000);
+// predicates). Non-manifold input is first split into a valid polygon mesh, as CGAL requires. Checks
+// `progress` between slabs of about 200,000 faces.
+std::size_t countSelfIntersections(const TriangleMesh& mesh, std::size_t maxPairs = 1000000,
+                                   const StageProgress& progress = {});
+
+namespace detail {
+// countSelfIntersections with the slab size given (at most 64 slabs): the count does not depend on it.
+std::size_t countSelfIntersectionsInSlabs(const TriangleMesh& mesh, std::size_t maxPairs, const StageProgress& progress,
+                                          std::size_t facesPerSlab);
+}  // namespace detail
 
 std::string toText(const ValidationReport& report);
 std::string toJson(const ValidationReport& report, int indent = 2);
