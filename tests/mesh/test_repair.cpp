@@ -209,7 +209,9 @@ TEST(Repair, ReportsProgressAndStopsWhenCancelled) {
   EXPECT_EQ(seen.back(), std::make_pair(1.0, std::string("done")));
   std::vector<std::string> stages;
   for (std::size_t i = 0; i < seen.size(); ++i) {
-    if (i > 0) EXPECT_GE(seen[i].first, seen[i - 1].first) << seen[i].second;  // never goes back
+    if (i > 0) {
+      EXPECT_GE(seen[i].first, seen[i - 1].first) << seen[i].second;  // never goes back
+    }
     if (stages.empty() || stages.back() != seen[i].second) stages.push_back(seen[i].second);
   }
   for (const char* expected : {"validation", "topological repair", "remesh: inside and outside near the surface",
@@ -233,12 +235,16 @@ TEST(Repair, ReportsProgressAndStopsWhenCancelled) {
 TEST(Repair, StopsInsideTheRemeshsLaterStagesWhenCancelled) {
   const TriangleMesh a = test::unitBox(10, 1);
   const TriangleMesh boxes = test::merged(a, test::translated(a, {5, 5, 5}));
+  // `before`: where the stop must come before, as a fraction of the remesh (the repair maps it onto [0.15,
+  // 0.9]): the end of marching tetrahedra, of the decimation's first attempt (its stop predicate, not the
+  // next attempt's start), of the first distance (its slices, not the second distance's start).
   struct Stage {
     const char* name;
     std::size_t targetTriangles;
+    double before;
   };
-  for (const Stage& stage : {Stage{"remesh: marching tetrahedra", 0}, Stage{"remesh: decimation", 4000},
-                             Stage{"remesh: distance to the input", 0}}) {
+  for (const Stage& stage : {Stage{"remesh: marching tetrahedra", 0, 0.75}, Stage{"remesh: decimation", 4000, 0.8},
+                             Stage{"remesh: distance to the input", 0, 0.92}}) {
     SCOPED_TRACE(stage.name);
     RepairOptions options;
     options.remesh.voxelMm = 0.25;  // ~38,000 triangles, ~19,000 vertices
@@ -258,6 +264,7 @@ TEST(Repair, StopsInsideTheRemeshsLaterStagesWhenCancelled) {
       EXPECT_EQ(e.stage(), stage.name);
     }
     EXPECT_GT(stoppedAt, first);
+    EXPECT_LT(stoppedAt, 0.15 + 0.75 * stage.before);
   }
 }
 

@@ -114,15 +114,33 @@ TEST(Validation, JsonAndTextNameEveryField) {
 TEST(Validation, SelfIntersectionCountDoesNotDependOnTheSlabs) {
   const TriangleMesh a = test::unitBox(10, 20);
   const TriangleMesh boxes = test::merged(a, test::translated(a, {5, 3.3, 2.7}));
-  const std::size_t n = boxes.triangles.size();
-  const std::size_t whole = detail::countSelfIntersectionsInSlabs(boxes, 1000000, {}, n);  // one slab
-  EXPECT_GT(whole, 100u);
-  EXPECT_EQ(whole, countSelfIntersections(boxes));
-  for (std::size_t perSlab : {n / 3, std::size_t(500), std::size_t(97)}) {
-    SCOPED_TRACE(perSlab);
-    EXPECT_EQ(detail::countSelfIntersectionsInSlabs(boxes, 1000000, {}, perSlab), whole);
-    EXPECT_EQ(detail::countSelfIntersectionsInSlabs(boxes, 7, {}, perSlab), 7u);  // the limit still holds
+  // And a degenerate triangle (three distinct, collinear corners) across the boxes: CGAL reports it as a pair
+  // with itself in every slab it reaches; it counts once.
+  TriangleMesh withNeedle = boxes;
+  const auto v = std::uint32_t(withNeedle.vertices.size());
+  withNeedle.vertices.insert(withNeedle.vertices.end(), {{-1, 4.1, 4.2}, {7, 4.1, 4.2}, {16, 4.1, 4.2}});
+  withNeedle.triangles.push_back({v, v + 1, v + 2});
+  for (const TriangleMesh* mesh : {&boxes, static_cast<const TriangleMesh*>(&withNeedle)}) {
+    const std::size_t n = mesh->triangles.size();
+    // One slab: CGAL's self_intersections over every face, as before slabs.
+    const std::size_t whole = detail::countSelfIntersectionsInSlabs(*mesh, 1000000, {}, n);
+    EXPECT_GT(whole, 100u);
+    for (std::size_t perSlab : {n / 3, std::size_t(500), std::size_t(97)}) {
+      SCOPED_TRACE(perSlab);
+      EXPECT_EQ(detail::countSelfIntersectionsInSlabs(*mesh, 1000000, {}, perSlab), whole);
+      EXPECT_EQ(detail::countSelfIntersectionsInSlabs(*mesh, 7, {}, perSlab), 7u);  // the limit still holds
+    }
   }
+  EXPECT_EQ(detail::countSelfIntersectionsInSlabs(withNeedle, 1000000, {}, 97),
+            detail::countSelfIntersectionsInSlabs(boxes, 1000000, {}, 97) + 1);
+
+  // Two long bars whose faces run the whole length: every face would be in every slab, so the count falls
+  // back to one slab, with the same result.
+  const TriangleMesh bar = buildBox(Bounds{{0, 0, 0}, {100, 1, 1}}, 1);
+  const TriangleMesh bars = test::merged(bar, test::translated(bar, {50, 0.5, 0.5}));
+  const std::size_t barsWhole = detail::countSelfIntersectionsInSlabs(bars, 1000000, {}, bars.triangles.size());
+  EXPECT_GT(barsWhole, 0u);
+  EXPECT_EQ(detail::countSelfIntersectionsInSlabs(bars, 1000000, {}, 3), barsWhole);
 }
 
 TEST(Validation, SelfIntersectionCountStopsWhenCancelled) {
@@ -145,7 +163,9 @@ TEST(Validation, SelfIntersectionCountStopsWhenCancelled) {
   for (std::size_t i = 0; i < seen.size(); ++i) {
     EXPECT_GE(seen[i], 0.2);
     EXPECT_LT(seen[i], 0.4);
-    if (i > 0) EXPECT_GE(seen[i], seen[i - 1]);  // never goes back
+    if (i > 0) {
+      EXPECT_GE(seen[i], seen[i - 1]);  // never goes back
+    }
   }
   EXPECT_GT(seen.back(), seen.front());
   const RepairProgress stopAtOnce = [](double, const std::string&) { return false; };

@@ -7,6 +7,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <vector>
 
@@ -84,7 +85,10 @@ std::size_t detail::countSelfIntersectionsInSlabs(const TriangleMesh& input, std
     lo[std::size_t(f)] = std::min({a, b, c});
     hi[std::size_t(f)] = std::max({a, b, c});
   }
-  const std::size_t slabs = std::max<std::size_t>(1, std::min<std::size_t>(64, n / std::max<std::size_t>(1, facesPerSlab)));
+  std::size_t slabs = std::max<std::size_t>(1, std::min<std::size_t>(64, n / std::max<std::size_t>(1, facesPerSlab)));
+  const bool finite = std::all_of(lo.begin(), lo.end(), [](double x) { return std::isfinite(x); }) &&
+                      std::all_of(hi.begin(), hi.end(), [](double x) { return std::isfinite(x); });
+  if (!finite) slabs = 1;
   std::vector<double> inner;
   if (slabs > 1) {
     std::vector<double> sorted = lo;
@@ -92,14 +96,25 @@ std::size_t detail::countSelfIntersectionsInSlabs(const TriangleMesh& input, std
     for (std::size_t i = 1; i < slabs; ++i) inner.push_back(sorted[i * n / slabs]);
   }
   std::vector<std::vector<Mesh::Face_index>> inSlab(slabs);
+  std::size_t entries = 0;
   for (Mesh::Face_index f : mesh.faces())
-    for (std::size_t s = CountingOutput::slabOf(inner, lo[std::size_t(f)]); s <= CountingOutput::slabOf(inner, hi[std::size_t(f)]); ++s)
+    for (std::size_t s = CountingOutput::slabOf(inner, lo[std::size_t(f)]); s <= CountingOutput::slabOf(inner, hi[std::size_t(f)]); ++s) {
       inSlab[s].push_back(f);
+      ++entries;
+    }
+  // Faces long along the axis (a cylinder's sides in an STL) would be checked in many slabs over: then one
+  // slab, as one pass over the whole mesh.
+  if (entries > 2 * n && slabs > 1) {
+    inner.clear();
+    inSlab.assign(1, std::vector<Mesh::Face_index>(mesh.faces().begin(), mesh.faces().end()));
+    slabs = 1;
+  }
 
   std::size_t count = 0;
   try {
     for (std::size_t s = 0; s < slabs; ++s) {
       progress.check(0.1 + 0.9 * double(s) / double(slabs));
+      if (s > 0 && s < inner.size() && inner[s - 1] == inner[s]) continue;  // holds no canonical point
       PMP::self_intersections(inSlab[s], mesh, CountingOutput{&lo, &inner, s, &count, std::max<std::size_t>(maxPairs, 1)});
     }
   } catch (const CountingOutput::LimitReached&) {

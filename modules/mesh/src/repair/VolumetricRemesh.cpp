@@ -108,8 +108,14 @@ void signFarRegions(const FastWindingNumber& winding, const TriangleMesh& soup, 
   std::vector<std::uint8_t> seen(grid.size(), 0);
   std::deque<std::size_t> queue;
   const std::size_t stride[3] = {1, std::size_t(grid.n[0]), std::size_t(grid.n[0]) * grid.n[1]};
+  // Steps: every seed scanned and every point flooded (each once), checked every 4M: the first flood alone
+  // usually takes most of the grid.
+  std::size_t steps = 0;
+  const auto step = [&] {
+    if (steps++ % (std::size_t(1) << 22) == 0) progress.check(double(steps) / (2.0 * double(grid.size())));
+  };
   for (std::size_t seed = 0; seed < grid.size(); ++seed) {
-    if (seed % (std::size_t(1) << 22) == 0) progress.check(double(seed) / double(grid.size()));
+    step();
     if (mark[seed] != kFar || seen[seed]) continue;
     const double value = insideSoup(winding, soup, grid.point(seed)) ? -farValue : farValue;
     seen[seed] = 1;
@@ -117,6 +123,7 @@ void signFarRegions(const FastWindingNumber& winding, const TriangleMesh& soup, 
     while (!queue.empty()) {
       const std::size_t p = queue.front();
       queue.pop_front();
+      step();
       grid.value[p] = value;
       const int c[3] = {int(p % grid.n[0]), int((p / grid.n[0]) % grid.n[1]), int(p / stride[2])};
       for (int a = 0; a < 3; ++a)
