@@ -11,6 +11,8 @@
 #include <iterator>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "reamsim/mesh/Validation.h"
 
 namespace reamsim {
@@ -110,16 +112,26 @@ std::size_t detail::countSelfIntersectionsInSlabs(const TriangleMesh& input, std
     slabs = 1;
   }
 
-  std::size_t count = 0;
-  try {
-    for (std::size_t s = 0; s < slabs; ++s) {
-      progress.check(0.1 + 0.9 * double(s) / double(slabs));
-      if (s > 0 && s < inner.size() && inner[s - 1] == inner[s]) continue;  // holds no canonical point
-      PMP::self_intersections(inSlab[s], mesh, CountingOutput{&lo, &inner, s, &count, std::max<std::size_t>(maxPairs, 1)});
+  // The slabs are independent (each reads the mesh and counts its own pairs), so they run two at a time, one
+  // per core; progress is reported, and a cancel seen, between those pairs on the calling thread. Each slab
+  // stops at the limit on its own, so the sum, capped at the limit, is what one pass would give.
+  const std::size_t limit = std::max<std::size_t>(maxPairs, 1);
+  std::vector<std::size_t> counts(slabs, 0);
+  const auto countSlab = [&](std::size_t s) {
+    if (s > 0 && s < inner.size() && inner[s - 1] == inner[s]) return;  // holds no canonical point
+    try {
+      PMP::self_intersections(inSlab[s], mesh, CountingOutput{&lo, &inner, s, &counts[s], limit});
+    } catch (const CountingOutput::LimitReached&) {
     }
-  } catch (const CountingOutput::LimitReached&) {
+  };
+  constexpr std::size_t kSlabsAtOnce = 2;
+  std::size_t total = 0;
+  for (std::size_t first = 0; first < slabs && total < limit; first += kSlabsAtOnce) {
+    progress.check(0.1 + 0.9 * double(first) / double(slabs));
+    tbb::parallel_for(first, std::min(slabs, first + kSlabsAtOnce), countSlab);
+    for (std::size_t s = first; s < std::min(slabs, first + kSlabsAtOnce); ++s) total += counts[s];
   }
-  return count;
+  return std::min(total, limit);
 }
 
 }  // namespace reamsim
