@@ -106,8 +106,8 @@ void MainWindow::waitImport() {
   QCoreApplication::processEvents();  // delivers finished()
 }
 
-// Cancel gives the window back at once; the worker stops at the repair's next check (RepairOptions::progress:
-// within a second in the remesh's band, at the end of a later stage otherwise) and whatever it returns is
+// Cancel gives the window back at once; the worker stops at the repair's or the validation's next check
+// (RepairOptions::progress, StageProgress: within about a second at every stage) and whatever it returns is
 // discarded. Reading the file is not interrupted.
 void MainWindow::cancelImport() {
   if (!importWatcher_.isRunning()) return;

@@ -7,7 +7,11 @@
 #include <QTemporaryDir>
 #include <QtTest/QTest>
 
+#include <string>
+#include <vector>
+
 #include "GuiEnvironment.h"
+#include "reamsim/mesh/RepairProgress.h"
 
 namespace reamsim::ui::test {
 namespace {
@@ -31,6 +35,28 @@ TEST(GuiPlugins, AllPluginsLoadFromTheBuildTree) {
   EXPECT_NE(host.collision(), nullptr);
   EXPECT_NE(host.csg(), nullptr);
   EXPECT_EQ(host.panels().size(), 1u);
+}
+
+// Opening without repair still validates the mesh (a self-intersection count, seconds on a large scan):
+// it reports its progress and stops when asked, as the repair does.
+TEST(GuiPlugins, MeshImportWithoutRepairReportsAndStopsItsValidation) {
+  REAMSIM_REQUIRE_DISPLAY();
+  PluginHost host;
+  host.loadFrom(REAMSIM_GUI_PLUGIN_DIR);
+  const MeshImportInterface* importer = host.meshImport();
+  ASSERT_NE(importer, nullptr);
+  const std::string path = std::string(REAMSIM_RESOURCE_DIR) + "/bones/scapula_R_repaired.ply";
+  std::vector<std::string> stages;
+  const RepairProgress watch = [&](double, const std::string& stage) {
+    stages.push_back(stage);
+    return true;
+  };
+  const ImportedBone bone = importer->importBone(path, false, watch);
+  EXPECT_TRUE(bone.cuttable) << bone.report;
+  ASSERT_FALSE(stages.empty());
+  EXPECT_EQ(stages.front(), "validation");
+  const RepairProgress stop = [](double, const std::string&) { return false; };
+  EXPECT_THROW(importer->importBone(path, false, stop), RepairCancelled);
 }
 
 TEST(GuiPlugins, StartsReducedWithoutCsgAndListsWhatFailed) {
