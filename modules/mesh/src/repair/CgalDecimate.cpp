@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "CgalMeshBridge.h"
 #include "reamsim/mesh/Validation.h"
@@ -22,19 +23,19 @@ using Mesh = CGAL::Surface_mesh<K::Point_3>;
 namespace SMS = CGAL::Surface_mesh_simplification;
 
 // Count_stop_predicate that also stops when the user asks to, checked every few thousand collapses:
-// edge_collapse has no other way out (the caller then throws). Reports the attempt's share [begin, end]
-// of the stage as the edge count falls towards the target.
+// edge_collapse has no other way out (the caller then throws). Reports `progress` as the edge count falls
+// towards the target.
 class StopAtCountOrWhenAsked {
  public:
-  StopAtCountOrWhenAsked(std::size_t edges, const StageProgress& progress, double begin, double end)
-      : count_(edges), edges_(edges), progress_(progress), begin_(begin), end_(end) {}
+  StopAtCountOrWhenAsked(std::size_t edges, StageProgress progress)
+      : count_(edges), edges_(edges), progress_(std::move(progress)) {}
   template <class FT, class Profile>
   bool operator()(const FT& cost, const Profile& profile, std::size_t initialEdges, std::size_t currentEdges) const {
     if (count_(cost, profile, initialEdges, currentEdges)) return true;
     if (++calls_ % 4096 != 0) return false;
     const double done = double(initialEdges - std::min(initialEdges, currentEdges)) /
                         double(std::max<std::size_t>(1, initialEdges - std::min(initialEdges, edges_)));
-    asked_ = asked_ || !progress_.keepGoing(begin_ + (end_ - begin_) * std::min(1.0, done));
+    asked_ = asked_ || !progress_.keepGoing(std::min(1.0, done));
     return asked_;
   }
   bool asked() const { return asked_; }
@@ -42,8 +43,7 @@ class StopAtCountOrWhenAsked {
  private:
   SMS::Count_stop_predicate<Mesh> count_;
   std::size_t edges_;
-  const StageProgress& progress_;
-  double begin_, end_;
+  StageProgress progress_;
   mutable std::size_t calls_ = 0;
   mutable bool asked_ = false;
 };
@@ -56,12 +56,11 @@ bool decimateWithoutSelfIntersections(TriangleMesh& mesh, std::size_t targetTria
     // rarer): its collapses the first four fifths, its self-intersection check the rest.
     const double begin = 1 - std::ldexp(1.0, -attempt), end = 1 - std::ldexp(1.0, -attempt - 1);
     const double collapsed = begin + 0.8 * (end - begin);
-    const auto inStage = [&](double f) { return progress.begin + f * (progress.end - progress.begin); };
     progress.check(begin);
     Mesh m = cgal_bridge::toSurfaceMesh<K::Point_3>(mesh);
     SMS::GarlandHeckbert_plane_policies<Mesh, K> policies(m);
     // The stop predicate counts edges; a closed triangle mesh has 3F/2 edges.
-    StopAtCountOrWhenAsked stop(target * 3 / 2, progress, begin, collapsed);
+    StopAtCountOrWhenAsked stop(target * 3 / 2, progress.part(begin, collapsed));
     SMS::edge_collapse(m, stop,
                        CGAL::parameters::get_cost(policies.get_cost())
                            .get_placement(policies.get_placement())
@@ -72,8 +71,7 @@ bool decimateWithoutSelfIntersections(TriangleMesh& mesh, std::size_t targetTria
     // The validation's count, stopped at the first pair: the same exact predicates as does_self_intersect,
     // but in slabs on both cores, and a cancel is seen between them (seconds at millions of triangles).
     TriangleMesh candidate = cgal_bridge::toTriangleMesh(m);
-    if (countSelfIntersections(candidate, 1, StageProgress{progress.progress, inStage(collapsed), inStage(end), progress.stage}) > 0)
-      continue;
+    if (countSelfIntersections(candidate, 1, progress.part(collapsed, end)) > 0) continue;
     mesh = std::move(candidate);
     return true;
   }

@@ -22,8 +22,8 @@ ValidationReport validateMesh(const TriangleMesh& mesh, const ValidationOptions&
   }
   r.coincidentVertices = countCoincidentVertices(mesh);
   // With coincident vertices the count runs twice (as read, then merged): each gets half the progress.
-  StageProgress first = options.progress, second = options.progress;
-  if (r.coincidentVertices > 0) first.end = second.begin = 0.5 * (options.progress.begin + options.progress.end);
+  const bool twice = r.coincidentVertices > 0;
+  const StageProgress first = options.progress.part(0, twice ? 0.5 : 1), second = options.progress.part(0.5, 1);
   if (options.checkSelfIntersections)
     r.selfIntersectingPairs = countSelfIntersections(mesh, options.maxSelfIntersectionPairs, first);
   if (r.coincidentVertices > 0) {

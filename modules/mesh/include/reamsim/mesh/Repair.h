@@ -19,10 +19,10 @@ struct RepairOptions {
   bool allowRemesh = true;
   RemeshOptions remesh;
   // Stages and fractions of the whole repair (the remesh's included), and (1.0, "done") on every return;
-  // returning false stops the repair at its next check with RepairCancelled. Checks lie between stages and,
-  // in the remesh, between slices of its band (a second or less); the stages after the band (marching
-  // tetrahedra, the distances to the input, a decimation, the final validation) each run to their end:
-  // seconds for a result of millions of triangles.
+  // returning false stops the repair at its next check with RepairCancelled. Checks lie between stages and
+  // inside the long ones (StageProgress): slices of the remesh's band, layers of marching tetrahedra,
+  // thousands of decimation collapses, slices of the distances to the input, slabs of each validation's
+  // self-intersection count; a second or less apart at millions of triangles.
   RepairProgress progress;
 };
 

@@ -36,14 +36,15 @@ inline void reportRepairProgress(const RepairProgress& progress, double fraction
 // One stage's share [begin, end] of the whole, for work that checks as it goes (the remesh's marching
 // tetrahedra, far-region signs, decimation and distances: seconds each at millions of triangles).
 // keepGoing(f) reports begin + f (end - begin) at `stage` and says whether to go on; check(f) throws
-// RepairCancelled instead. Made without a callback, it reports nothing and always goes on.
+// RepairCancelled instead; part(from, to) is the share [from, to] of this one, for work done in pieces.
+// Made without a callback, it reports nothing and always goes on.
 struct StageProgress {
   const RepairProgress* progress = nullptr;
   double begin = 0, end = 1;
   std::string stage;
-  bool keepGoing(double fraction) const {
-    return !progress || !*progress || (*progress)(begin + fraction * (end - begin), stage);
-  }
+  double at(double fraction) const { return begin + fraction * (end - begin); }
+  StageProgress part(double from, double to) const { return {progress, at(from), at(to), stage}; }
+  bool keepGoing(double fraction) const { return !progress || !*progress || (*progress)(at(fraction), stage); }
   void check(double fraction) const {
     if (!keepGoing(fraction)) throw RepairCancelled(stage);
   }
