@@ -12,7 +12,19 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libgoogle-perftools-dev
   xvfb xauth
+  locales
 )
+
+# A decimal-comma locale for the tests that check files are written the same whatever the user's locale
+# (Qt sets the C library's locale from the environment; tests/mesh/LocaleIndependentWritersTest.cpp).
+ensure_test_locale() {
+  if ! locale -a 2>/dev/null | grep -qi '^de_DE\.utf-\?8$'; then
+    echo "install-deps: generating the de_DE.UTF-8 locale for the tests"
+    $SUDO localedef -i de_DE -f UTF-8 de_DE.UTF-8
+  fi
+}
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -23,12 +35,12 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#PACKAGES[@]} packages present"
+  ensure_test_locale
   exit 0
 fi
 
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq "${missing[@]}"
+ensure_test_locale

@@ -95,7 +95,7 @@ class MainWindow : public QMainWindow {
   void enableRecovery(const QString& dir, int delayMs);
   const RecoveryFiles* recovery() const { return recovery_.get(); }
   bool recoveryWriteRunning() const { return recoveryWrite_.isRunning(); }
-  const QString& recoveredLogPath() const { return recoveredLogPath_; }  // where a restored bone's log went
+  const QString& recoveredLogPath() const { return recoveredLogPath_; }  // a restored log that could not be read back, kept
 
  public:
   QString boneFrameText() const;  // the status bar's patient frame and source of the bone

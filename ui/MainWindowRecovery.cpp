@@ -128,22 +128,37 @@ void MainWindow::offerRecovery() {
     recovery_.reset();
     return;
   }
-  // The log up to the crash is not read back into the log panel: it is kept as a file, named in the status bar.
-  if (!found->logPath.isEmpty()) {
-    const QString kept = QDir(recovery_->dir()).filePath("restored");
-    QDir().mkpath(kept);
-    recoveredLogPath_ =
-        QDir(kept).filePath("cut_log_" + QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss") + ".csv");
-    QFile::copy(found->logPath, recoveredLogPath_);
-  }
   const Bounds b = BoneState::fromMesh(bone.mesh).bounds();
   session_->plan()->setPoses({});
   installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
   session_->moveReamer(startPoseFor(b));
   session_->undoStack()->resetClean();  // saved nowhere but in the recovery copy
-  statusBar()->showMessage(recoveredLogPath_.isEmpty() ? tr("Restored %1").arg(name)
-                                                       : tr("Restored %1; its cut log up to then: %2").arg(name, recoveredLogPath_),
-                           20000);
+  // The log up to the crash goes back into the log panel. One that cannot be read is kept as a file for
+  // the user (named in the message), never dropped.
+  QString logProblem;
+  std::size_t logRows = 0;
+  if (!found->logPath.isEmpty()) {
+    try {
+      std::vector<CutLogEntry> rows = readCutLogCsv(found->logPath.toStdString());
+      logRows = rows.size();
+      session_->continueLog(std::move(rows));
+    } catch (const std::exception& e) {
+      logProblem = QString::fromStdString(e.what());
+      const QString kept = QDir(recovery_->dir()).filePath("restored");
+      QDir().mkpath(kept);
+      recoveredLogPath_ =
+          QDir(kept).filePath("cut_log_" + QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss") + ".csv");
+      QFile::copy(found->logPath, recoveredLogPath_);
+    }
+  }
+  if (!logProblem.isEmpty()) {
+    showError(tr("The cut log was not restored"),
+              tr("%1 was restored, but its cut log could not be read back:\n%2\n\nThe log is kept as %3.")
+                  .arg(name, logProblem, recoveredLogPath_));
+    return;
+  }
+  const QString steps = logRows == 1 ? tr("1 step") : tr("%1 steps").arg(logRows);
+  statusBar()->showMessage(tr("Restored %1 and its cut log (%2)").arg(name, steps), 20000);
 }
 
 }  // namespace reamsim::ui

@@ -62,10 +62,22 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
   boneCuttable_ = b.cuttable;
   initialVolume_ = bone_->current().volume();
   cuts_ = steps_ = 0;
+  removedBeforeMm3_ = 0;
   lastComputedPose_.reset();
   lastMinDistance_ = std::numeric_limits<double>::infinity();
   rebuildEngine();
   Q_EMIT boneReplaced();
+}
+
+void ReamSession::continueLog(std::vector<CutLogEntry> earlier) {
+  if (earlier.empty()) return;
+  Document::BatchScope batch(document_);
+  for (CutLogEntry& e : earlier) {
+    e.boneStateId = 0;
+    steps_ = std::max(steps_, e.stepIndex + 1);
+    log_->append(std::move(e));
+  }
+  removedBeforeMm3_ = log_->cumulativeMm3();
 }
 
 void ReamSession::setReamer(const ReamerSpec& spec) {
@@ -300,7 +312,7 @@ void ReamSession::finished() {
     Document::BatchScope batch(document_);
     CommitOptions options;
     options.logEveryStep = false;  // the GUI's log lists cuts
-    options.initialVolumeMm3 = initialVolume_;
+    options.initialVolumeMm3 = initialVolumeMm3();
     const CutLogEntry e = commitReamStep(document_, *bone_, *reamer_, *log_, alerts_, r.computation, steps_++, options);
     if (e.boneStateId != 0) {
       engine_->adopt(e.boneStateId);

@@ -105,7 +105,13 @@ class ReamSession : public QObject {
 
   std::size_t cutsCommitted() const { return cuts_; }
   double lastMinDistanceMm() const { return lastMinDistance_; }
-  double initialVolumeMm3() const { return initialVolume_; }
+  // The bone's volume before its first logged cut (the log's cumulative volume is measured against it).
+  double initialVolumeMm3() const { return initialVolume_ + removedBeforeMm3_; }
+
+  // After loadBone of a bone restored from a crash-recovery copy: the log the crashed session kept, so that
+  // the log panel lists it, new steps continue its numbering and the cumulative volume goes on from its
+  // last row. The rows' bone revisions belong to the crashed session's history and are cleared (0).
+  void continueLog(std::vector<CutLogEntry> earlier);
 
  Q_SIGNALS:
   void busyChanged(bool busy);
@@ -164,6 +170,7 @@ class ReamSession : public QObject {
   static constexpr int kProgressMs = 100;
   int sequenceDone_ = 0, sequenceTotal_ = 0;
   std::size_t cuts_ = 0, steps_ = 0;
+  double removedBeforeMm3_ = 0;  // removed before the bone's current history began (a restored log)
   double lastMinDistance_ = std::numeric_limits<double>::infinity();
 };
 

@@ -12,12 +12,14 @@
 
 #include "AppModes.h"
 #include "MainWindow.h"
+#include "NumericLocale.h"
 #include "PluginHost.h"
 
 int main(int argc, char** argv) {
   // Must precede QApplication: VTK needs a core-profile context from every QOpenGLWidget.
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication app(argc, argv);
+  reamsim::ui::useCNumberFormats();  // numbers in files never follow the user's locale
   QCoreApplication::setOrganizationName("ReamSim");
   QCoreApplication::setApplicationName("reamsim");
 

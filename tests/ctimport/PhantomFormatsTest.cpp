@@ -3,7 +3,9 @@
 // back as one closed, clean mesh in the right place with the volume within 1 % of the analytic value.
 #include <gtest/gtest.h>
 
+#include <clocale>
 #include <cstdio>
+#include <optional>
 
 #include <algorithm>
 #include <cmath>
@@ -121,6 +123,29 @@ TEST_P(PhantomFormats, ReadsGeometryAndImportsAClosedMeshOfTheRightVolume) {
   // In the right place, the right way round: centroid at the centre, cylinder ends along the axis.
   EXPECT_NEAR(norm(cttest::solidCentroid(r.mesh) - shape_.center), 0.0, 0.3);
   expectCylinderEndsInPlace(r.mesh, shape_);
+}
+
+// The GUI's C library runs in the user's locale (QApplication sets it): a decimal-comma locale must not
+// change the geometry read from a file (a DICOM spacing of "0.9" read as 0, say).
+TEST_P(PhantomFormats, ReadsTheSameGeometryInADecimalCommaLocale) {
+  const Format& f = GetParam();
+  const std::string path = f.write(cttest::scratch("locale_" + f.name), grid_, values_);
+  const std::string previous = std::setlocale(LC_ALL, nullptr);
+  if (!std::setlocale(LC_ALL, "de_DE.UTF-8") && !std::setlocale(LC_ALL, "de_DE.utf8"))
+    GTEST_SKIP() << "no de_DE.UTF-8 locale here (scripts/install-deps.sh generates it)";
+  std::optional<ct::CtVolume> v;
+  std::string error;
+  try {
+    v = ct::readVolume(path);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  std::setlocale(LC_ALL, previous.c_str());
+  ASSERT_TRUE(v) << error;
+  EXPECT_EQ(v->dims, grid_.dims);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(v->spacing[std::size_t(a)], grid_.spacing[std::size_t(a)], 1e-5) << a;
+  const Vec3 expected = ct::convertPoint(grid_.world(3, 4, 5), ct::PatientSpace::LPS, f.fileSpace);
+  EXPECT_NEAR(norm(expected - v->indexToWorld(3, 4, 5)), 0.0, 1e-3);
 }
 
 TEST_P(PhantomFormats, ReadingReportsProgressAndCanBeCancelled) {

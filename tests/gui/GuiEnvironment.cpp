@@ -8,6 +8,7 @@
 #include <QVTKOpenGLNativeWidget.h>
 
 #include "AppModes.h"
+#include "NumericLocale.h"
 
 namespace reamsim::ui::test {
 namespace {
@@ -22,6 +23,7 @@ class GuiEnvironment : public ::testing::Environment {
     static char name[] = "reamsim_gui_tests";
     static char* argv[] = {name, nullptr};
     app_ = std::make_unique<QApplication>(argc, argv);
+    useCNumberFormats();  // as main() does
     QCoreApplication::setOrganizationName("ReamSimTests");
     QCoreApplication::setApplicationName("reamsim_gui_tests");
     settingsDir_ = std::make_unique<QTemporaryDir>();  // never the user's settings

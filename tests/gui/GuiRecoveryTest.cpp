@@ -4,6 +4,9 @@
 // or deletes the copy, as the user answers; a second window does not touch the first one's copy.
 #include <QDir>
 #include <QFile>
+#include <QFileInfo>
+#include <QStatusBar>
+#include <QTableWidget>
 #include <QTemporaryDir>
 #include <QtTest/QTest>
 
@@ -66,14 +69,20 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   QTemporaryDir dir;
   std::size_t faces = 0;
   double volume = 0;
+  std::vector<CutLogEntry> logged;
+  std::vector<Pose> plan;
   {
     GuiFixture crashed;
     crashed.window->enableRecovery(dir.filePath("recovery"), 0);
     cutOnce(crashed.session());
+    cutOnce(crashed.session(), 1.0);
     ASSERT_TRUE(settledCopy(*crashed.window));
     faces = crashed.session().bone()->current().liveTriangleCount();
     volume = crashed.session().bone()->current().volume();
+    logged = crashed.session().log()->entries();
+    plan = crashed.session().plan()->poses();
   }  // gone without a close
+  ASSERT_EQ(logged.size(), 2u);
   GuiFixture f;
   MainWindow& w = *f.window;
   ASSERT_FALSE(w.hasUnsavedChanges());
@@ -86,10 +95,75 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   EXPECT_NEAR(bone.volume(), volume, 1e-9 * volume);
   EXPECT_TRUE(f.session().canCut()) << f.session().cuttingStatus().toStdString();
   EXPECT_TRUE(w.hasUnsavedChanges());  // kept nowhere but in the recovery copy
-  EXPECT_EQ(lines(w.recoveredLogPath()), 2);  // the log up to the crash, kept as a file
+  // The log up to the crash is back in the log panel's model, row for row (no file is left beside it).
+  EXPECT_TRUE(w.recoveredLogPath().isEmpty());
+  const std::vector<CutLogEntry>& restored = f.session().log()->entries();
+  ASSERT_EQ(restored.size(), logged.size());
+  for (std::size_t i = 0; i < logged.size(); ++i) {
+    EXPECT_EQ(restored[i].stepIndex, logged[i].stepIndex);
+    EXPECT_EQ(restored[i].timeUnixMs, logged[i].timeUnixMs);
+    EXPECT_EQ(restored[i].faces, logged[i].faces);
+    EXPECT_NEAR(restored[i].removedMm3, logged[i].removedMm3, 1e-8 * logged[i].removedMm3);
+    EXPECT_NEAR(restored[i].cumulativeMm3, logged[i].cumulativeMm3, 1e-8 * logged[i].cumulativeMm3);
+    EXPECT_EQ(restored[i].reamer, logged[i].reamer);
+    EXPECT_EQ(restored[i].boneStateId, 0u);  // the crashed session's revisions are not this history's
+  }
+  auto* table = w.findChild<QTableWidget*>("LogTable");  // what the user sees
+  ASSERT_NE(table, nullptr);
+  QTest::qWait(50);
+  EXPECT_EQ(table->rowCount(), 2);
+  EXPECT_TRUE(w.statusBar()->currentMessage().contains("cut log (2 steps)")) << w.statusBar()->currentMessage().toStdString();
+  // The next cut continues the log: its step number after the last, its cumulative volume from there.
+  f.session().plan()->setPoses(plan);
+  cutOnce(f.session(), 2.0);
+  ASSERT_EQ(f.session().log()->size(), 3u);
+  const CutLogEntry& next = f.session().log()->last();
+  EXPECT_GT(next.stepIndex, logged.back().stepIndex);
+  EXPECT_GT(next.removedMm3, 0);
+  EXPECT_NEAR(next.cumulativeMm3, logged.back().cumulativeMm3 + next.removedMm3, 1e-6 * next.cumulativeMm3);
+  EXPECT_NEAR(f.session().initialVolumeMm3() - f.session().bone()->current().volume(), next.cumulativeMm3,
+              1e-6 * next.cumulativeMm3);
   ASSERT_TRUE(settledCopy(w));                // and the copy is kept up to date again
+  EXPECT_EQ(w.recovery()->found()->cuts, 3);  // with the restored rows
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
   EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());
+}
+
+// A log that cannot be read back (damaged after the crash) does not stop the bone's restore; the message
+// names the file and the problem, and the log is kept as a file for the user.
+TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  double volume = 0;
+  {
+    GuiFixture crashed;
+    crashed.window->enableRecovery(dir.filePath("recovery"), 0);
+    cutOnce(crashed.session());
+    ASSERT_TRUE(settledCopy(*crashed.window));
+    volume = crashed.session().bone()->current().volume();
+  }
+  const std::optional<RecoveredBone> copy = RecoveryFiles(dir.filePath("recovery")).found();
+  ASSERT_TRUE(copy && !copy->logPath.isEmpty());
+  {
+    QFile log(copy->logPath);
+    ASSERT_TRUE(log.open(QIODevice::Append));
+    log.write("3,not a time\n");  // a torn last row
+  }
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !w.lastError().isEmpty(); }, 30000));
+  EXPECT_TRUE(w.windowTitle().contains("(recovered)"));
+  EXPECT_NEAR(f.session().bone()->current().volume(), volume, 1e-9 * volume);  // the bone is back
+  EXPECT_TRUE(f.session().log()->empty());
+  const std::string message = w.lastError().toStdString();
+  EXPECT_NE(message.find(QFileInfo(copy->logPath).fileName().toStdString() + ":3: 2 fields where the header has 26"),
+            std::string::npos) << message;
+  ASSERT_FALSE(w.recoveredLogPath().isEmpty());
+  EXPECT_NE(message.find(w.recoveredLogPath().toStdString()), std::string::npos) << message;
+  EXPECT_EQ(lines(w.recoveredLogPath()), 3);  // the header, the cut and the torn row, as they were
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
 }
 
 TEST(GuiRecovery, DiscardingTheOfferDeletesTheCopy) {

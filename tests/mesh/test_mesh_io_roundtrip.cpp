@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <clocale>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -94,6 +95,35 @@ TEST_P(io_RoundTrip, WriteThenReadGivesTheSameMesh) {
         EXPECT_EQ(loaded.mesh.vertices[loaded.mesh.triangles[t][k]], mesh.vertices[mesh.triangles[t][k]]) << t;
   }
   EXPECT_NEAR(signedVolume(loaded.mesh), signedVolume(mesh), 1e-9 * std::abs(signedVolume(mesh)));
+}
+
+// Qt sets the C library's locale from the user's environment (the GUI writes these files too): in a
+// decimal-comma locale the text formats must still be written with decimal points, the same bytes as here.
+TEST_P(io_RoundTrip, WritesTheSameFileInADecimalCommaLocale) {
+  const RoundTripCase c = GetParam();
+  const TriangleMesh mesh = octahedron(10.0 / 3.0, {0.1 + 1.0 / 3.0, -123.456789012345678, 1e-3});
+  WriteOptions wo;
+  wo.binary = c.binary;
+  const std::string inC = path(std::string("c") + c.ext), inDe = path(std::string("de") + c.ext);
+  writeMesh(mesh, inC, wo);
+  const std::string previous = std::setlocale(LC_ALL, nullptr);
+  if (!std::setlocale(LC_ALL, "de_DE.UTF-8") && !std::setlocale(LC_ALL, "de_DE.utf8"))
+    GTEST_SKIP() << "no de_DE.UTF-8 locale here (scripts/install-deps.sh generates it)";
+  char probe[16];
+  std::snprintf(probe, sizeof probe, "%.1f", 1.5);
+  try {
+    writeMesh(mesh, inDe, wo);
+  } catch (...) {
+    std::setlocale(LC_ALL, previous.c_str());
+    throw;
+  }
+  std::setlocale(LC_ALL, previous.c_str());
+  EXPECT_EQ(std::string(probe), "1,5");  // the locale was in effect
+  auto bytes = [](const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(bytes(inDe), bytes(inC)) << c.format;
 }
 
 INSTANTIATE_TEST_SUITE_P(AllFormats, io_RoundTrip,

@@ -2,8 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <clocale>
+#include <cmath>
+#include <string>
 
 #include "ReamFixture.h"
+#include "reamsim/mesh/MeshError.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/tools/Primitives.h"
 
@@ -32,6 +36,151 @@ TEST(CutLog, StepsCarryTheirCommitTimeIntoTheFiles) {
   EXPECT_EQ(csv.rfind("step,time_utc,", 0), 0u) << csv;
   EXPECT_NE(csv.find("," + isoTimeUtc(e.timeUnixMs) + ","), std::string::npos) << csv;
   EXPECT_NE(cutLogJson(s.log->entries()).find("\"time_utc\": \"" + isoTimeUtc(e.timeUnixMs) + "\""), std::string::npos);
+}
+
+
+// Rows with every optional part set and unset, a reamer name the CSV has to quote, a distance not yet known.
+std::vector<CutLogEntry> variedEntries() {
+  CutLogEntry a;
+  a.stepIndex = 0;
+  a.timeUnixMs = 1795325231325;
+  a.pose = Pose{{-38.125, 12.5, 101.0625}, {0.6, -0.8, 0}, 0};
+  a.boxesOverlap = true;
+  a.minDistanceMm = std::numeric_limits<double>::infinity();
+  a.cutMs = 0.25;
+  a.faces = 14998;
+  a.reamer = "glenoid-36-R30";
+  a.reamerDiameterMm = 36;
+  a.reamerSphereRadiusMm = 30;
+  CutLogEntry b = a;
+  b.stepIndex = 7;
+  b.timeUnixMs = 0;  // not recorded
+  b.contact = true;
+  b.minDistanceMm = 0;
+  b.removedMm3 = 12.3456789;
+  b.cumulativeMm3 = 1203.04887;
+  b.cutMs = 4.785;
+  b.faces = 15210;
+  b.contactPoint = Vec3{-40.5, 11.25, 99.875};
+  b.moveContactT = 0.15;
+  b.moveContactPoint = Vec3{-40.25, 11.0, 99.5};
+  b.boneStateId = 42;
+  b.reamer = "flat, 20 mm \"custom\"\nsecond line";
+  b.reamerDiameterMm = 20;
+  b.reamerSphereRadiusMm.reset();
+  CutLogEntry c = b;
+  c.stepIndex = 8;
+  c.reamer.clear();
+  c.reamerDiameterMm = 0;
+  c.contactPoint.reset();
+  c.moveContactT.reset();
+  c.moveContactPoint.reset();
+  return {a, b, c};
+}
+
+TEST(CutLog, ACsvReadsBackToTheRowsItWasWrittenFrom) {
+  const std::vector<CutLogEntry> rows = variedEntries();
+  const std::string csv = cutLogCsv(rows);
+  const std::vector<CutLogEntry> back = cutLogFromCsv(csv, "log.csv");
+  ASSERT_EQ(back.size(), rows.size());
+  EXPECT_EQ(cutLogCsv(back), csv);  // the same text again
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(back[i].stepIndex, rows[i].stepIndex);
+    EXPECT_EQ(back[i].timeUnixMs, rows[i].timeUnixMs);
+    EXPECT_EQ(back[i].pose.tip.x, rows[i].pose.tip.x);
+    EXPECT_EQ(back[i].pose.axis.y, rows[i].pose.axis.y);
+    EXPECT_EQ(back[i].boxesOverlap, rows[i].boxesOverlap);
+    EXPECT_EQ(back[i].contact, rows[i].contact);
+    EXPECT_EQ(back[i].minDistanceMm, rows[i].minDistanceMm);
+    EXPECT_EQ(back[i].removedMm3, rows[i].removedMm3);
+    EXPECT_EQ(back[i].cumulativeMm3, rows[i].cumulativeMm3);
+    EXPECT_EQ(back[i].faces, rows[i].faces);
+    EXPECT_EQ(back[i].contactPoint.has_value(), rows[i].contactPoint.has_value());
+    EXPECT_EQ(back[i].moveContactT, rows[i].moveContactT);
+    EXPECT_EQ(back[i].moveContactPoint.has_value(), rows[i].moveContactPoint.has_value());
+    EXPECT_EQ(back[i].boneStateId, rows[i].boneStateId);
+    EXPECT_EQ(back[i].reamer, rows[i].reamer);
+    EXPECT_EQ(back[i].reamerDiameterMm, rows[i].reamerDiameterMm);
+    EXPECT_EQ(back[i].reamerSphereRadiusMm, rows[i].reamerSphereRadiusMm);
+  }
+  EXPECT_EQ(back[1].contactPoint->z, 99.875);
+  EXPECT_TRUE(cutLogFromCsv(cutLogCsv({}), "empty.csv").empty());  // a header alone: no rows
+  // Windows line breaks and a last line without one read the same.
+  std::vector<CutLogEntry> oneLineNames = rows;
+  oneLineNames[1].reamer = "flat, 20 mm";  // a line break inside a quoted field is part of the name
+  const std::string plain = cutLogCsv(oneLineNames);
+  std::string crlf;
+  for (char ch : plain) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
+  EXPECT_EQ(cutLogCsv(cutLogFromCsv(crlf, "crlf.csv")), plain);
+  EXPECT_EQ(cutLogCsv(cutLogFromCsv(csv.substr(0, csv.size() - 1), "cut.csv")), csv);
+}
+
+// Each damage is refused with the file, the line (of the record it is in) and the column.
+TEST(CutLog, ADamagedCsvIsRefusedNamingTheLineAndTheColumn) {
+  const std::string csv = cutLogCsv(variedEntries());
+  const std::size_t row2 = csv.find('\n') + 1;  // the first data row starts here
+  auto expectRefused = [](const std::string& text, const std::string& where, const std::string& what) {
+    try {
+      cutLogFromCsv(text, "crash.csv");
+      ADD_FAILURE() << "accepted: " << where << " " << what;
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.rfind("crash.csv" + where, 0), 0u) << m;
+      EXPECT_NE(m.find(what), std::string::npos) << m;
+    }
+  };
+  expectRefused("", ": ", "no header");
+  expectRefused("step,time\n0,\n", ":1: ", "not a ReamSim cut log");
+  std::string text = csv;
+  text.replace(text.find("-38.125000"), 10, "-38,125000");  // a decimal comma: one field too many
+  expectRefused(text, ":2: ", "27 fields where the header has 26");
+  text = csv;
+  text.replace(text.find("-38.125000"), 10, "-38.12x000");
+  expectRefused(text, ":2: ", "column 3 (tip_x): '-38.12x000' is not a number");
+  text = csv;
+  text.replace(text.find(",14998,"), 7, ",1.5e4,");
+  expectRefused(text, ":2: ", "column 15 (faces): '1.5e4' is not a whole number");
+  text = csv;
+  text.replace(text.find("2026-11-22T05:27:11.325Z"), 24, "2026-11-31T05:27:11.325Z");
+  expectRefused(text, ":2: ", "column 2 (time_utc)");
+  text = csv;
+  text.replace(row2 + csv.substr(row2).find(",1,0,"), 5, ",1,2,");
+  expectRefused(text, ":2: ", "column 10 (contact): '2' is not 0 or 1");
+  text = csv;
+  text.replace(text.find("-40.500000"), 10, "");
+  expectRefused(text, ":3: ", "column 16 (contact_x): empty while the point's other coordinates are given");
+  text = csv;
+  text.replace(text.find("12.3456789"), 10, "inf");
+  expectRefused(text, ":3: ", "column 12 (removed_mm3): 'inf' is not finite");
+  // The row after the reamer whose name spans two lines starts on line 5.
+  text = csv;
+  text.replace(text.rfind("\n8,"), 3, "\n8x,");
+  expectRefused(text, ":5: ", "column 1 (step): '8x' is not a whole number");
+  text = csv.substr(0, csv.rfind("second line"));  // the file ends inside a quoted field
+  expectRefused(text, ":3: ", "not closed");
+  EXPECT_THROW(readCutLogCsv("/nonexistent/cut_log.csv"), InputError);
+}
+
+// Qt sets the C library's locale from the user's environment: a decimal-comma locale must not change what
+// the log file says (a comma in a number would shift every column after it).
+TEST(CutLog, TheCsvIsTheSameInADecimalCommaLocale) {
+  const std::string expected = cutLogCsv(variedEntries());
+  const std::string previous = std::setlocale(LC_ALL, nullptr);
+  if (!std::setlocale(LC_ALL, "de_DE.UTF-8") && !std::setlocale(LC_ALL, "de_DE.utf8"))
+    GTEST_SKIP() << "no de_DE.UTF-8 locale here (scripts/install-deps.sh generates it)";
+  char probe[16];
+  std::snprintf(probe, sizeof probe, "%.1f", 1.5);
+  const std::string written = cutLogCsv(variedEntries());
+  std::vector<CutLogEntry> back;
+  try {
+    back = cutLogFromCsv(written, "de.csv");
+  } catch (...) {
+  }
+  std::setlocale(LC_ALL, previous.c_str());
+  EXPECT_EQ(std::string(probe), "1,5");  // the locale is in effect for printf
+  EXPECT_EQ(written, expected);
+  EXPECT_EQ(back.size(), 3u);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "reamsim/ream/CutLogIO.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -7,15 +8,20 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 
+#include "CutLogCsvHeader.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim {
 namespace {
-std::string num(double v, const char* fmt = "%.6f") {
+// A number as printf writes it in the "C" locale ("%.6f" by default, NumberStyle::Significant9 for kSignificant9), whatever
+// the C library's locale: Qt sets it from the user's environment, and a decimal comma would split the field.
+enum class NumberStyle { Fixed6, Fixed3, Significant9 };
+std::string num(double v, NumberStyle style = NumberStyle::Fixed6) {
   if (!std::isfinite(v)) return v > 0 ? "inf" : "nan";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
+  char buf[400];  // %.6f of 1e308 is 316 characters
+  const auto r = style == NumberStyle::Significant9 ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 9)
+                 : std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, style == NumberStyle::Fixed3 ? 3 : 6);
+  return std::string(buf, r.ptr);
 }
 nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 // A text field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
@@ -47,21 +53,18 @@ std::string isoTimeUtc(std::int64_t unixMs) {
 }
 
 std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
-  std::string out =
-      "step,time_utc,tip_x,tip_y,tip_z,axis_x,axis_y,axis_z,boxes_overlap,contact,min_distance_mm,removed_mm3,"
-      "cumulative_mm3,cut_ms,faces,contact_x,contact_y,contact_z,bone_state,move_contact_t,move_contact_x,"
-      "move_contact_y,move_contact_z,reamer,reamer_diameter_mm,reamer_sphere_radius_mm\n";
+  std::string out = std::string(detail::kCutLogCsvHeader) + "\n";
   for (const CutLogEntry& e : entries) {
     out += std::to_string(e.stepIndex) + "," + isoTimeUtc(e.timeUnixMs);
     for (double v : {e.pose.tip.x, e.pose.tip.y, e.pose.tip.z, e.pose.axis.x, e.pose.axis.y, e.pose.axis.z})
       out += "," + num(v);
     out += std::string(",") + (e.boxesOverlap ? "1" : "0") + "," + (e.contact ? "1" : "0");
-    out += "," + num(e.minDistanceMm) + "," + num(e.removedMm3, "%.9g") + "," + num(e.cumulativeMm3, "%.9g") + "," +
-           num(e.cutMs, "%.3f") + "," + std::to_string(e.faces);
+    out += "," + num(e.minDistanceMm) + "," + num(e.removedMm3, NumberStyle::Significant9) + "," + num(e.cumulativeMm3, NumberStyle::Significant9) + "," +
+           num(e.cutMs, NumberStyle::Fixed3) + "," + std::to_string(e.faces);
     out += pointCsv(e.contactPoint) + "," + std::to_string(e.boneStateId);
-    out += (e.moveContactT ? "," + num(*e.moveContactT, "%.9g") : std::string(",")) + pointCsv(e.moveContactPoint);
-    out += "," + csvField(e.reamer) + "," + (e.reamerDiameterMm > 0 ? num(e.reamerDiameterMm, "%.9g") : std::string()) + "," +
-           (e.reamerSphereRadiusMm ? num(*e.reamerSphereRadiusMm, "%.9g") : std::string()) + "\n";
+    out += (e.moveContactT ? "," + num(*e.moveContactT, NumberStyle::Significant9) : std::string(",")) + pointCsv(e.moveContactPoint);
+    out += "," + csvField(e.reamer) + "," + (e.reamerDiameterMm > 0 ? num(e.reamerDiameterMm, NumberStyle::Significant9) : std::string()) + "," +
+           (e.reamerSphereRadiusMm ? num(*e.reamerSphereRadiusMm, NumberStyle::Significant9) : std::string()) + "\n";
   }
   return out;
 }

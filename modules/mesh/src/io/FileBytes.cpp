@@ -1,6 +1,7 @@
 #include "FileBytes.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -54,9 +55,11 @@ void writeFileBytes(const std::string& path, const std::string& bytes) {
 }
 
 void appendDouble(std::string& out, double value) {
+  // printf's "%.17g" as in the "C" locale: snprintf would follow the C library's locale, which Qt sets from
+  // the user's environment (a decimal comma in de_DE would end the number for every reader).
   char buf[40];
-  const int n = std::snprintf(buf, sizeof buf, "%.17g", value);
-  out.append(buf, n > 0 ? static_cast<std::size_t>(n) : 0);
+  const auto r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 17);
+  out.append(buf, r.ptr);
 }
 
 void appendTriple(std::string& out, double a, double b, double c) {

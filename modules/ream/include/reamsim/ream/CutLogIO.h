@@ -12,6 +12,14 @@ namespace reamsim {
 std::string isoTimeUtc(std::int64_t unixMs);
 std::string cutLogCsv(const std::vector<CutLogEntry>& entries);
 std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::string& summaryJson = "{}");
+// The rows of a CSV that cutLogCsv wrote, read back (src/CutLogCsvReader.cpp): cutLogCsv of the result gives
+// the same text. Pose::rollDeg is not in the file and reads as 0. Anything else (another header, a row with
+// a missing or extra field, a value that is not a number, a flag that is not 0 or 1, a point with one
+// coordinate missing, a time that is not the writer's UTC form) throws InputError naming `file`, the line
+// and the column.
+std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::string& file);
+// cutLogFromCsv of a file's contents; InputError also when the file cannot be read.
+std::vector<CutLogEntry> readCutLogCsv(const std::string& path);
 // Throws InputError naming the file when it cannot be written.
 void writeTextFile(const std::string& path, const std::string& text);
 
