@@ -7,6 +7,7 @@ reamsim_add_module(mesh
     src/TriangleMesh.cpp
     src/ClosestPoints.cpp
     src/io/FileBytes.cpp
+    src/io/FileReplace.cpp
     src/io/TextScanner.cpp
     src/io/MeshBuilder.cpp
     src/io/StlIO.cpp

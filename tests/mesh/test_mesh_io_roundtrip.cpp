@@ -1,7 +1,11 @@
 // Round trips through every writable format, unit handling, small valid files and API edge cases.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <cctype>
 #include <clocale>
@@ -12,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "reamsim/mesh/FileReplace.h"
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/mesh/MeshIO.h"
 
@@ -139,6 +144,66 @@ INSTANTIATE_TEST_SUITE_P(AllFormats, io_RoundTrip,
                          });
 
 class io_MeshIO : public TempDir {};
+
+// A write that fails half way (here a file size limit, as a full disk would) must leave the file that was
+// there: writing in place truncated it first, and a failed save destroyed the user's earlier copy.
+TEST_P(io_RoundTrip, AWriteThatFailsHalfWayLeavesTheFileThatWasThere) {
+  const RoundTripCase c = GetParam();
+  WriteOptions wo;
+  wo.binary = c.binary;
+  const std::string file = path(std::string("kept") + c.ext);
+  const TriangleMesh small = octahedron(1, {});
+  writeMesh(small, file, wo);
+  TriangleMesh large;  // ~20,000 triangles: far over the limit below in every format
+  for (int k = 0; k < 2500; ++k) {
+    const TriangleMesh o = octahedron(1, {3.0 * k, 0, 0});
+    const auto base = static_cast<std::uint32_t>(large.vertices.size());
+    large.vertices.insert(large.vertices.end(), o.vertices.begin(), o.vertices.end());
+    for (Triangle t : o.triangles) large.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  rlimit before{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &before), 0);
+  rlimit limit = before;
+  limit.rlim_cur = 4096;
+  auto* const previousHandler = std::signal(SIGXFSZ, SIG_IGN);  // the write fails with EFBIG instead
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &limit), 0);
+  std::string error;
+  try {
+    writeMesh(large, file, wo);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  setrlimit(RLIMIT_FSIZE, &before);
+  std::signal(SIGXFSZ, previousHandler);
+  EXPECT_EQ(error.rfind(file + ": ", 0), 0u) << error;  // refused, naming the file
+  ReadOptions ro;
+  ro.units = Units::Millimetres;
+  const LoadedMesh kept = readMesh(file, ro);  // the earlier file, whole
+  EXPECT_EQ(kept.mesh.triangleCount(), small.triangleCount());
+  std::size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir_)) entries += e.path().filename() != fs::path(file).filename();
+  EXPECT_EQ(entries, 0u) << "the half-written file is left behind";
+}
+
+TEST_F(io_MeshIO, ReplacingAFileKeepsItsPermissionsAndLinks) {
+  const std::string file = path("bone.ply"), link = path("link.ply");
+  writeMesh(octahedron(1, {}), file);
+  ASSERT_EQ(::chmod(file.c_str(), 0640), 0);
+  fs::create_symlink(file, link);
+  writeMesh(octahedron(2, {}), link);  // through the link
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_EQ(fs::status(file).permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  const LoadedMesh back = readMesh(file, ReadOptions{Units::Millimetres});
+  EXPECT_EQ(back.mesh.vertices[0], (Vec3{2, 0, 0}));  // the target was replaced
+  // A new file: as created directly (0666 less the umask).
+  const mode_t mask = ::umask(022);
+  ::umask(mask);
+  replaceFile(path("new.txt"), "text");
+  EXPECT_EQ(static_cast<unsigned>(fs::status(path("new.txt")).permissions() & fs::perms::all), 0666u & ~mask);
+  EXPECT_THROW(replaceFile(path("missing/x.txt"), "text"), InputError);
+  EXPECT_THROW(replaceFile(dir_.string(), "text"), InputError);  // a folder
+}
 
 // PLY keeps comment lines (the GUI stores the bone's patient frame there); a line break cannot end one early.
 TEST_F(io_MeshIO, PlyCommentsRoundTripInBothEncodings) {

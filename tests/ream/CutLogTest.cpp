@@ -4,6 +4,7 @@
 #include <chrono>
 #include <clocale>
 #include <cmath>
+#include <random>
 #include <string>
 
 #include "ReamFixture.h"
@@ -160,6 +161,40 @@ TEST(CutLog, ADamagedCsvIsRefusedNamingTheLineAndTheColumn) {
   text = csv.substr(0, csv.rfind("second line"));  // the file ends inside a quoted field
   expectRefused(text, ":3: ", "not closed");
   EXPECT_THROW(readCutLogCsv("/nonexistent/cut_log.csv"), InputError);
+}
+
+// Damage of every kind (bytes changed, dropped, repeated; the file cut anywhere) is either refused with an
+// InputError naming the file, or read as rows that write and read back the same: never a crash, never
+// another exception.
+TEST(CutLog, MutatedCsvFilesAreReadOrRefusedCleanly) {
+  const std::string csv = cutLogCsv(variedEntries());
+  std::mt19937 rng(4711);
+  const std::string alphabet = "0123456789,.-+eE\"\r\nxinfa Z:T";
+  int refused = 0, read = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::string text = csv;
+    const int edits = 1 + static_cast<int>(rng() % 3);
+    for (int k = 0; k < edits && !text.empty(); ++k) {
+      const std::size_t at = rng() % text.size();
+      switch (rng() % 4) {
+        case 0: text[at] = alphabet[rng() % alphabet.size()]; break;
+        case 1: text.erase(at, 1 + rng() % 8); break;
+        case 2: text.insert(at, text.substr(rng() % text.size(), 1 + rng() % 12)); break;
+        default: text.resize(at); break;
+      }
+    }
+    try {
+      const std::vector<CutLogEntry> rows = cutLogFromCsv(text, "m.csv");
+      const std::string again = cutLogCsv(rows);
+      EXPECT_EQ(cutLogCsv(cutLogFromCsv(again, "again.csv")), again) << text;
+      ++read;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("m.csv", 0), 0u) << e.what();
+      ++refused;
+    }
+  }
+  EXPECT_GT(refused, 10000);  // most damage is seen
+  EXPECT_GT(read, 100);       // and harmless damage (a digit changed) still reads
 }
 
 // Qt sets the C library's locale from the user's environment: a decimal-comma locale must not change what

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <fstream>
 #include <optional>
 #include <nlohmann/json.hpp>
 
 #include "CutLogCsvHeader.h"
+#include "reamsim/mesh/FileReplace.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim {
@@ -98,11 +98,6 @@ std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::strin
   return j.dump(2);
 }
 
-void writeTextFile(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw InputError(path, "cannot open for writing");
-  out << text;
-  if (!out) throw InputError(path, "write failed");
-}
+void writeTextFile(const std::string& path, const std::string& text) { replaceFile(path, text); }
 
 }  // namespace reamsim

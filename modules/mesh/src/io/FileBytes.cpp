@@ -8,6 +8,7 @@
 #include <memory>
 #include <system_error>
 
+#include "reamsim/mesh/FileReplace.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim::io {
@@ -44,15 +45,7 @@ std::string readFileBytes(const std::string& path) {
   return bytes;
 }
 
-void writeFileBytes(const std::string& path, const std::string& bytes) {
-  errno = 0;
-  std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "wb"));
-  if (!f) throw InputError(path, "cannot open the file for writing: " + errnoText(errno));
-  if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), f.get()) != bytes.size())
-    throw InputError(path, "write error: " + errnoText(errno));
-  std::FILE* raw = f.release();
-  if (std::fclose(raw) != 0) throw InputError(path, "write error on close: " + errnoText(errno));
-}
+void writeFileBytes(const std::string& path, const std::string& bytes) { replaceFile(path, bytes); }
 
 void appendDouble(std::string& out, double value) {
   // printf's "%.17g" as in the "C" locale: snprintf would follow the C library's locale, which Qt sets from

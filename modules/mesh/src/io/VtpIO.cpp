@@ -22,6 +22,7 @@
 
 #include "Formats.h"
 #include "MeshBuilder.h"
+#include "reamsim/mesh/FileReplace.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim::io {
@@ -129,13 +130,14 @@ void writeVtp(const TriangleMesh& mesh, const std::string& path, const std::vect
   auto writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
   capture.observe(writer);
   writer->SetInputData(poly);
-  writer->SetFileName(path.c_str());
+  writer->WriteToOutputStringOn();  // then replaced as a whole, as the other formats (replaceFile)
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();
   const int ok = writer->Write();
   if (ok != 1 || capture.any())
     throw InputError(path, "cannot write the file" +
                                (capture.any() ? ": " + capture.firstMessage() : std::string(" (VTK writer failed)")));
+  replaceFile(path, writer->GetOutputString());
 }
 
 }  // namespace reamsim::io

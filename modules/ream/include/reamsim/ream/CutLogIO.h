@@ -20,7 +20,8 @@ std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::strin
 std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::string& file);
 // cutLogFromCsv of a file's contents; InputError also when the file cannot be read.
 std::vector<CutLogEntry> readCutLogCsv(const std::string& path);
-// Throws InputError naming the file when it cannot be written.
+// Replaces the file as a whole (replaceFile: a failed write leaves the file that was there); throws
+// InputError naming the file when it cannot be written.
 void writeTextFile(const std::string& path, const std::string& text);
 
 }  // namespace reamsim
