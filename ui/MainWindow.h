@@ -117,6 +117,7 @@ class MainWindow : public QMainWindow {
   // calls (openFile, loadDefaultCase: tests, demo) do not ask.
   bool confirmDiscardChanges(const QString& action);
   bool saveBoneAndCutLogInteractive();  // "Save" in that question: the bone, and its cut log beside it
+  bool writeBoneFile(const QString& path);  // the bone's mesh only; errors in a dialog; does not mark it saved
   void importFinished();
   void showImportProgress(double fraction, const QString& stage);
   void updateStatus();

@@ -159,6 +159,13 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
 }
 
 bool MainWindow::saveBoneAs(const QString& path) {
+  if (!writeBoneFile(path)) return false;
+  session_->undoStack()->setClean();
+  statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+  return true;
+}
+
+bool MainWindow::writeBoneFile(const QString& path) {
   if (!plugins_.meshImport()) {
     showError(tr("Save"), tr("Cannot save %1: no mesh import plugin is loaded (Help → Plugins).").arg(path));
     return false;
@@ -170,8 +177,6 @@ bool MainWindow::saveBoneAs(const QString& path) {
     showError(tr("Cannot save %1").arg(QFileInfo(path).fileName()), QString::fromStdString(e.what()));
     return false;
   }
-  session_->undoStack()->setClean();
-  statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
   return true;
 }
 
@@ -220,15 +225,18 @@ bool MainWindow::saveBoneAndCutLogInteractive() {
   }
   const QString path = QFileDialog::getSaveFileName(this, tr("Save bone mesh"), "bone.ply",
                                                     plugins_.meshImport()->nameFilters().join(";;"));
-  if (path.isEmpty() || !saveBoneAs(path)) return false;
+  if (path.isEmpty() || !writeBoneFile(path)) return false;
   const QFileInfo info(path);
   const QString logPath = info.dir().filePath(info.completeBaseName() + ".cut_log.csv");
   try {
     writeTextFile(logPath.toStdString(), cutLogCsv(session_->log()->entries()));
   } catch (const std::exception& e) {
+    // The bone is written but its log is not: the work is not saved yet (the question comes again).
     showError(tr("Cannot save the cut log %1").arg(QFileInfo(logPath).fileName()), QString::fromStdString(e.what()));
     return false;
   }
+  session_->undoStack()->setClean();
+  statusBar()->showMessage(tr("Saved %1 and its cut log").arg(path), 5000);
   return true;
 }
 

@@ -3,7 +3,9 @@
 // save that fails (or a cancelled file dialog) keeps the window as it was. The questions are answered
 // through the real modal dialogs, as a user would.
 #include <QAction>
+#include <QDir>
 #include <QFile>
+#include <QFileInfo>
 #include <QMessageBox>
 #include <QTemporaryDir>
 #include <QUndoStack>
@@ -90,6 +92,24 @@ TEST(GuiUnsavedChanges, AFailedOrCancelledSaveKeepsTheWindowOpen) {
   EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::cancelFile()}, 2));
   EXPECT_TRUE(w.isVisible());
   EXPECT_TRUE(w.hasUnsavedChanges());
+}
+
+// The bone written but its cut log not (here a folder stands where the log goes): the work is not saved, so
+// the window stays open with unsaved changes and the question comes again.
+TEST(GuiUnsavedChanges, ABoneSavedWithoutItsCutLogIsNotSaved) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  cutOnce(f.session());
+  QTemporaryDir out;
+  ASSERT_TRUE(QDir().mkpath(out.filePath("bone.cut_log.csv")));
+  EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("bone.ply"))}, 2));
+  EXPECT_TRUE(w.lastError().contains("bone.cut_log.csv")) << w.lastError().toStdString();
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
+  EXPECT_TRUE(QFileInfo::exists(out.filePath("bone.ply")));  // the bone was written
+  EXPECT_TRUE(w.isVisible());
+  EXPECT_TRUE(w.hasUnsavedChanges());  // but without its log the work is not saved
+  EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
 }
 
 TEST(GuiUnsavedChanges, SavingMarksTheBoneSavedUntilTheHistoryMovesAway) {
