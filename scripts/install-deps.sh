@@ -16,7 +16,7 @@ PACKAGES=(
 )
 
 # A decimal-comma locale for the tests that check files are written the same whatever the user's locale
-# (Qt sets the C library's locale from the environment; tests/mesh/LocaleIndependentWritersTest.cpp).
+# (Qt sets the C library's locale from the environment; the tests named "...InADecimalCommaLocale").
 ensure_test_locale() {
   if ! locale -a 2>/dev/null | grep -qi '^de_DE\.utf-\?8$'; then
     echo "install-deps: generating the de_DE.UTF-8 locale for the tests"

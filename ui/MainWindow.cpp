@@ -154,10 +154,7 @@ void MainWindow::buildMenus() {
     if (confirmDiscardChanges(tr("load the default case"))) loadDefaultCase();
   });
   add(file, "save", tr("&Save bone as…"), QKeySequence::SaveAs, [this] {
-    if (!plugins_.meshImport()) return showError(tr("Save"), tr("No mesh import plugin is loaded (Help → Plugins)."));
-    const QString path = QFileDialog::getSaveFileName(this, tr("Save bone mesh"), "bone.ply",
-                                                      plugins_.meshImport()->nameFilters().join(";;"));
-    if (!path.isEmpty()) saveBoneAs(path);
+    saveBoneAndCutLogInteractive();
   })->setEnabled(plugins_.meshImport() != nullptr);
   file->addSeparator();
   add(file, "quit", tr("&Quit"), QKeySequence::Quit, [this] { close(); });

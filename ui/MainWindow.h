@@ -68,7 +68,9 @@ class MainWindow : public QMainWindow {
   void cancelImport();  // the window is free at once; the worker stops at its next check, its result is discarded
   // Where the last cancelled import's worker stopped (a repair stage), empty when it ran to its end (tests).
   const QString& lastImportStoppedAt() const { return importStoppedAt_; }
-  bool saveBoneAs(const QString& path);  // true when written; the bone is then "saved" (no unsaved changes)
+  // The bone at `path` and its cut log beside it (NAME.cut_log.csv); true when both are written, and only then
+  // is the bone "saved" (no unsaved changes). Errors in a dialog.
+  bool saveBoneAs(const QString& path);
   // Changes since the bone was opened or last saved (the undo history is away from its saved point).
   bool hasUnsavedChanges() const;
   // Depth below the first contact along the axis (searched on a worker, then fed in feed steps).
@@ -95,7 +97,8 @@ class MainWindow : public QMainWindow {
   void enableRecovery(const QString& dir, int delayMs);
   const RecoveryFiles* recovery() const { return recovery_.get(); }
   bool recoveryWriteRunning() const { return recoveryWrite_.isRunning(); }
-  const QString& recoveredLogPath() const { return recoveredLogPath_; }  // a restored log that could not be read back, kept
+  // Where a restored bone's cut log was kept when it could not be read back into the log panel.
+  const QString& recoveredLogPath() const { return recoveredLogPath_; }
 
  public:
   QString boneFrameText() const;  // the status bar's patient frame and source of the bone
@@ -116,7 +119,7 @@ class MainWindow : public QMainWindow {
   // changes, asks Save / Discard / Cancel; true to go on. A running step is stopped first. Programmatic
   // calls (openFile, loadDefaultCase: tests, demo) do not ask.
   bool confirmDiscardChanges(const QString& action);
-  bool saveBoneAndCutLogInteractive();  // "Save" in that question: the bone, and its cut log beside it
+  bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
   bool writeBoneFile(const QString& path);  // the bone's mesh only; errors in a dialog; does not mark it saved
   void importFinished();
   void showImportProgress(double fraction, const QString& stage);

@@ -160,8 +160,17 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
 
 bool MainWindow::saveBoneAs(const QString& path) {
   if (!writeBoneFile(path)) return false;
+  const QFileInfo info(path);
+  const QString logPath = info.dir().filePath(info.completeBaseName() + ".cut_log.csv");
+  try {
+    writeTextFile(logPath.toStdString(), cutLogCsv(session_->log()->entries()));
+  } catch (const std::exception& e) {
+    // The bone is written but its log is not: the work is not saved yet (closing asks again).
+    showError(tr("Cannot save the cut log %1").arg(QFileInfo(logPath).fileName()), QString::fromStdString(e.what()));
+    return false;
+  }
   session_->undoStack()->setClean();
-  statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+  statusBar()->showMessage(tr("Saved %1 and its cut log").arg(path), 5000);
   return true;
 }
 
@@ -225,19 +234,7 @@ bool MainWindow::saveBoneAndCutLogInteractive() {
   }
   const QString path = QFileDialog::getSaveFileName(this, tr("Save bone mesh"), "bone.ply",
                                                     plugins_.meshImport()->nameFilters().join(";;"));
-  if (path.isEmpty() || !writeBoneFile(path)) return false;
-  const QFileInfo info(path);
-  const QString logPath = info.dir().filePath(info.completeBaseName() + ".cut_log.csv");
-  try {
-    writeTextFile(logPath.toStdString(), cutLogCsv(session_->log()->entries()));
-  } catch (const std::exception& e) {
-    // The bone is written but its log is not: the work is not saved yet (the question comes again).
-    showError(tr("Cannot save the cut log %1").arg(QFileInfo(logPath).fileName()), QString::fromStdString(e.what()));
-    return false;
-  }
-  session_->undoStack()->setClean();
-  statusBar()->showMessage(tr("Saved %1 and its cut log").arg(path), 5000);
-  return true;
+  return !path.isEmpty() && saveBoneAs(path);
 }
 
 void MainWindow::addRecent(const QString& path) {

@@ -68,9 +68,10 @@ void MainWindow::writeRecoveryCopy() {
   const PatientFrame frame = session_->bone()->patientFrame();
   const QString name = boneName_;
   const int cuts = static_cast<int>(session_->log()->entries().size());
+  const double removed = session_->initialVolumeMm3() - state.volume();  // undone cuts not counted
   const RecoveryFiles* files = recovery_.get();
-  recoveryWrite_.setFuture(
-      QtConcurrent::run([writer, files, frame, name, cuts, state = std::move(state), csv = std::move(csv)]() -> QString {
+  recoveryWrite_.setFuture(QtConcurrent::run(
+      [writer, files, frame, name, cuts, removed, state = std::move(state), csv = std::move(csv)]() -> QString {
         try {
           writer->exportMesh(state.toMesh(), files->nextBonePath().toStdString(), frame);
           writeTextFile(files->nextLogPath().toStdString(), csv);
@@ -78,7 +79,7 @@ void MainWindow::writeRecoveryCopy() {
           return QString::fromStdString(e.what());
         }
         QString error;
-        files->commit(name, cuts, error);
+        files->commit(name, cuts, removed, error);
         return error;
       }));
 }
@@ -141,7 +142,7 @@ void MainWindow::offerRecovery() {
     try {
       std::vector<CutLogEntry> rows = readCutLogCsv(found->logPath.toStdString());
       logRows = rows.size();
-      session_->continueLog(std::move(rows));
+      session_->continueLog(std::move(rows), found->removedMm3);
     } catch (const std::exception& e) {
       logProblem = QString::fromStdString(e.what());
       const QString kept = QDir(recovery_->dir()).filePath("restored");

@@ -62,14 +62,14 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
   boneCuttable_ = b.cuttable;
   initialVolume_ = bone_->current().volume();
   cuts_ = steps_ = 0;
-  removedBeforeMm3_ = 0;
+  removedBefore_.clear();
   lastComputedPose_.reset();
   lastMinDistance_ = std::numeric_limits<double>::infinity();
   rebuildEngine();
   Q_EMIT boneReplaced();
 }
 
-void ReamSession::continueLog(std::vector<CutLogEntry> earlier) {
+void ReamSession::continueLog(std::vector<CutLogEntry> earlier, std::optional<double> removedMm3) {
   if (earlier.empty()) return;
   Document::BatchScope batch(document_);
   for (CutLogEntry& e : earlier) {
@@ -77,7 +77,12 @@ void ReamSession::continueLog(std::vector<CutLogEntry> earlier) {
     steps_ = std::max(steps_, e.stepIndex + 1);
     log_->append(std::move(e));
   }
-  removedBeforeMm3_ = log_->cumulativeMm3();
+  removedBefore_[bone_->history().entries().front().revision] = removedMm3.value_or(log_->cumulativeMm3());
+}
+
+double ReamSession::removedBeforeMm3() const {
+  const auto it = removedBefore_.find(bone_->history().entries().front().revision);
+  return it == removedBefore_.end() ? 0.0 : it->second;
 }
 
 void ReamSession::setReamer(const ReamerSpec& spec) {

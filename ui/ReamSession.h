@@ -16,6 +16,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <unordered_map>
 
 #include "reamsim/core/AlertNode.h"
 #include "reamsim/core/BoneNode.h"
@@ -106,12 +107,14 @@ class ReamSession : public QObject {
   std::size_t cutsCommitted() const { return cuts_; }
   double lastMinDistanceMm() const { return lastMinDistance_; }
   // The bone's volume before its first logged cut (the log's cumulative volume is measured against it).
-  double initialVolumeMm3() const { return initialVolume_ + removedBeforeMm3_; }
+  double initialVolumeMm3() const { return initialVolume_ + removedBeforeMm3(); }
 
   // After loadBone of a bone restored from a crash-recovery copy: the log the crashed session kept, so that
-  // the log panel lists it, new steps continue its numbering and the cumulative volume goes on from its
-  // last row. The rows' bone revisions belong to the crashed session's history and are cleared (0).
-  void continueLog(std::vector<CutLogEntry> earlier);
+  // the log panel lists it, new steps continue its numbering and the cumulative volume goes on from what had
+  // been removed from this bone (`removedMm3`, as the copy recorded it: cuts undone before the crash are not
+  // counted; without it, the last row's cumulative volume). The rows' bone revisions belong to the crashed
+  // session's history and are cleared (0).
+  void continueLog(std::vector<CutLogEntry> earlier, std::optional<double> removedMm3 = std::nullopt);
 
  Q_SIGNALS:
   void busyChanged(bool busy);
@@ -170,7 +173,10 @@ class ReamSession : public QObject {
   static constexpr int kProgressMs = 100;
   int sequenceDone_ = 0, sequenceTotal_ = 0;
   std::size_t cuts_ = 0, steps_ = 0;
-  double removedBeforeMm3_ = 0;  // removed before the bone's current history began (a restored log)
+  // Removed from a bone before its history here began (a restored log), by the history's first revision: a
+  // CT import that replaces the bone (exchangeBone) swaps histories, and the other bone starts from its own.
+  std::unordered_map<std::uint64_t, double> removedBefore_;
+  double removedBeforeMm3() const;
   double lastMinDistance_ = std::numeric_limits<double>::infinity();
 };
 

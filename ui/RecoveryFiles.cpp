@@ -1,5 +1,7 @@
 #include "RecoveryFiles.h"
 
+#include <cmath>
+
 #include <QDir>
 #include <QFile>
 #include <QJsonDocument>
@@ -53,14 +55,16 @@ std::optional<RecoveredBone> RecoveryFiles::found() const {
   r.name = d.value("name").toString();
   r.cuts = d.value("cuts").toInt();
   r.written = QDateTime::fromString(d.value("written").toString(), Qt::ISODate).toLocalTime();
+  if (d.value("removed_mm3").isDouble()) r.removedMm3 = d.value("removed_mm3").toDouble();
   return r;
 }
 
-bool RecoveryFiles::commit(const QString& name, int cuts, QString& error) const {
+bool RecoveryFiles::commit(const QString& name, int cuts, double removedMm3, QString& error) const {
   QJsonObject d;
   d.insert("slot", nextSlot());
   d.insert("name", name);
   d.insert("cuts", cuts);
+  if (std::isfinite(removedMm3)) d.insert("removed_mm3", removedMm3);
   d.insert("written", QDateTime::currentDateTimeUtc().toString(Qt::ISODate));
   QSaveFile f(path(kDescription));
   if (!f.open(QIODevice::WriteOnly) || f.write(QJsonDocument(d).toJson()) < 0 || !f.commit()) {

@@ -20,6 +20,9 @@ struct RecoveredBone {
   QString name;       // the bone's name as the window's title showed it
   QDateTime written;  // when the copy was complete
   int cuts = 0;
+  // The bone volume removed since its log began, at the copy (the log's last row counts cuts undone since;
+  // this does not). Unset in a description written before session 49.
+  std::optional<double> removedMm3;
 };
 
 class RecoveryFiles {
@@ -37,7 +40,7 @@ class RecoveryFiles {
   QString nextBonePath() const;  // "bone.a.ply" or "bone.b.ply": the writer picks the format from the suffix
   QString nextLogPath() const;
   // False (with `error` naming the file) when the description cannot be written; the previous copy stays.
-  bool commit(const QString& name, int cuts, QString& error) const;
+  bool commit(const QString& name, int cuts, double removedMm3, QString& error) const;
   void remove() const;  // the description first, so a half-removed copy is never offered
 
  private:

@@ -2,6 +2,7 @@
 // UI thread a moment after each change); a save or a normal close removes it; a copy left behind (the window
 // went away without a close, as in a crash) is offered by the next window, which restores the bone exactly
 // or deletes the copy, as the user answers; a second window does not touch the first one's copy.
+#include <QAction>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -14,6 +15,7 @@
 #include "GuiHelpers.h"
 #include "RecoveryFiles.h"
 #include "reamsim/mesh/MeshIO.h"
+#include "reamsim/tools/Primitives.h"
 
 namespace reamsim::ui::test {
 namespace {
@@ -68,7 +70,7 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;
   std::size_t faces = 0;
-  double volume = 0;
+  double volume = 0, removed = 0;
   std::vector<CutLogEntry> logged;
   std::vector<Pose> plan;
   {
@@ -76,13 +78,17 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
     crashed.window->enableRecovery(dir.filePath("recovery"), 0);
     cutOnce(crashed.session());
     cutOnce(crashed.session(), 1.0);
+    crashed.window->action("undo")->trigger();  // the log keeps both rows; the bone is back after the first
+    ASSERT_TRUE(crashed.session().waitIdle(60000));
     ASSERT_TRUE(settledCopy(*crashed.window));
     faces = crashed.session().bone()->current().liveTriangleCount();
     volume = crashed.session().bone()->current().volume();
+    removed = crashed.session().initialVolumeMm3() - volume;
     logged = crashed.session().log()->entries();
     plan = crashed.session().plan()->poses();
   }  // gone without a close
   ASSERT_EQ(logged.size(), 2u);
+  ASSERT_LT(removed, logged.back().cumulativeMm3);  // the undone cut is not counted
   GuiFixture f;
   MainWindow& w = *f.window;
   ASSERT_FALSE(w.hasUnsavedChanges());
@@ -112,19 +118,31 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   ASSERT_NE(table, nullptr);
   QTest::qWait(50);
   EXPECT_EQ(table->rowCount(), 2);
-  EXPECT_TRUE(w.statusBar()->currentMessage().contains("cut log (2 steps)")) << w.statusBar()->currentMessage().toStdString();
-  // The next cut continues the log: its step number after the last, its cumulative volume from there.
+  const QString status = w.statusBar()->currentMessage();
+  EXPECT_TRUE(status.contains("cut log (2 steps)")) << status.toStdString();
+  // The next cut continues the log: its step number after the last, its cumulative volume from what had
+  // been removed at the crash (the undone cut not counted).
   f.session().plan()->setPoses(plan);
   cutOnce(f.session(), 2.0);
   ASSERT_EQ(f.session().log()->size(), 3u);
   const CutLogEntry& next = f.session().log()->last();
   EXPECT_GT(next.stepIndex, logged.back().stepIndex);
   EXPECT_GT(next.removedMm3, 0);
-  EXPECT_NEAR(next.cumulativeMm3, logged.back().cumulativeMm3 + next.removedMm3, 1e-6 * next.cumulativeMm3);
+  EXPECT_NEAR(next.cumulativeMm3, removed + next.removedMm3, 1e-6 * next.cumulativeMm3);
   EXPECT_NEAR(f.session().initialVolumeMm3() - f.session().bone()->current().volume(), next.cumulativeMm3,
               1e-6 * next.cumulativeMm3);
   ASSERT_TRUE(settledCopy(w));                // and the copy is kept up to date again
   EXPECT_EQ(w.recovery()->found()->cuts, 3);  // with the restored rows
+  // A bone that replaces this one (a CT import, undoable) starts its cumulative volume from its own; the
+  // restored bone, swapped back, from what was removed from it.
+  const double restoredStart = f.session().initialVolumeMm3();
+  BoneContent other;
+  other.history = BoneHistory(BoneState::fromMesh(buildBox(Bounds{{0, 0, 0}, {10, 10, 10}})));
+  bool otherCuttable = true;
+  f.session().exchangeBone(other, otherCuttable);
+  EXPECT_NEAR(f.session().initialVolumeMm3(), 1000.0, 1e-9);
+  f.session().exchangeBone(other, otherCuttable);
+  EXPECT_EQ(f.session().initialVolumeMm3(), restoredStart);
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
   EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());
 }

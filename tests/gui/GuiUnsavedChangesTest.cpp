@@ -77,6 +77,16 @@ TEST(GuiUnsavedChanges, SaveWritesTheBoneAndItsCutLogThenCloses) {
   EXPECT_EQ(csv.readAll().count('\n'), 2);  // the header and the one cut
 }
 
+// Close, answer Save and give `file`: the save fails with an error naming `named`; the window stays open with
+// its unsaved changes.
+void expectFailedSaveOnClose(MainWindow& w, const QString& file, const QString& named) {
+  EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(file)}, 2));
+  EXPECT_TRUE(w.lastError().contains(named)) << w.lastError().toStdString();
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
+  EXPECT_TRUE(w.isVisible());
+  EXPECT_TRUE(w.hasUnsavedChanges());
+}
+
 TEST(GuiUnsavedChanges, AFailedOrCancelledSaveKeepsTheWindowOpen) {
   REAMSIM_REQUIRE_DISPLAY();
   GuiFixture f;
@@ -84,31 +94,15 @@ TEST(GuiUnsavedChanges, AFailedOrCancelledSaveKeepsTheWindowOpen) {
   cutOnce(f.session());
   QTemporaryDir out;
   // A format no writer knows: the save is refused with the writer's message, the window stays.
-  EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("bone.unknownformat"))}, 2));
-  EXPECT_TRUE(w.lastError().contains("bone.unknownformat")) << w.lastError().toStdString();
-  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
-  EXPECT_TRUE(w.isVisible());
-  EXPECT_TRUE(w.hasUnsavedChanges());
+  expectFailedSaveOnClose(w, out.filePath("bone.unknownformat"), "bone.unknownformat");
   EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::cancelFile()}, 2));
   EXPECT_TRUE(w.isVisible());
   EXPECT_TRUE(w.hasUnsavedChanges());
-}
-
-// The bone written but its cut log not (here a folder stands where the log goes): the work is not saved, so
-// the window stays open with unsaved changes and the question comes again.
-TEST(GuiUnsavedChanges, ABoneSavedWithoutItsCutLogIsNotSaved) {
-  REAMSIM_REQUIRE_DISPLAY();
-  GuiFixture f;
-  MainWindow& w = *f.window;
-  cutOnce(f.session());
-  QTemporaryDir out;
+  // The bone written but its cut log not (a folder stands where the log goes): the work is not saved, so the
+  // window stays open with unsaved changes and the question comes again.
   ASSERT_TRUE(QDir().mkpath(out.filePath("bone.cut_log.csv")));
-  EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("bone.ply"))}, 2));
-  EXPECT_TRUE(w.lastError().contains("bone.cut_log.csv")) << w.lastError().toStdString();
-  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
-  EXPECT_TRUE(QFileInfo::exists(out.filePath("bone.ply")));  // the bone was written
-  EXPECT_TRUE(w.isVisible());
-  EXPECT_TRUE(w.hasUnsavedChanges());  // but without its log the work is not saved
+  expectFailedSaveOnClose(w, out.filePath("bone.ply"), "bone.cut_log.csv");
+  EXPECT_TRUE(QFileInfo::exists(out.filePath("bone.ply")));
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
 }
 

@@ -201,6 +201,21 @@ TEST_F(io_MeshIO, ReplacingAFileKeepsItsPermissionsAndLinks) {
   ::umask(mask);
   replaceFile(path("new.txt"), "text");
   EXPECT_EQ(static_cast<unsigned>(fs::status(path("new.txt")).permissions() & fs::perms::all), 0666u & ~mask);
+  // A relative link, and one whose target does not exist yet: the link stays, its target is written.
+  fs::create_symlink("new.txt", path("relative.txt"));
+  replaceFile(path("relative.txt"), "again");
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(path("relative.txt"))));
+  fs::create_symlink("later.txt", path("dangling.txt"));
+  replaceFile(path("dangling.txt"), "made");
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(path("dangling.txt"))));
+  auto text = [](const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(text(path("new.txt")), "again");
+  EXPECT_EQ(text(path("later.txt")), "made");
+  replaceFile("/dev/null", "to a device: written in place");  // no rename over a device
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
   EXPECT_THROW(replaceFile(path("missing/x.txt"), "text"), InputError);
   EXPECT_THROW(replaceFile(dir_.string(), "text"), InputError);  // a folder
 }

@@ -120,7 +120,6 @@ TEST(CutLog, ACsvReadsBackToTheRowsItWasWrittenFrom) {
 // Each damage is refused with the file, the line (of the record it is in) and the column.
 TEST(CutLog, ADamagedCsvIsRefusedNamingTheLineAndTheColumn) {
   const std::string csv = cutLogCsv(variedEntries());
-  const std::size_t row2 = csv.find('\n') + 1;  // the first data row starts here
   auto expectRefused = [](const std::string& text, const std::string& where, const std::string& what) {
     try {
       cutLogFromCsv(text, "crash.csv");
@@ -133,32 +132,33 @@ TEST(CutLog, ADamagedCsvIsRefusedNamingTheLineAndTheColumn) {
   };
   expectRefused("", ": ", "no header");
   expectRefused("step,time\n0,\n", ":1: ", "not a ReamSim cut log");
-  std::string text = csv;
-  text.replace(text.find("-38.125000"), 10, "-38,125000");  // a decimal comma: one field too many
-  expectRefused(text, ":2: ", "27 fields where the header has 26");
-  text = csv;
-  text.replace(text.find("-38.125000"), 10, "-38.12x000");
-  expectRefused(text, ":2: ", "column 3 (tip_x): '-38.12x000' is not a number");
-  text = csv;
-  text.replace(text.find(",14998,"), 7, ",1.5e4,");
-  expectRefused(text, ":2: ", "column 15 (faces): '1.5e4' is not a whole number");
-  text = csv;
-  text.replace(text.find("2026-11-22T05:27:11.325Z"), 24, "2026-11-31T05:27:11.325Z");
-  expectRefused(text, ":2: ", "column 2 (time_utc)");
-  text = csv;
-  text.replace(row2 + csv.substr(row2).find(",1,0,"), 5, ",1,2,");
-  expectRefused(text, ":2: ", "column 10 (contact): '2' is not 0 or 1");
-  text = csv;
-  text.replace(text.find("-40.500000"), 10, "");
-  expectRefused(text, ":3: ", "column 16 (contact_x): empty while the point's other coordinates are given");
-  text = csv;
-  text.replace(text.find("12.3456789"), 10, "inf");
-  expectRefused(text, ":3: ", "column 12 (removed_mm3): 'inf' is not finite");
-  // The row after the reamer whose name spans two lines starts on line 5.
-  text = csv;
-  text.replace(text.rfind("\n8,"), 3, "\n8x,");
-  expectRefused(text, ":5: ", "column 1 (step): '8x' is not a whole number");
-  text = csv.substr(0, csv.rfind("second line"));  // the file ends inside a quoted field
+  // One change each to the written file: the text replaced (its first place after `after`), then the error.
+  struct Damage {
+    std::string after, from, to, where, what;
+  };
+  const std::vector<Damage> damages = {
+      {"", "-38.125000", "-38,125000", ":2: ", "27 fields where the header has 26"},  // a decimal comma
+      {"", "-38.125000", "-38.12x000", ":2: ", "column 3 (tip_x): '-38.12x000' is not a number"},
+      {"", ",14998,", ",1.5e4,", ":2: ", "column 15 (faces): '1.5e4' is not a whole number"},
+      {"", "2026-11-22T05:27:11.325Z", "2026-11-31T05:27:11.325Z", ":2: ", "column 2 (time_utc)"},
+      {"\n", ",1,0,", ",1,2,", ":2: ", "column 10 (contact): '2' is not 0 or 1"},
+      {"", "-40.500000", "", ":3: ", "column 16 (contact_x): empty while the point's other coordinates are given"},
+      {"", "12.3456789", "inf", ":3: ", "column 12 (removed_mm3): 'inf' is not finite"},
+      {"", ",inf,", ",-inf,", ":2: ", "column 11 (min_distance_mm): '-inf' is not finite"},  // only "inf"
+      {"", "T05:27", "T-5:27", ":2: ", "column 2 (time_utc)"},
+      {"", "2026-11-22T05:27:11.325Z", "1970-01-01T00:00:00.000Z", ":2: ", "is not after 1970"},
+      {"", "step,time_utc", "\"step,time_utc\"", ":1: ", "not a ReamSim cut log"},  // a quoted header
+      // The row after the reamer whose name spans two lines starts on line 5.
+      {"second line", "\n8,", "\n8x,", ":5: ", "column 1 (step): '8x' is not a whole number"},
+  };
+  for (const Damage& d : damages) {
+    std::string text = csv;
+    const std::size_t at = text.find(d.from, d.after.empty() ? 0 : text.find(d.after));
+    ASSERT_NE(at, std::string::npos) << d.from;
+    text.replace(at, d.from.size(), d.to);
+    expectRefused(text, d.where, d.what);
+  }
+  const std::string text = csv.substr(0, csv.rfind("second line"));  // the file ends inside a quoted field
   expectRefused(text, ":3: ", "not closed");
   EXPECT_THROW(readCutLogCsv("/nonexistent/cut_log.csv"), InputError);
 }

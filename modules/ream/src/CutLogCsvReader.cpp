@@ -92,18 +92,20 @@ class RowReader {
   RowReader(const Record& r, const std::string& file) : r_(r), file_(file) {}
 
   [[noreturn]] void fail(std::size_t column, const std::string& problem) const {
-    throw InputError(file_, r_.line, "column " + std::to_string(column + 1) + " (" + columnNames()[column] + "): " + problem);
+    throw InputError(file_, r_.line,
+                     "column " + std::to_string(column + 1) + " (" + columnNames()[column] + "): " + problem);
   }
   const std::string& text(std::size_t c) const { return r_.fields[c]; }
 
-  double number(std::size_t c, bool finiteOnly = true) const {
+  // A finite number; with `infOrNan`, also the writer's "inf" and "nan" (no other spelling of them).
+  double number(std::size_t c, bool infOrNan = false) const {
     const std::string& s = text(c);
-    if (!finiteOnly && (s == "inf" || s == "nan")) return s == "inf" ? HUGE_VAL : std::nan("");
+    if (infOrNan && (s == "inf" || s == "nan")) return s == "inf" ? HUGE_VAL : std::nan("");
     double v = 0;
     const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (s.empty() || ec != std::errc() || ptr != s.data() + s.size())
       fail(c, "'" + s + "' is not a number");
-    if (finiteOnly && !std::isfinite(v)) fail(c, "'" + s + "' is not finite");
+    if (!std::isfinite(v)) fail(c, "'" + s + "' is not finite");
     return v;
   }
   std::optional<double> optionalNumber(std::size_t c) const {
@@ -137,12 +139,16 @@ class RowReader {
     const bool shaped = s.size() == 24 && s[4] == '-' && s[7] == '-' && s[10] == 'T' && s[13] == ':' &&
                         s[16] == ':' && s[19] == '.' && s[23] == 'Z';
     auto digits = [&](std::size_t at, std::size_t n, int& out) {
-      const auto [ptr, ec] = std::from_chars(s.data() + at, s.data() + at + n, out);
-      return ec == std::errc() && ptr == s.data() + at + n;
+      out = 0;
+      for (std::size_t i = at; i < at + n; ++i) {
+        if (s[i] < '0' || s[i] > '9') return false;
+        out = out * 10 + (s[i] - '0');
+      }
+      return true;
     };
     if (!shaped || !digits(0, 4, y) || !digits(5, 2, mo) || !digits(8, 2, d) || !digits(11, 2, h) ||
-        !digits(14, 2, mi) || !digits(17, 2, sec) || !digits(20, 3, ms) || mo < 1 || mo > 12 || d < 1 || d > 31 ||
-        h > 23 || mi > 59 || sec > 60)
+        !digits(14, 2, mi) || !digits(17, 2, sec) || !digits(20, 3, ms) || y < 1970 || mo < 1 || mo > 12 ||
+        d < 1 || d > 31 || h > 23 || mi > 59 || sec > 59)
       fail(c, "'" + s + "' is not a UTC time like 2026-11-22T05:27:11.325Z");
     std::tm t{};
     t.tm_year = y - 1900;
@@ -153,7 +159,9 @@ class RowReader {
     t.tm_sec = sec;
     const std::time_t seconds = timegm(&t);
     if (t.tm_mday != d) fail(c, "'" + s + "' names a day the month does not have");  // timegm normalised it
-    return static_cast<std::int64_t>(seconds) * 1000 + ms;
+    const std::int64_t unixMs = static_cast<std::int64_t>(seconds) * 1000 + ms;
+    if (unixMs <= 0) fail(c, "'" + s + "' is not after 1970-01-01T00:00:00.000Z (an unrecorded time is empty)");
+    return unixMs;
   }
 
  private:
@@ -166,16 +174,18 @@ class RowReader {
 std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::string& file) {
   const std::vector<Record> rows = records(text, file);
   if (rows.empty()) throw InputError(file, "empty: not a cut log (no header line)");
-  std::string header;
-  for (std::size_t i = 0; i < rows[0].fields.size(); ++i) header += (i ? "," : "") + rows[0].fields[i];
+  std::string header = text.substr(0, text.find('\n'));  // as written: no field quoted
+  if (!header.empty() && header.back() == '\r') header.pop_back();
   if (header != detail::kCutLogCsvHeader)
-    throw InputError(file, 1, "not a ReamSim cut log: the header is not \"" + std::string(detail::kCutLogCsvHeader) + "\"");
+    throw InputError(file, 1,
+                     "not a ReamSim cut log: the header is not \"" + std::string(detail::kCutLogCsvHeader) + "\"");
   std::vector<CutLogEntry> out;
   out.reserve(rows.size() - 1);
   for (std::size_t i = 1; i < rows.size(); ++i) {
     const Record& r = rows[i];
     if (r.fields.size() != kColumns)
-      throw InputError(file, r.line, std::to_string(r.fields.size()) + " fields where the header has " + std::to_string(kColumns));
+      throw InputError(file, r.line,
+                       std::to_string(r.fields.size()) + " fields where the header has " + std::to_string(kColumns));
     const RowReader f(r, file);
     CutLogEntry e;
     e.stepIndex = f.count(0);
@@ -184,7 +194,7 @@ std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::strin
     e.pose.axis = {f.number(5), f.number(6), f.number(7)};
     e.boxesOverlap = f.flag(8);
     e.contact = f.flag(9);
-    e.minDistanceMm = f.number(10, false);  // infinite while no distance is known
+    e.minDistanceMm = f.number(10, true);  // infinite while no distance is known
     e.removedMm3 = f.number(11);
     e.cumulativeMm3 = f.number(12);
     e.cutMs = f.number(13);

@@ -13,14 +13,16 @@
 
 namespace reamsim {
 namespace {
-// A number as printf writes it in the "C" locale ("%.6f" by default, NumberStyle::Significant9 for kSignificant9), whatever
-// the C library's locale: Qt sets it from the user's environment, and a decimal comma would split the field.
+// A number as printf writes it in the "C" locale ("%.6f", "%.3f" or "%.9g"), whatever the C library's
+// locale: Qt sets that from the user's environment, and a decimal comma would split the CSV field.
 enum class NumberStyle { Fixed6, Fixed3, Significant9 };
 std::string num(double v, NumberStyle style = NumberStyle::Fixed6) {
   if (!std::isfinite(v)) return v > 0 ? "inf" : "nan";
   char buf[400];  // %.6f of 1e308 is 316 characters
-  const auto r = style == NumberStyle::Significant9 ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 9)
-                 : std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, style == NumberStyle::Fixed3 ? 3 : 6);
+  const int fixedDigits = style == NumberStyle::Fixed3 ? 3 : 6;
+  const auto r = style == NumberStyle::Significant9
+                     ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 9)
+                     : std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, fixedDigits);
   return std::string(buf, r.ptr);
 }
 nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
@@ -59,11 +61,14 @@ std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
     for (double v : {e.pose.tip.x, e.pose.tip.y, e.pose.tip.z, e.pose.axis.x, e.pose.axis.y, e.pose.axis.z})
       out += "," + num(v);
     out += std::string(",") + (e.boxesOverlap ? "1" : "0") + "," + (e.contact ? "1" : "0");
-    out += "," + num(e.minDistanceMm) + "," + num(e.removedMm3, NumberStyle::Significant9) + "," + num(e.cumulativeMm3, NumberStyle::Significant9) + "," +
-           num(e.cutMs, NumberStyle::Fixed3) + "," + std::to_string(e.faces);
+    out += "," + num(e.minDistanceMm) + "," + num(e.removedMm3, NumberStyle::Significant9) + "," +
+           num(e.cumulativeMm3, NumberStyle::Significant9) + "," + num(e.cutMs, NumberStyle::Fixed3) + "," +
+           std::to_string(e.faces);
     out += pointCsv(e.contactPoint) + "," + std::to_string(e.boneStateId);
-    out += (e.moveContactT ? "," + num(*e.moveContactT, NumberStyle::Significant9) : std::string(",")) + pointCsv(e.moveContactPoint);
-    out += "," + csvField(e.reamer) + "," + (e.reamerDiameterMm > 0 ? num(e.reamerDiameterMm, NumberStyle::Significant9) : std::string()) + "," +
+    out += (e.moveContactT ? "," + num(*e.moveContactT, NumberStyle::Significant9) : std::string(",")) +
+           pointCsv(e.moveContactPoint);
+    out += "," + csvField(e.reamer) + "," +
+           (e.reamerDiameterMm > 0 ? num(e.reamerDiameterMm, NumberStyle::Significant9) : std::string()) + "," +
            (e.reamerSphereRadiusMm ? num(*e.reamerSphereRadiusMm, NumberStyle::Significant9) : std::string()) + "\n";
   }
   return out;

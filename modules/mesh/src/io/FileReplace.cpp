@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 
@@ -20,10 +21,48 @@ namespace fs = std::filesystem;
 
 std::string errnoText(int err) { return err ? std::string(std::strerror(err)) : std::string("unknown error"); }
 
+// The file a path names through any symbolic links, the last of which may dangle (its target is created).
+fs::path throughLinks(fs::path p) {
+  std::error_code ec;
+  for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+    const fs::path to = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = to.is_absolute() ? to : p.parent_path() / to;
+  }
+  return p;
+}
+
+// Writes all of `bytes` to `fd`; false with errno set on failure.
+bool writeAll(int fd, const std::string& bytes) {
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      if (n == 0) errno = ENOSPC;
+      return false;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+// A device, a pipe or a file in a folder where no new file can be made: written where it is, as before
+// (there is nothing to rename over a device, and no room beside the file).
+void writeInPlace(const std::string& path, const fs::path& target, const std::string& bytes) {
+  const int fd = ::open(target.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd < 0) throw InputError(path, "cannot open the file for writing: " + errnoText(errno));
+  const bool ok = writeAll(fd, bytes);
+  const int err = errno;
+  if (::close(fd) != 0 && ok) throw InputError(path, "write error on close: " + errnoText(errno));
+  if (!ok) throw InputError(path, "write error: " + errnoText(err));
+}
+
 // Closes the descriptor and removes the new file unless it was renamed into place.
 class NewFile {
  public:
   NewFile(std::string path, int fd) : path_(std::move(path)), fd_(fd) {}
+  NewFile(const NewFile&) = delete;
+  NewFile& operator=(const NewFile&) = delete;
   ~NewFile() {
     if (fd_ >= 0) ::close(fd_);
     if (!placed_) ::unlink(path_.c_str());
@@ -45,41 +84,45 @@ class NewFile {
 }  // namespace
 
 void replaceFile(const std::string& path, const std::string& bytes) {
-  std::error_code ec;
-  fs::path target(path);
-  // Through a symbolic link to the file it names, so that the link stays a link.
-  if (fs::is_symlink(fs::symlink_status(target, ec))) {
-    const fs::path resolved = fs::weakly_canonical(target, ec);
-    if (!ec) target = resolved;
-  }
-  const fs::file_status st = fs::status(target, ec);
-  if (fs::is_directory(st)) throw InputError(path, "cannot write: it is a folder");
-  const bool existed = fs::exists(st);
+  const fs::path target = throughLinks(fs::path(path));
+  struct stat old {};
+  const bool existed = ::stat(target.c_str(), &old) == 0;
+  if (existed && S_ISDIR(old.st_mode)) throw InputError(path, "cannot write: it is a folder");
+  if (existed && !S_ISREG(old.st_mode)) return writeInPlace(path, target, bytes);
 
+  // A new name beside the target: 0666 less the umask, as a file the program created directly. A name
+  // left by an earlier process (a crash between writing and renaming) is skipped, not reused.
   static std::atomic<unsigned> counter{0};
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  const std::string temp =
-      (dir / ("." + target.filename().string() + ".reamsim-" + std::to_string(::getpid()) + "-" +
-              std::to_string(counter.fetch_add(1)) + ".part"))
-          .string();
-  // 0666 less the umask, as a file the program created directly; an existing file's own mode below.
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) throw InputError(path, "cannot open the file for writing: " + errnoText(errno));
+  const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+  std::string temp;
+  int fd = -1;
+  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+    temp = (dir / ("." + target.filename().string() + ".reamsim-" + std::to_string(::getpid()) + "-" +
+                   std::to_string(stamp) + "-" + std::to_string(counter.fetch_add(1)) + ".part"))
+               .string();
+    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST) break;
+  }
+  if (fd < 0) {
+    const int err = errno;
+    // No new file can be made in the folder, but the file there may be written: as before.
+    if (existed && (err == EACCES || err == EPERM || err == EROFS)) return writeInPlace(path, target, bytes);
+    throw InputError(path, "cannot create a file in " + dir.string() + ": " + errnoText(err));
+  }
   NewFile file(temp, fd);
-  if (existed) {
-    struct stat old {};
-    if (::stat(target.c_str(), &old) == 0) (void)::fchmod(fd, old.st_mode & 07777);
+  if (existed) {  // the replaced file's mode and group (best effort: the owner cannot be given away)
+    (void)::fchmod(fd, old.st_mode & 07777);
+    if (old.st_gid != ::getegid()) (void)::fchown(fd, static_cast<uid_t>(-1), old.st_gid);
   }
-  for (std::size_t done = 0; done < bytes.size();) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw InputError(path, "write error: " + errnoText(n < 0 ? errno : ENOSPC) + " (the file there is unchanged)");
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) throw InputError(path, "write error while flushing: " + errnoText(errno) + " (the file there is unchanged)");
-  if (file.close() != 0) throw InputError(path, "write error on close: " + errnoText(errno) + " (the file there is unchanged)");
-  if (::rename(temp.c_str(), target.c_str()) != 0)
-    throw InputError(path, "cannot replace the file: " + errnoText(errno) + " (the file there is unchanged)");
+  const auto failed = [&](const std::string& what) {
+    const int err = errno;
+    return InputError(path, what + ": " + errnoText(err) + " (the file there is unchanged)");
+  };
+  if (!writeAll(fd, bytes)) throw failed("write error");
+  if (::fsync(fd) != 0) throw failed("write error while flushing");
+  if (file.close() != 0) throw failed("write error on close");
+  if (::rename(temp.c_str(), target.c_str()) != 0) throw failed("cannot replace the file");
   file.placed();
   // The rename itself on the disk (best effort: some file systems refuse to sync a folder).
   const int dirFd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);

@@ -13,7 +13,8 @@ std::string isoTimeUtc(std::int64_t unixMs);
 std::string cutLogCsv(const std::vector<CutLogEntry>& entries);
 std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::string& summaryJson = "{}");
 // The rows of a CSV that cutLogCsv wrote, read back (src/CutLogCsvReader.cpp): cutLogCsv of the result gives
-// the same text. Pose::rollDeg is not in the file and reads as 0. Anything else (another header, a row with
+// the same text for every row whose numbers are finite (min_distance_mm may also be "inf" or "nan"; a
+// non-finite value anywhere else is refused). Pose::rollDeg is not in the file and reads as 0. Anything else (another header, a row with
 // a missing or extra field, a value that is not a number, a flag that is not 0 or 1, a point with one
 // coordinate missing, a time that is not the writer's UTC form) throws InputError naming `file`, the line
 // and the column.
