@@ -136,7 +136,6 @@ void MainWindow::offerRecovery() {
   session_->undoStack()->resetClean();  // saved nowhere but in the recovery copy
   // The log up to the crash goes back into the log panel. One that cannot be read is kept as a file for
   // the user (named in the message), never dropped.
-  QString logProblem;
   std::size_t logRows = 0;
   if (!found->logPath.isEmpty()) {
     try {
@@ -144,19 +143,16 @@ void MainWindow::offerRecovery() {
       logRows = rows.size();
       session_->continueLog(std::move(rows), found->removedMm3);
     } catch (const std::exception& e) {
-      logProblem = QString::fromStdString(e.what());
       const QString kept = QDir(recovery_->dir()).filePath("restored");
       QDir().mkpath(kept);
       recoveredLogPath_ =
           QDir(kept).filePath("cut_log_" + QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss") + ".csv");
       QFile::copy(found->logPath, recoveredLogPath_);
+      showError(tr("The cut log was not restored"),
+                tr("%1 was restored, but its cut log could not be read back:\n%2\n\nThe log is kept as %3.")
+                    .arg(name, QString::fromStdString(e.what()), recoveredLogPath_));
+      return;
     }
-  }
-  if (!logProblem.isEmpty()) {
-    showError(tr("The cut log was not restored"),
-              tr("%1 was restored, but its cut log could not be read back:\n%2\n\nThe log is kept as %3.")
-                  .arg(name, logProblem, recoveredLogPath_));
-    return;
   }
   const QString steps = logRows == 1 ? tr("1 step") : tr("%1 steps").arg(logRows);
   statusBar()->showMessage(tr("Restored %1 and its cut log (%2)").arg(name, steps), 20000);

@@ -14,8 +14,6 @@
 namespace reamsim {
 namespace {
 
-constexpr std::size_t kColumns = 26;
-
 // RFC 4180 records: fields split at commas, quoted fields may hold commas, quotes ("") and line breaks.
 struct Record {
   long line = 0;  // where the record starts (1-based)
@@ -183,9 +181,9 @@ std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::strin
   out.reserve(rows.size() - 1);
   for (std::size_t i = 1; i < rows.size(); ++i) {
     const Record& r = rows[i];
-    if (r.fields.size() != kColumns)
-      throw InputError(file, r.line,
-                       std::to_string(r.fields.size()) + " fields where the header has " + std::to_string(kColumns));
+    if (r.fields.size() != columnNames().size())
+      throw InputError(file, r.line, std::to_string(r.fields.size()) + " fields where the header has " +
+                                         std::to_string(columnNames().size()));
     const RowReader f(r, file);
     CutLogEntry e;
     e.stepIndex = f.count(0);

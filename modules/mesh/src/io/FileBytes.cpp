@@ -8,7 +8,6 @@
 #include <memory>
 #include <system_error>
 
-#include "reamsim/mesh/FileReplace.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim::io {
@@ -20,9 +19,9 @@ struct FileCloser {
   }
 };
 
-std::string errnoText(int err) { return err ? std::string(std::strerror(err)) : std::string("unknown error"); }
-
 }  // namespace
+
+std::string errnoText(int err) { return err ? std::string(std::strerror(err)) : std::string("unknown error"); }
 
 std::string readFileBytes(const std::string& path) {
   namespace fs = std::filesystem;
@@ -44,8 +43,6 @@ std::string readFileBytes(const std::string& path) {
   if (bytes.empty()) throw InputError(path, "file is empty");
   return bytes;
 }
-
-void writeFileBytes(const std::string& path, const std::string& bytes) { replaceFile(path, bytes); }
 
 void appendDouble(std::string& out, double value) {
   // printf's "%.17g" as in the "C" locale: snprintf would follow the C library's locale, which Qt sets from

@@ -13,8 +13,8 @@ constexpr std::size_t kMaxMeshFileBytes = std::size_t{2} * 1024 * 1024 * 1024;
 // Reads the whole file; throws InputError if it is missing, unreadable, a directory, empty or > 2 GiB.
 std::string readFileBytes(const std::string& path);
 
-// Writes (replaces) the file; throws InputError naming the file on any failure.
-void writeFileBytes(const std::string& path, const std::string& bytes);
+// strerror(err) for an error message; "unknown error" for 0.
+std::string errnoText(int err);
 
 // Appends a double with full round-trip precision (%.17g).
 void appendDouble(std::string& out, double value);

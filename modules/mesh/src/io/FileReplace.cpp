@@ -9,17 +9,16 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
-#include <cstring>
 #include <filesystem>
 
+#include "FileBytes.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string errnoText(int err) { return err ? std::string(std::strerror(err)) : std::string("unknown error"); }
+using io::errnoText;
 
 // The file a path names through any symbolic links, the last of which may dangle (its target is created).
 fs::path throughLinks(fs::path p) {

@@ -9,6 +9,7 @@
 
 #include "FileBytes.h"
 #include "Formats.h"
+#include "reamsim/mesh/FileReplace.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim {
@@ -107,10 +108,10 @@ void writeMesh(const TriangleMesh& mesh, const std::string& path, const WriteOpt
       if (i >= mesh.vertices.size())
         throw InputError(path, "cannot write: a triangle refers to vertex " + std::to_string(i) + " but the mesh has " +
                                    std::to_string(mesh.vertices.size()) + " vertices");
-  if (ext == ".stl") io::writeFileBytes(path, io::writeStl(mesh, path, options.binary, options.comments));
-  else if (ext == ".ply") io::writeFileBytes(path, io::writePly(mesh, path, options.binary, options.comments));
-  else if (ext == ".obj") io::writeFileBytes(path, io::writeObj(mesh, options.comments));
-  else if (ext == ".off") io::writeFileBytes(path, io::writeOff(mesh, options.comments));
+  if (ext == ".stl") replaceFile(path, io::writeStl(mesh, path, options.binary, options.comments));
+  else if (ext == ".ply") replaceFile(path, io::writePly(mesh, path, options.binary, options.comments));
+  else if (ext == ".obj") replaceFile(path, io::writeObj(mesh, options.comments));
+  else if (ext == ".off") replaceFile(path, io::writeOff(mesh, options.comments));
   else if (ext == ".vtp") io::writeVtp(mesh, path, options.comments);
   else throw InputError(path, "unknown mesh file extension '" + ext + "' for writing (supported: " + supportedList() + ")");
 }
