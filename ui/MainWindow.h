@@ -120,7 +120,9 @@ class MainWindow : public QMainWindow {
   // calls (openFile, loadDefaultCase: tests, demo) do not ask.
   bool confirmDiscardChanges(const QString& action);
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
-  bool writeBoneFile(const QString& path);  // the bone's mesh only; errors in a dialog; does not mark it saved
+  // The bone's mesh only, on a worker with a progress dialog (Cancel); errors in a dialog; does not mark it
+  // saved. True when written.
+  bool writeBoneFile(const QString& path);
   void importFinished();
   void showImportProgress(double fraction, const QString& stage);
   void updateStatus();
@@ -165,6 +167,7 @@ class MainWindow : public QMainWindow {
   bool importCancelled_ = false;
   std::shared_ptr<std::atomic<bool>> importStop_;  // read by the import's worker at each progress check
   QString importStoppedAt_;
+  bool saving_ = false;  // writeBoneFile is waiting for its worker
   static constexpr double kContactSearchMm = 100;
   static constexpr int kRecoveryDelayMs = 3000;  // after the last change (a feed's steps write one copy)
   static constexpr std::size_t kMaxQueuedFeedSteps = 4;  // feed key presses beyond this are ignored

@@ -5,6 +5,7 @@
 #include <QDragEnterEvent>
 #include <QDir>
 #include <QDropEvent>
+#include <QEventLoop>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMenu>
@@ -14,6 +15,7 @@
 #include <QPushButton>
 #include <QSettings>
 #include <QStatusBar>
+#include <QUndoStack>
 #include <QtConcurrent/QtConcurrentRun>
 #include <atomic>
 #include <cmath>
@@ -22,10 +24,12 @@
 #include "BonePlacement.h"
 #include "MainWindow.h"
 #include "PluginHost.h"
+#include "WriteProgressDialog.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/tools/ReamerPresets.h"
+#include "reamsim/mesh/FileReplace.h"
 #include "reamsim/ui/ProgressRelay.h"
 
 namespace reamsim::ui {
@@ -159,31 +163,83 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
 }
 
 bool MainWindow::saveBoneAs(const QString& path) {
-  if (!writeBoneFile(path)) return false;
+  // The bone and its log as they are now. A step that lands while the file is written (a queued feed) is
+  // in neither, and the bone is then not marked saved.
+  bool changedMeanwhile = false;
+  const QMetaObject::Connection watch =
+      connect(session_->undoStack(), &QUndoStack::indexChanged, this, [&changedMeanwhile] { changedMeanwhile = true; });
+  const std::string csv = cutLogCsv(session_->log()->entries());
+  const bool written = writeBoneFile(path);
+  disconnect(watch);
+  if (!written) return false;
   const QFileInfo info(path);
   const QString logPath = info.dir().filePath(info.completeBaseName() + ".cut_log.csv");
   try {
-    writeTextFile(logPath.toStdString(), cutLogCsv(session_->log()->entries()));
+    writeTextFile(logPath.toStdString(), csv);
   } catch (const std::exception& e) {
     // The bone is written but its log is not: the work is not saved yet (closing asks again).
     showError(tr("Cannot save the cut log %1").arg(QFileInfo(logPath).fileName()), QString::fromStdString(e.what()));
     return false;
+  }
+  if (changedMeanwhile) {
+    statusBar()->showMessage(tr("Saved %1 and its cut log as they were when saving began; later cuts are not saved")
+                                 .arg(path), 8000);
+    return true;
   }
   session_->undoStack()->setClean();
   statusBar()->showMessage(tr("Saved %1 and its cut log").arg(path), 5000);
   return true;
 }
 
+// Encoding and writing a bone take 0.2 s at 405k faces and seconds at millions (a CT bone repaired at 0.5 mm
+// has 17 million): done on a worker, with a window-modal dialog that shows how far it is and can cancel,
+// while this waits in a local event loop (the window keeps painting). Cancel keeps the file that was there.
 bool MainWindow::writeBoneFile(const QString& path) {
   if (!plugins_.meshImport()) {
     showError(tr("Save"), tr("Cannot save %1: no mesh import plugin is loaded (Help → Plugins).").arg(path));
     return false;
   }
-  try {
-    plugins_.meshImport()->exportMesh(session_->bone()->current().toMesh(), path.toStdString(),
-                                      session_->bone()->patientFrame());
-  } catch (const std::exception& e) {
-    showError(tr("Cannot save %1").arg(QFileInfo(path).fileName()), QString::fromStdString(e.what()));
+  if (saving_) {  // not reachable through the blocked window; a guard for programmatic calls
+    showError(tr("Save"), tr("Cannot save %1: another file is being written.").arg(path));
+    return false;
+  }
+  struct Outcome {
+    bool cancelled = false;
+    QString error;
+  };
+  const MeshImportInterface* writer = plugins_.meshImport();
+  BoneState state = session_->bone()->current();  // an immutable value, cheap to copy
+  const PatientFrame frame = session_->bone()->patientFrame();
+  const QString name = QFileInfo(path).fileName();
+  WriteProgressDialog dialog(tr("Saving %1").arg(name), this);
+  dialog.show();  // before the worker starts, so that a Cancel at once is heard at its first check
+  const ProgressCallback progress = progressRelay(
+      &dialog, [&dialog](double f, const QString& stage) { dialog.showProgress(f, stage); }, dialog.stopFlag());
+  saving_ = true;
+  QEventLoop wait;
+  QFutureWatcher<Outcome> watcher;
+  connect(&watcher, &QFutureWatcher<Outcome>::finished, &wait, &QEventLoop::quit);
+  watcher.setFuture(QtConcurrent::run([writer, state = std::move(state), file = path.toStdString(), frame, progress] {
+    Outcome out;
+    try {
+      writer->exportMesh(state.toMesh(), file, frame, progress);
+    } catch (const WriteCancelled&) {
+      out.cancelled = true;
+    } catch (const std::exception& e) {
+      out.error = QString::fromStdString(e.what());
+    }
+    return out;
+  }));
+  wait.exec();
+  saving_ = false;
+  dialog.hide();
+  const Outcome out = watcher.result();
+  if (out.cancelled) {
+    statusBar()->showMessage(tr("Save of %1 cancelled; the file there is unchanged").arg(name), 8000);
+    return false;
+  }
+  if (!out.error.isEmpty()) {
+    showError(tr("Cannot save %1").arg(name), out.error);
     return false;
   }
   return true;
@@ -192,7 +248,7 @@ bool MainWindow::writeBoneFile(const QString& path) {
 bool MainWindow::hasUnsavedChanges() const { return !session_->undoStack()->isClean(); }
 
 void MainWindow::closeEvent(QCloseEvent* e) {
-  if (!confirmDiscardChanges(tr("close ReamSim"))) {
+  if (saving_ || !confirmDiscardChanges(tr("close ReamSim"))) {  // a file being written finishes first
     e->ignore();
     return;
   }

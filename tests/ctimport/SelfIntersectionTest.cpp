@@ -108,7 +108,9 @@ TEST(Decimation, KeepsTheSurfaceClosedOrientedAndFreeOfSelfIntersections) {
     o.targetFaces = target;
     ct::DecimationStats stats;
     const TriangleMesh d = ct::decimateQuadric(fine, o, &stats);
-    const ValidationReport rep = validateMesh(d, {false});
+    ValidationOptions noSelfIntersections;
+    noSelfIntersections.checkSelfIntersections = false;
+    const ValidationReport rep = validateMesh(d, noSelfIntersections);
     EXPECT_TRUE(rep.closed && rep.consistentlyOriented && rep.outwardOriented) << target;
     EXPECT_EQ(rep.topology.connectedComponents, 1u);
     EXPECT_EQ(rep.topology.degenerateFaces, 0u);

@@ -23,6 +23,8 @@ class ModalAnswers {
     timer_.setInterval(20);
     QObject::connect(&timer_, &QTimer::timeout, [this] {
       QWidget* modal = QApplication::activeModalWidget();
+      // A file being written shows a window-modal progress dialog for as long as that takes: not a question.
+      if (modal && modal->objectName() == "WriteProgressDialog") return;
       if (!modal) last_ = nullptr;  // the next dialog may reuse the last one's address
       if (!modal || modal == last_) return;
       last_ = modal;

@@ -7,6 +7,7 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QMessageBox>
+#include <QPushButton>
 #include <QTemporaryDir>
 #include <QUndoStack>
 #include <QtTest/QTest>
@@ -104,6 +105,71 @@ TEST(GuiUnsavedChanges, AFailedOrCancelledSaveKeepsTheWindowOpen) {
   expectFailedSaveOnClose(w, out.filePath("bone.ply"), "bone.cut_log.csv");
   EXPECT_TRUE(QFileInfo::exists(out.filePath("bone.ply")));
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
+}
+
+// Presses the save's Cancel as its progress dialog appears: before the worker's first check, so the cancel is
+// heard whatever the machine's speed.
+class CancelSaveOnShow : public QObject {
+ public:
+  CancelSaveOnShow() { qApp->installEventFilter(this); }
+  ~CancelSaveOnShow() override { qApp->removeEventFilter(this); }
+  int pressed = 0;
+
+ protected:
+  bool eventFilter(QObject* o, QEvent* e) override {
+    if (e->type() == QEvent::Show && o->objectName() == "WriteProgressDialog") {
+      auto* cancel = o->findChild<QPushButton*>("WriteCancelButton");
+      EXPECT_NE(cancel, nullptr);
+      if (cancel) cancel->click(), ++pressed;
+    }
+    return false;
+  }
+};
+
+QByteArray contents(const QString& path) {
+  QFile file(path);
+  return file.open(QIODevice::ReadOnly) ? file.readAll() : QByteArray();
+}
+
+// The bone is written on a worker behind a window-modal progress dialog (seconds at millions of faces). Its
+// Cancel keeps the file that was there and its log, leaves nothing beside them, keeps the changes unsaved,
+// and, answered to the close question's Save, keeps the window open.
+TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  QTemporaryDir out;
+  const QString path = out.filePath("bone.ply"), log = out.filePath("bone.cut_log.csv");
+  ASSERT_TRUE(w.saveBoneAs(path)) << w.lastError().toStdString();
+  const QByteArray bone = contents(path), cuts = contents(log);
+  ASSERT_FALSE(bone.isEmpty());
+  cutOnce(s, 1.0);
+  ASSERT_TRUE(w.hasUnsavedChanges());
+  {
+    CancelSaveOnShow cancel;
+    EXPECT_FALSE(w.saveBoneAs(path));
+    EXPECT_EQ(cancel.pressed, 1);
+  }
+  EXPECT_EQ(contents(path), bone);
+  EXPECT_EQ(contents(log), cuts);
+  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.cut_log.csv", "bone.ply"}));
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  EXPECT_TRUE(w.lastError().isEmpty()) << "a cancel is not an error: " << w.lastError().toStdString();
+  {
+    CancelSaveOnShow cancel;
+    EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("new.ply"))}, 2));
+    EXPECT_EQ(cancel.pressed, 1);
+  }
+  EXPECT_TRUE(w.isVisible());
+  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.cut_log.csv", "bone.ply"}));
+  // Let run, the same save writes the cut bone and both cuts.
+  ASSERT_TRUE(w.saveBoneAs(path)) << w.lastError().toStdString();
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  EXPECT_EQ(readMesh(path.toStdString()).mesh.triangles.size(), s.bone()->current().liveTriangleCount());
+  EXPECT_EQ(contents(log).count('\n'), 3);
+  EXPECT_TRUE(closeAnswering(w, {}, 0));
 }
 
 TEST(GuiUnsavedChanges, SavingMarksTheBoneSavedUntilTheHistoryMovesAway) {

@@ -185,6 +185,60 @@ TEST_P(io_RoundTrip, AWriteThatFailsHalfWayLeavesTheFileThatWasThere) {
   EXPECT_EQ(entries, 0u) << "the half-written file is left behind";
 }
 
+// A save can be cancelled (the GUI writes on a worker with a Cancel button): stopped at any of its checks,
+// the file that was there stays whole and nothing is left beside it; let run, the progress it reports
+// rises from 0 to 1 through every stage.
+TEST_P(io_RoundTrip, ACancelledWriteLeavesTheFileThatWasThere) {
+  const RoundTripCase c = GetParam();
+  const std::string file = path(std::string("kept") + c.ext);
+  WriteOptions wo;
+  wo.binary = c.binary;
+  const TriangleMesh small = octahedron(1, {});
+  writeMesh(small, file, wo);
+  TriangleMesh large;  // ~200,000 triangles (a few MiB): several pieces of the write
+  for (int k = 0; k < 25000; ++k) {
+    const TriangleMesh o = octahedron(1, {3.0 * k, 0, 0});
+    const auto base = static_cast<std::uint32_t>(large.vertices.size());
+    large.vertices.insert(large.vertices.end(), o.vertices.begin(), o.vertices.end());
+    for (Triangle t : o.triangles) large.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  std::vector<std::pair<double, std::string>> heard;
+  wo.progress = [&heard](double f, const std::string& stage) {
+    heard.emplace_back(f, stage);
+    return true;
+  };
+  writeMesh(large, path(std::string("whole") + c.ext), wo);
+  ASSERT_GE(heard.size(), 5u);
+  std::vector<std::string> stages;
+  for (std::size_t i = 0; i < heard.size(); ++i) {
+    if (i > 0) {
+      EXPECT_GE(heard[i].first, heard[i - 1].first) << "at " << heard[i].second;
+    }
+    if (stages.empty() || stages.back() != heard[i].second) stages.push_back(heard[i].second);
+  }
+  EXPECT_EQ(stages, (std::vector<std::string>{"checking", "encoding", "writing", "flushing"}));
+  EXPECT_EQ(heard.front().first, 0.0);
+  EXPECT_EQ(heard.back().first, 1.0);
+  fs::remove(path(std::string("whole") + c.ext));
+
+  for (std::size_t stopAt = 0; stopAt < heard.size(); ++stopAt) {
+    std::size_t calls = 0;
+    wo.progress = [&calls, stopAt](double, const std::string&) { return calls++ < stopAt; };
+    std::string stage;
+    try {
+      writeMesh(large, file, wo);
+    } catch (const WriteCancelled& e) {
+      stage = e.stage();
+    }
+    EXPECT_EQ(stage, heard[stopAt].second) << "stopped at check " << stopAt;
+    const LoadedMesh kept = readMesh(file, ReadOptions{Units::Millimetres});
+    EXPECT_EQ(kept.mesh.triangleCount(), small.triangleCount()) << "stopped at check " << stopAt;
+    std::size_t entries = 0;
+    for (const auto& e : fs::directory_iterator(dir_)) entries += e.path().filename() != fs::path(file).filename();
+    EXPECT_EQ(entries, 0u) << "a new file is left behind after a cancel at check " << stopAt;
+  }
+}
+
 TEST_F(io_MeshIO, ReplacingAFileKeepsItsPermissionsAndLinks) {
   const std::string file = path("bone.ply"), link = path("link.ply");
   writeMesh(octahedron(1, {}), file);

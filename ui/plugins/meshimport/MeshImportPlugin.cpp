@@ -71,8 +71,10 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, 
   return out;
 }
 
-void MeshImportPlugin::exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame) const {
+void MeshImportPlugin::exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame,
+                                  const ProgressCallback& progress) const {
   WriteOptions o;
+  o.progress = progress;
   if (frame != PatientFrame::Unspecified) o.comments.push_back(kFrameComment + std::string(toString(frame)));
   writeMesh(mesh, path, o);
 }

@@ -15,7 +15,8 @@ class MeshImportPlugin : public QObject, public MeshImportInterface {
   QStringList nameFilters() const override;
   QStringList extensions() const override;
   ImportedBone importBone(const std::string& path, bool repair, const RepairProgress& progress = {}) const override;
-  void exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame) const override;
+  void exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame,
+                  const ProgressCallback& progress = {}) const override;
 };
 
 }  // namespace reamsim::ui

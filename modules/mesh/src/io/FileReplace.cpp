@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -31,10 +32,18 @@ fs::path throughLinks(fs::path p) {
   return p;
 }
 
-// Writes all of `bytes` to `fd`; false with errno set on failure.
-bool writeAll(int fd, const std::string& bytes) {
+// Asks `progress` (when there is one) whether to go on; throws WriteCancelled if not.
+void check(const ProgressCallback& progress, double fraction, const std::string& stage) {
+  if (progress && !progress(fraction, stage)) throw WriteCancelled(stage);
+}
+
+// Writes all of `bytes` to `fd`, asking `progress` between pieces; false with errno set on failure.
+bool writeAll(int fd, const std::string& bytes, const ProgressCallback& progress = {}) {
+  constexpr std::size_t kPiece = std::size_t(8) << 20;  // a cancel is heard within one piece (~10-50 ms)
   for (std::size_t done = 0; done < bytes.size();) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (progress) check(progress, double(done) / double(bytes.size()), "writing");
+    const std::size_t want = progress ? std::min(kPiece, bytes.size() - done) : bytes.size() - done;
+    const ssize_t n = ::write(fd, bytes.data() + done, want);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       if (n == 0) errno = ENOSPC;
@@ -82,12 +91,15 @@ class NewFile {
 
 }  // namespace
 
-void replaceFile(const std::string& path, const std::string& bytes) {
+void replaceFile(const std::string& path, const std::string& bytes, const ProgressCallback& progress) {
   const fs::path target = throughLinks(fs::path(path));
   struct stat old {};
   const bool existed = ::stat(target.c_str(), &old) == 0;
   if (existed && S_ISDIR(old.st_mode)) throw InputError(path, "cannot write: it is a folder");
-  if (existed && !S_ISREG(old.st_mode)) return writeInPlace(path, target, bytes);
+  if (existed && !S_ISREG(old.st_mode)) {
+    check(progress, 0, "writing");
+    return writeInPlace(path, target, bytes);
+  }
 
   // A new name beside the target: 0666 less the umask, as a file the program created directly. A name
   // left by an earlier process (a crash between writing and renaming) is skipped, not reused.
@@ -106,7 +118,10 @@ void replaceFile(const std::string& path, const std::string& bytes) {
   if (fd < 0) {
     const int err = errno;
     // No new file can be made in the folder, but the file there may be written: as before.
-    if (existed && (err == EACCES || err == EPERM || err == EROFS)) return writeInPlace(path, target, bytes);
+    if (existed && (err == EACCES || err == EPERM || err == EROFS)) {
+      check(progress, 0, "writing");
+      return writeInPlace(path, target, bytes);
+    }
     throw InputError(path, "cannot create a file in " + dir.string() + ": " + errnoText(err));
   }
   NewFile file(temp, fd);
@@ -118,9 +133,11 @@ void replaceFile(const std::string& path, const std::string& bytes) {
     const int err = errno;
     return InputError(path, what + ": " + errnoText(err) + " (the file there is unchanged)");
   };
-  if (!writeAll(fd, bytes)) throw failed("write error");
+  if (!writeAll(fd, bytes, progress)) throw failed("write error");
+  check(progress, 1, "flushing");
   if (::fsync(fd) != 0) throw failed("write error while flushing");
   if (file.close() != 0) throw failed("write error on close");
+  check(progress, 1, "flushing");  // the last moment a cancel can keep the old file
   if (::rename(temp.c_str(), target.c_str()) != 0) throw failed("cannot replace the file");
   file.placed();
   // The rename itself on the disk (best effort: some file systems refuse to sync a folder).

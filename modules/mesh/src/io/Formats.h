@@ -34,7 +34,7 @@ RawMesh readPly(const std::string& path, std::string_view data);
 RawMesh readOff(const std::string& path, std::string_view data);
 RawMesh readVtp(const std::string& path, std::string_view data);
 
-// Writers return the file contents; MeshIO.cpp writes them (VTP writes the file itself).
+// Writers return the file contents; MeshIO.cpp writes them (replaceFile).
 // `comments` go where the format has room: PLY 'comment' lines, OBJ and OFF '#' lines, a VTP field-data
 // string array, a binary STL's 80-byte header (those that fit; ASCII STL has no place for them).
 std::string writeStl(const TriangleMesh& mesh, const std::string& path, bool binary,
@@ -43,6 +43,6 @@ std::string writeObj(const TriangleMesh& mesh, const std::vector<std::string>& c
 std::string writePly(const TriangleMesh& mesh, const std::string& path, bool binary,
                      const std::vector<std::string>& comments);
 std::string writeOff(const TriangleMesh& mesh, const std::vector<std::string>& comments);
-void writeVtp(const TriangleMesh& mesh, const std::string& path, const std::vector<std::string>& comments);
+std::string writeVtp(const TriangleMesh& mesh, const std::string& path, const std::vector<std::string>& comments);
 
 }  // namespace reamsim::io

@@ -102,18 +102,30 @@ std::vector<std::string> commentLinesToWrite(const std::vector<std::string>& com
 }  // namespace io
 
 void writeMesh(const TriangleMesh& mesh, const std::string& path, const WriteOptions& options) {
+  const ProgressCallback& progress = options.progress;
+  const auto ask = [&](double fraction, const std::string& stage) {
+    if (progress && !progress(fraction, stage)) throw WriteCancelled(stage);
+  };
+  ask(0, "checking");
   const std::string ext = extensionOf(path);
   for (const Triangle& t : mesh.triangles)
     for (std::uint32_t i : t)
       if (i >= mesh.vertices.size())
         throw InputError(path, "cannot write: a triangle refers to vertex " + std::to_string(i) + " but the mesh has " +
                                    std::to_string(mesh.vertices.size()) + " vertices");
-  if (ext == ".stl") replaceFile(path, io::writeStl(mesh, path, options.binary, options.comments));
-  else if (ext == ".ply") replaceFile(path, io::writePly(mesh, path, options.binary, options.comments));
-  else if (ext == ".obj") replaceFile(path, io::writeObj(mesh, options.comments));
-  else if (ext == ".off") replaceFile(path, io::writeOff(mesh, options.comments));
-  else if (ext == ".vtp") io::writeVtp(mesh, path, options.comments);
+  ask(0.05, "encoding");
+  std::string bytes;
+  if (ext == ".stl") bytes = io::writeStl(mesh, path, options.binary, options.comments);
+  else if (ext == ".ply") bytes = io::writePly(mesh, path, options.binary, options.comments);
+  else if (ext == ".obj") bytes = io::writeObj(mesh, options.comments);
+  else if (ext == ".off") bytes = io::writeOff(mesh, options.comments);
+  else if (ext == ".vtp") bytes = io::writeVtp(mesh, path, options.comments);
   else throw InputError(path, "unknown mesh file extension '" + ext + "' for writing (supported: " + supportedList() + ")");
+  // Encoding takes about a third of a save, writing and flushing the rest (a 405k PLY: 0.2 s in all).
+  ProgressCallback writing;
+  if (progress)
+    writing = [&progress](double f, const std::string& stage) { return progress(0.35 + 0.65 * f, stage); };
+  replaceFile(path, bytes, writing);
 }
 
 }  // namespace reamsim

@@ -22,7 +22,6 @@
 
 #include "Formats.h"
 #include "MeshBuilder.h"
-#include "reamsim/mesh/FileReplace.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim::io {
@@ -103,7 +102,7 @@ class VtkMessageCapture {
 
 }  // namespace
 
-void writeVtp(const TriangleMesh& mesh, const std::string& path, const std::vector<std::string>& comments) {
+std::string writeVtp(const TriangleMesh& mesh, const std::string& path, const std::vector<std::string>& comments) {
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.vertices.size()));
@@ -130,14 +129,14 @@ void writeVtp(const TriangleMesh& mesh, const std::string& path, const std::vect
   auto writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
   capture.observe(writer);
   writer->SetInputData(poly);
-  writer->WriteToOutputStringOn();  // then replaced as a whole, as the other formats (replaceFile)
+  writer->WriteToOutputStringOn();  // the file is then replaced as a whole, as the other formats (replaceFile)
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();
   const int ok = writer->Write();
   if (ok != 1 || capture.any())
     throw InputError(path, "cannot write the file" +
                                (capture.any() ? ": " + capture.firstMessage() : std::string(" (VTK writer failed)")));
-  replaceFile(path, writer->GetOutputString());
+  return writer->GetOutputString();
 }
 
 }  // namespace reamsim::io

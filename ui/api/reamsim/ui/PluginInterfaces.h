@@ -47,7 +47,10 @@ class MeshImportInterface {
   // repair (minutes for a large dirty mesh) and stops it by returning false (RepairCancelled is thrown).
   virtual ImportedBone importBone(const std::string& path, bool repair, const RepairProgress& progress = {}) const = 0;
   // Format from the extension; throws reamsim::InputError. `frame` is stored where the format allows (PLY).
-  virtual void exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame) const = 0;
+  // May run on a worker thread. The file is replaced whole or not at all; `progress` hears the fraction
+  // done and stops the write by returning false (reamsim::WriteCancelled; the file there is unchanged).
+  virtual void exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame,
+                          const ProgressCallback& progress = {}) const = 0;
 };
 
 // What the CT import dialog hands to the main window (on the UI thread).
@@ -95,7 +98,8 @@ class PanelInterface {
 }  // namespace reamsim::ui
 
 // 1.1: ImportedBone carries the patient frame and source; exportMesh takes the frame.
-#define ReamSimMeshImport_iid "org.reamsim.MeshImportInterface/1.1"
+// 1.2: exportMesh takes a progress callback that can stop the write.
+#define ReamSimMeshImport_iid "org.reamsim.MeshImportInterface/1.2"
 #define ReamSimCollision_iid "org.reamsim.CollisionInterface/1.0"
 #define ReamSimCsg_iid "org.reamsim.CsgInterface/1.0"
 #define ReamSimPanel_iid "org.reamsim.PanelInterface/1.0"

@@ -2,7 +2,16 @@
 // Writing a file so that a failure never costs the user the file that was there.
 #include <string>
 
+#include "reamsim/mesh/RepairProgress.h"
+
 namespace reamsim {
+
+// Thrown when a write's progress callback asked to stop: the file that was there is unchanged.
+class WriteCancelled : public StageCancelled {
+ public:
+  explicit WriteCancelled(const std::string& stage)
+      : StageCancelled("writing cancelled during " + stage + " (the file there is unchanged)", stage) {}
+};
 
 // Replaces `path` with `bytes` all at once: the bytes go to a new file beside it, are flushed to the disk,
 // and only then is that file renamed over `path` (a rename within a directory is atomic). A failure at any
@@ -11,6 +20,9 @@ namespace reamsim {
 // and, where allowed, its group (not its owner, ACLs or hard links: it is a new file); a symbolic link keeps
 // pointing where it did (its target is replaced, or created when it dangles). A device or pipe (/dev/stdout),
 // and a file in a folder where no new file can be made, are written in place, as a plain write would.
-void replaceFile(const std::string& path, const std::string& bytes);
+// `progress`, when given, hears the fraction written ("writing", in pieces of 8 MiB) and "flushing"; returning
+// false stops before anything is replaced (the new file is removed) with WriteCancelled. A device or a file
+// written in place is asked once, before it is opened.
+void replaceFile(const std::string& path, const std::string& bytes, const ProgressCallback& progress = {});
 
 }  // namespace reamsim

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "reamsim/mesh/FileReplace.h"  // WriteCancelled
+#include "reamsim/mesh/RepairProgress.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
 namespace reamsim {
@@ -33,8 +35,12 @@ struct WriteOptions {
   // into LoadedMesh::comments; e.g. the bone's patient frame. PLY, OBJ, OFF and VTP keep them all, binary STL
   // those that fit in its 80-byte header, ASCII STL none.
   std::vector<std::string> comments;
+  // Hears the fraction done and the stage ("checking", "encoding", "writing", "flushing"); returning false
+  // stops the write before the file is replaced, with WriteCancelled (reamsim/mesh/FileReplace.h).
+  ProgressCallback progress;
 };
-// The format follows the extension (.stl .obj .ply .off .vtp); throws InputError on failure.
+// The format follows the extension (.stl .obj .ply .off .vtp); throws InputError on failure. The file is
+// replaced whole or not at all (replaceFile).
 void writeMesh(const TriangleMesh& mesh, const std::string& path, const WriteOptions& options = {});
 
 std::vector<std::string> supportedMeshExtensions();
