@@ -5,7 +5,7 @@
 namespace reamsim::ui {
 
 CutCommand::CutCommand(BoneNode& bone, const CutLogEntry& entry) : bone_(bone) {
-  setText(QCoreApplication::translate("CutCommand", "Cut %1: %2 mm³, %3 faces")
+  setText(QCoreApplication::translate("CutCommand", "Cut %1: %L2 mm³, %L3 faces")
               .arg(entry.stepIndex)
               .arg(entry.removedMm3, 0, 'f', 2)
               .arg(entry.faces));

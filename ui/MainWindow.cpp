@@ -297,7 +297,7 @@ void MainWindow::updateStatus() {
     alertLabel_->setStyleSheet({});
   }
   const double d = session_->lastMinDistanceMm();
-  distanceLabel_->setText(std::isfinite(d) ? tr("min distance %1 mm").arg(d, 0, 'f', 2) : tr("min distance —"));
+  distanceLabel_->setText(std::isfinite(d) ? tr("min distance %L1 mm").arg(d, 0, 'f', 2) : tr("min distance —"));
   if (!session_->busy()) engineLabel_->setText(session_->cuttingStatus());
 }
 

@@ -33,7 +33,7 @@ std::vector<BoneNode*> otherBonesOf(const ReamSession& session, Document& docume
 }
 
 QString describe(const BoneNode& b) {
-  return QObject::tr("%1\n  source: %2\n  patient frame: %3\n  faces: %4, volume: %5 mm³")
+  return QObject::tr("%1\n  source: %2\n  patient frame: %3\n  faces: %L4, volume: %L5 mm³")
       .arg(QString::fromStdString(b.name()), QString::fromStdString(b.source().empty() ? "—" : b.source()),
            toString(b.patientFrame()))
       .arg(b.current().liveTriangleCount())

@@ -70,7 +70,7 @@ void MainWindow::contactSearched(const ContactSearch& result) {
       return;
     case ContactSearch::Outcome::NoneInReach:
       showError(tr("Ream to depth"),
-                tr("The reamer meets no bone within %1 mm along its axis: aim it at the bone first.").arg(kContactSearchMm));
+                tr("The reamer meets no bone within %L1 mm along its axis: aim it at the bone first.").arg(kContactSearchMm));
       return;
     case ContactSearch::Outcome::Found:
       lastApproachMm_ = result.approachMm;
@@ -92,7 +92,7 @@ void MainWindow::askReamToDepth() {
 void MainWindow::askFeedBy() {
   bool ok = false;
   const double mm = QInputDialog::getDouble(this, tr("Feed by"),
-                                            tr("Feed along the reamer axis by (mm), in steps of %1 mm:")
+                                            tr("Feed along the reamer axis by (mm), in steps of %L1 mm:")
                                                 .arg(feedStep_->value()),
                                             2.0, 0.01, 50.0, 2, &ok);
   if (ok) feedBy(mm);

@@ -4,17 +4,20 @@
 #include <QAction>
 #include <QDockWidget>
 #include <QLabel>
+#include <QLocale>
 #include <QPushButton>
 #include <algorithm>
 #include <cmath>
 #include <QProgressBar>
 #include <QSignalSpy>
 #include <QTableWidget>
+#include <QTemporaryDir>
 #include <QUndoStack>
 #include <QtTest/QTest>
 
 #include "GuiEnvironment.h"
 #include "reamsim/ream/Approach.h"
+#include "reamsim/ream/CutLogIO.h"
 #include "reamsim/tools/ReamedSurface.h"
 
 namespace reamsim::ui::test {
@@ -97,9 +100,9 @@ TEST(GuiReaming, MeasureSeatReportsTheReamedSurfaceAtThePose) {
   const ReamedSurfaceReport expected =
       measureReamedSurface(s.bone()->current().toMesh(), s.reamer()->spec(), s.reamer()->pose());
   ASSERT_GT(expected.seatedFraction, 0.05);  // 1 mm past the first contact: part of the face sits on bone
-  const QString percent = QString::number(100 * expected.seatedFraction, 'f', 1) + " % of the cutting face on bone";
+  const QString percent = QLocale().toString(100 * expected.seatedFraction, 'f', 1) + " % of the cutting face on bone";
   EXPECT_TRUE(label->text().contains(percent)) << label->text().toStdString() << " / " << percent.toStdString();
-  EXPECT_TRUE(label->text().contains(QString::number(expected.facetSagMm, 'f', 4))) << label->text().toStdString();
+  EXPECT_TRUE(label->text().contains(QLocale().toString(expected.facetSagMm, 'f', 4))) << label->text().toStdString();
   // The next cut leaves the measurement behind: the label is cleared.
   s.moveReamer(advancedAlongAxis(start, 0.25));
   ASSERT_TRUE(s.waitIdle(60000));
@@ -266,7 +269,8 @@ TEST(GuiReaming, AKeyMoveLogsWhereItFirstMetTheBone) {
   ASSERT_NE(table, nullptr);
   ASSERT_GT(table->rowCount(), 0);
   const QString tip = table->item(table->rowCount() - 1, 5)->toolTip();
-  EXPECT_TRUE(tip.startsWith("the move first met the bone 0.0 % of the way")) << tip.toStdString();
+  EXPECT_TRUE(tip.startsWith("the move first met the bone " + QLocale().toString(0.0, 'f', 1) + " % of the way"))
+      << tip.toStdString();
   // The reamer that made the step, with its size.
   EXPECT_EQ(e.reamer, s.reamer()->spec().name);
   EXPECT_EQ(table->item(table->rowCount() - 1, 7)->text().toStdString(), s.reamer()->spec().name);
@@ -373,6 +377,65 @@ TEST(GuiReaming, ASequenceOfOneSwingCountsItsBooleans) {
   EXPECT_FALSE(bar->isVisible());
   EXPECT_TRUE(s.lastStepSwept());
   EXPECT_TRUE(f.window->lastError().isEmpty()) << f.window->lastError().toStdString();
+}
+
+}  // namespace
+}  // namespace reamsim::ui::test
+
+namespace reamsim::ui::test {
+namespace {
+
+// Sets the locale numbers are shown in for one test (QLocale's default), and puts the old one back.
+class ShownLocale {
+ public:
+  explicit ShownLocale(const QLocale& l) { QLocale::setDefault(l); }
+  ~ShownLocale() { QLocale::setDefault(before_); }
+
+ private:
+  QLocale before_;
+};
+
+// The numbers a user reads (log table, contact point, the undo entry) are in the user's locale — 1,234 mm³ in
+// Germany — while the files keep the decimal point (docs/GUI.md "Numbers in files").
+TEST(GuiReaming, ShownNumbersFollowTheUsersLocaleFilesDoNot) {
+  REAMSIM_REQUIRE_DISPLAY();
+  const QLocale german(QLocale::German, QLocale::Germany);
+  ShownLocale shown(german);
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  placeInTheBone(s, 1.0);
+  ASSERT_FALSE(s.log()->entries().empty());
+  const CutLogEntry& e = s.log()->entries().back();
+  auto* table = w.findChild<QTableWidget*>("LogTable");
+  ASSERT_NE(table, nullptr);
+  const int row = table->rowCount() - 1;
+  ASSERT_GE(row, 0);
+  const QString removed = table->item(row, 1)->text();
+  EXPECT_TRUE(removed.contains(',') && !removed.contains('.')) << removed.toStdString();
+  bool ok = false;
+  EXPECT_NEAR(german.toDouble(removed, &ok), e.removedMm3, 5e-4);
+  EXPECT_TRUE(ok) << removed.toStdString();
+  ASSERT_TRUE(e.contactPoint.has_value());
+  const QStringList xyz = table->item(row, 5)->text().split("; ");
+  ASSERT_EQ(xyz.size(), 3) << table->item(row, 5)->text().toStdString();
+  EXPECT_NEAR(german.toDouble(xyz[0]), e.contactPoint->x, 5e-3);
+  EXPECT_NEAR(german.toDouble(xyz[2]), e.contactPoint->z, 5e-3);
+  const QUndoStack* undo = s.undoStack();
+  ASSERT_GT(undo->count(), 0);
+  EXPECT_TRUE(undo->text(undo->count() - 1).contains(german.toString(e.removedMm3, 'f', 2)))
+      << undo->text(undo->count() - 1).toStdString();
+  // The CSV the panel exports is the same as in any locale.
+  auto* panel = w.findChild<QDockWidget*>("LogPanel");
+  ASSERT_NE(panel, nullptr);
+  QTemporaryDir out;
+  QString error;
+  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "exportCsv", Q_RETURN_ARG(QString, error),
+                                        Q_ARG(QString, out.filePath("log.csv")), Q_ARG(bool, false)));
+  ASSERT_TRUE(error.isEmpty()) << error.toStdString();
+  const std::vector<CutLogEntry> back = readCutLogCsv(out.filePath("log.csv").toStdString());
+  ASSERT_EQ(back.size(), s.log()->entries().size());
+  EXPECT_NEAR(back.back().removedMm3, e.removedMm3, 1e-9 * e.removedMm3);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "CtImportDialog.h"
 
+#include <QLocale>
 #include <QCheckBox>
 #include <QCloseEvent>
 #include <QComboBox>
@@ -37,7 +38,7 @@ PatientFrame toFrame(ct::PatientSpace s) {
   return PatientFrame::Unspecified;
 }
 
-QString number(double v) { return QString::number(v, 'g', 4); }
+QString number(double v) { return QLocale().toString(v, 'g', 4); }  // shown: the user's decimal sign
 
 }  // namespace
 

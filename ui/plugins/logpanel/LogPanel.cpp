@@ -5,6 +5,7 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QLocale>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QSplitter>
@@ -20,6 +21,16 @@
 #include "reamsim/tools/ReamedSurface.h"
 
 namespace reamsim::ui {
+namespace {
+
+// "x, y, z" in the user's locale; where the decimal sign is a comma the coordinates are parted by "; ".
+QString pointText(const Vec3& p) {
+  const QLocale shown;
+  const QString sep = shown.decimalPoint() == QChar(',') ? QStringLiteral("; ") : QStringLiteral(", ");
+  return shown.toString(p.x, 'f', 2) + sep + shown.toString(p.y, 'f', 2) + sep + shown.toString(p.z, 'f', 2);
+}
+
+}  // namespace
 
 LogPanel::LogPanel(Document& document, QWidget* parent) : QDockWidget(tr("Cut log"), parent), document_(document) {
   setObjectName("LogPanel");
@@ -86,27 +97,23 @@ void LogPanel::sync() {
     auto cell = [&](int col, const QString& text) { table_->setItem(row, col, new QTableWidgetItem(text)); };
     // The time the step was committed, in local time (the CSV has it in UTC).
     cell(0, e.timeUnixMs > 0 ? QDateTime::fromMSecsSinceEpoch(e.timeUnixMs).toString("HH:mm:ss.zzz") : QString());
-    cell(1, QString::number(e.removedMm3, 'f', 3));
-    cell(2, QString::number(e.cumulativeMm3, 'f', 3));
-    cell(3, QString::number(e.cutMs, 'f', 1));
-    cell(4, QString::number(e.faces));
-    cell(5, e.contactPoint ? QStringLiteral("%1, %2, %3")
-                                 .arg(e.contactPoint->x, 0, 'f', 2)
-                                 .arg(e.contactPoint->y, 0, 'f', 2)
-                                 .arg(e.contactPoint->z, 0, 'f', 2)
-                           : QStringLiteral("–"));
+    // Numbers shown in the user's locale (decimal comma in de_DE); the CSV keeps the C locale's.
+    const QLocale shown;
+    cell(1, shown.toString(e.removedMm3, 'f', 3));
+    cell(2, shown.toString(e.cumulativeMm3, 'f', 3));
+    cell(3, shown.toString(e.cutMs, 'f', 1));
+    cell(4, shown.toString(qlonglong(e.faces)));
+    cell(5, e.contactPoint ? pointText(*e.contactPoint) : QStringLiteral("–"));
     if (e.moveContactT && e.moveContactPoint)  // a move onto the bone: where it first met it
-      table_->item(row, 5)->setToolTip(tr("the move first met the bone %1 % of the way, at %2, %3, %4 mm")
+      table_->item(row, 5)->setToolTip(tr("the move first met the bone %L1 % of the way, at %2 mm")
                                            .arg(100.0 * *e.moveContactT, 0, 'f', 1)
-                                           .arg(e.moveContactPoint->x, 0, 'f', 2)
-                                           .arg(e.moveContactPoint->y, 0, 'f', 2)
-                                           .arg(e.moveContactPoint->z, 0, 'f', 2));
+                                           .arg(pointText(*e.moveContactPoint)));
     cell(6, QString::number(e.stepIndex));
     cell(7, QString::fromStdString(e.reamer));  // a session may change reamers
     if (e.reamerDiameterMm > 0)
       table_->item(row, 7)->setToolTip(e.reamerSphereRadiusMm
-                                           ? tr("Ø %1 mm, cap sphere R %2 mm").arg(e.reamerDiameterMm).arg(*e.reamerSphereRadiusMm)
-                                           : tr("Ø %1 mm, flat").arg(e.reamerDiameterMm));
+                                           ? tr("Ø %L1 mm, cap sphere R %L2 mm").arg(e.reamerDiameterMm).arg(*e.reamerSphereRadiusMm)
+                                           : tr("Ø %L1 mm, flat").arg(e.reamerDiameterMm));
   }
   shown_ = entries.size();
   table_->scrollToBottom();
@@ -145,8 +152,8 @@ QString LogPanel::measureSeat() {
   } else {
     try {
       const ReamedSurfaceReport r = measureReamedSurface(bone->current().toMesh(), reamer->spec(), reamer->pose());
-      text = tr("Seat at the reamer's pose: %1 % of the cutting face on bone (%2 faces); standoff from the ideal "
-                "face %3 to %4 mm, rms %5 mm (the reamer mesh's facets sag %6 mm).")
+      text = tr("Seat at the reamer's pose: %L1 % of the cutting face on bone (%L2 faces); standoff from the ideal "
+                "face %L3 to %L4 mm, rms %L5 mm (the reamer mesh's facets sag %L6 mm).")
                  .arg(100 * r.seatedFraction, 0, 'f', 1)
                  .arg(r.faces)
                  .arg(r.standoffMinMm, 0, 'f', 4)
