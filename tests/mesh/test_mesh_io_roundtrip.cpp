@@ -3,6 +3,7 @@
 
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -237,6 +238,27 @@ TEST_P(io_RoundTrip, ACancelledWriteLeavesTheFileThatWasThere) {
     for (const auto& e : fs::directory_iterator(dir_)) entries += e.path().filename() != fs::path(file).filename();
     EXPECT_EQ(entries, 0u) << "a new file is left behind after a cancel at check " << stopAt;
   }
+}
+
+// A process that died between writing and renaming leaves its new file (".NAME.reamsim-PID-….part") beside the
+// target; the next save of that target removes it. Those of live processes and of other targets stay.
+TEST_F(io_MeshIO, ASaveRemovesTheNewFileADeadProcessLeftBesideIt) {
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);  // `child` names no process now
+  const std::string dead = "." + std::string("bone.ply") + ".reamsim-" + std::to_string(child) + "-5-0.part";
+  const std::string live = ".bone.ply.reamsim-1-5-0.part";  // init: alive
+  const std::string other = ".other.ply.reamsim-" + std::to_string(child) + "-5-0.part";
+  const std::string notOurs = ".bone.ply.reamsim-x1-5-0.part";
+  for (const std::string& name : {dead, live, other, notOurs}) writeText(name, "half a file");
+  writeMesh(octahedron(1, {}), path("bone.ply"));
+  EXPECT_FALSE(fs::exists(path(dead)));
+  EXPECT_TRUE(fs::exists(path(live)));
+  EXPECT_TRUE(fs::exists(path(other)));
+  EXPECT_TRUE(fs::exists(path(notOurs)));
+  EXPECT_EQ(readMesh(path("bone.ply"), ReadOptions{Units::Millimetres}).mesh.triangleCount(), 8u);
 }
 
 TEST_F(io_MeshIO, ReplacingAFileKeepsItsPermissionsAndLinks) {

@@ -3,6 +3,7 @@
 #include "reamsim/mesh/FileReplace.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <cerrno>
 #include <chrono>
 #include <filesystem>
+#include <string>
 
 #include "FileBytes.h"
 #include "reamsim/mesh/MeshError.h"
@@ -89,6 +91,27 @@ class NewFile {
   bool placed_ = false;
 };
 
+// New files an earlier process left beside `target` (".NAME.reamsim-PID-…part") when it died between writing
+// and renaming: removed once that process is gone. Names of live processes (another ReamSim saving the same
+// file right now) and names not in this pattern are left alone.
+void removeLeftNewFiles(const fs::path& dir, const fs::path& target) {
+  const std::string prefix = "." + target.filename().string() + ".reamsim-";
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() + 5 || name.compare(0, prefix.size(), prefix) != 0 ||
+        name.compare(name.size() - 5, 5, ".part") != 0)
+      continue;
+    const std::size_t dash = name.find('-', prefix.size());
+    if (dash == std::string::npos) continue;
+    const std::string digits = name.substr(prefix.size(), dash - prefix.size());
+    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if (pid == ::getpid() || pid <= 0) continue;
+    if (::kill(pid, 0) != 0 && errno == ESRCH) ::unlink(it->path().c_str());
+  }
+}
+
 }  // namespace
 
 void replaceFile(const std::string& path, const std::string& bytes, const ProgressCallback& progress) {
@@ -125,6 +148,7 @@ void replaceFile(const std::string& path, const std::string& bytes, const Progre
     throw InputError(path, "cannot create a file in " + dir.string() + ": " + errnoText(err));
   }
   NewFile file(temp, fd);
+  removeLeftNewFiles(dir, target);
   if (existed) {  // the replaced file's mode and group (best effort: the owner cannot be given away)
     (void)::fchmod(fd, old.st_mode & 07777);
     if (old.st_gid != ::getegid()) (void)::fchown(fd, static_cast<uid_t>(-1), old.st_gid);

@@ -20,6 +20,7 @@ class WriteCancelled : public StageCancelled {
 // and, where allowed, its group (not its owner, ACLs or hard links: it is a new file); a symbolic link keeps
 // pointing where it did (its target is replaced, or created when it dangles). A device or pipe (/dev/stdout),
 // and a file in a folder where no new file can be made, are written in place, as a plain write would.
+// New files an earlier process left beside `path` when it died before renaming are removed.
 // `progress`, when given, hears the fraction written ("writing", in pieces of 8 MiB) and "flushing"; returning
 // false stops before anything is replaced (the new file is removed) with WriteCancelled. A device or a file
 // written in place is asked once, before it is opened.
