@@ -153,7 +153,9 @@ void MainWindow::buildMenus() {
   add(file, "load_default", tr("Load the &default case"), {}, [this] {
     if (confirmDiscardChanges(tr("load the default case"))) loadDefaultCase();
   });
-  add(file, "save", tr("&Save bone as…"), QKeySequence::SaveAs, [this] {
+  add(file, "save_again", tr("&Save"), QKeySequence::Save, [this] { saveBone(); })
+      ->setEnabled(plugins_.meshImport() != nullptr);
+  add(file, "save", tr("Save bone &as…"), QKeySequence::SaveAs, [this] {
     saveBoneAndCutLogInteractive();
   })->setEnabled(plugins_.meshImport() != nullptr);
   file->addSeparator();

@@ -71,6 +71,10 @@ class MainWindow : public QMainWindow {
   // The bone at `path` and its cut log beside it (NAME.cut_log.csv); true when both are written, and only then
   // is the bone "saved" (no unsaved changes). Errors in a dialog.
   bool saveBoneAs(const QString& path);
+  // File → Save (Ctrl+S) and the close question's Save: to the file the bone was last saved to with Save as
+  // (never over the file it was opened from: that is the unrepaired original), else Save as.
+  bool saveBone();
+  const QString& savedPath() const { return savedPath_; }  // empty until Save as wrote this bone
   // Changes since the bone was opened or last saved (the undo history is away from its saved point).
   bool hasUnsavedChanges() const;
   // Depth below the first contact along the axis (searched on a worker, then fed in feed steps).
@@ -168,6 +172,7 @@ class MainWindow : public QMainWindow {
   std::shared_ptr<std::atomic<bool>> importStop_;  // read by the import's worker at each progress check
   QString importStoppedAt_;
   bool saving_ = false;  // writeBoneFile is waiting for its worker
+  QString savedPath_;    // where saveBoneAs last wrote the bone (cleared for another bone)
   static constexpr double kContactSearchMm = 100;
   static constexpr int kRecoveryDelayMs = 3000;  // after the last change (a feed's steps write one copy)
   static constexpr std::size_t kMaxQueuedFeedSteps = 4;  // feed key presses beyond this are ignored

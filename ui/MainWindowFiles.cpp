@@ -157,6 +157,7 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
   session_->bone()->setPatientFrame(frame);  // loadBone predates the frame: set here (docs/CT_IMPORT.md)
   session_->bone()->setSource(std::move(source));
   boneName_ = name;
+  savedPath_.clear();  // another bone: Save asks where
   if (!recentPath.isEmpty()) addRecent(recentPath);
   updateTitle();
   updateStatus();
@@ -181,6 +182,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
     showError(tr("Cannot save the cut log %1").arg(QFileInfo(logPath).fileName()), QString::fromStdString(e.what()));
     return false;
   }
+  savedPath_ = path;  // written: the next Save goes here too
   if (changedMeanwhile) {
     statusBar()->showMessage(tr("Saved %1 and its cut log as they were when saving began; later cuts are not saved")
                                  .arg(path), 8000);
@@ -190,6 +192,8 @@ bool MainWindow::saveBoneAs(const QString& path) {
   statusBar()->showMessage(tr("Saved %1 and its cut log").arg(path), 5000);
   return true;
 }
+
+bool MainWindow::saveBone() { return savedPath_.isEmpty() ? saveBoneAndCutLogInteractive() : saveBoneAs(savedPath_); }
 
 // Encoding and writing a bone take 0.2 s at 405k faces and seconds at millions (a CT bone repaired at 0.5 mm
 // has 17 million): done on a worker, with a window-modal dialog that shows how far it is and can cancel,
@@ -273,7 +277,7 @@ bool MainWindow::confirmDiscardChanges(const QString& action) {
   box.setDefaultButton(QMessageBox::Save);
   switch (box.exec()) {
     case QMessageBox::Save:
-      return saveBoneAndCutLogInteractive();
+      return saveBone();
     case QMessageBox::Discard:
       return true;
     default:

@@ -159,10 +159,12 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   EXPECT_TRUE(w.lastError().isEmpty()) << "a cancel is not an error: " << w.lastError().toStdString();
   {
     CancelSaveOnShow cancel;
-    EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("new.ply"))}, 2));
+    // The close question's Save writes where Save as did, without asking where.
+    EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save)}, 1));
     EXPECT_EQ(cancel.pressed, 1);
   }
   EXPECT_TRUE(w.isVisible());
+  EXPECT_EQ(contents(path), bone);
   EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.cut_log.csv", "bone.ply"}));
   // Let run, the same save writes the cut bone and both cuts.
   ASSERT_TRUE(w.saveBoneAs(path)) << w.lastError().toStdString();
@@ -170,6 +172,44 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   EXPECT_EQ(readMesh(path.toStdString()).mesh.triangles.size(), s.bone()->current().liveTriangleCount());
   EXPECT_EQ(contents(log).count('\n'), 3);
   EXPECT_TRUE(closeAnswering(w, {}, 0));
+}
+
+// File → Save (Ctrl+S) asks where only the first time; then it, and the close question's Save, write the bone and
+// its log where Save as did. Another bone starts without a file (never written over the file it came from).
+TEST(GuiUnsavedChanges, SaveWritesWhereSaveAsWroteWithoutAsking) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  QTemporaryDir out;
+  const QString path = out.filePath("bone.ply"), log = out.filePath("bone.cut_log.csv");
+  {
+    ModalAnswers answers({ModalAnswers::file(path)});
+    w.action("save_again")->trigger();
+    EXPECT_EQ(answers.seen(), 1);
+  }
+  EXPECT_EQ(w.savedPath(), path);
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  EXPECT_EQ(contents(log).count('\n'), 2);
+  cutOnce(s, 1.0);
+  {
+    ModalAnswers answers({});
+    w.action("save_again")->trigger();
+    EXPECT_EQ(answers.seen(), 0);
+  }
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  EXPECT_EQ(readMesh(path.toStdString()).mesh.triangles.size(), s.bone()->current().liveTriangleCount());
+  EXPECT_EQ(contents(log).count('\n'), 3);
+  cutOnce(s, 1.5);
+  ModalAnswers none({});
+  ASSERT_TRUE(w.loadDefaultCase());  // another bone (a programmatic load does not ask)
+  EXPECT_TRUE(w.savedPath().isEmpty());
+  EXPECT_EQ(contents(log).count('\n'), 3);  // the cut not saved was not written by the load
+  cutOnce(s);
+  EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("other.ply"))}, 2));
+  EXPECT_TRUE(QFileInfo::exists(out.filePath("other.cut_log.csv")));
+  EXPECT_EQ(contents(log).count('\n'), 3);
 }
 
 TEST(GuiUnsavedChanges, SavingMarksTheBoneSavedUntilTheHistoryMovesAway) {
