@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <sys/xattr.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -12,6 +13,7 @@
 #include <clocale>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -238,6 +240,22 @@ TEST_P(io_RoundTrip, ACancelledWriteLeavesTheFileThatWasThere) {
     for (const auto& e : fs::directory_iterator(dir_)) entries += e.path().filename() != fs::path(file).filename();
     EXPECT_EQ(entries, 0u) << "a new file is left behind after a cancel at check " << stopAt;
   }
+}
+
+// The replaced file's extended attributes (its ACLs are some) stay with the new file: a rename over it would
+// otherwise drop a clinic folder's access rules from the saved bone.
+TEST_F(io_MeshIO, ReplacingAFileKeepsItsExtendedAttributes) {
+  const std::string file = path("bone.ply");
+  writeMesh(octahedron(1, {}), file);
+  const std::string value = "reviewed by J. Doe";
+  if (::setxattr(file.c_str(), "user.reamsim.note", value.data(), value.size(), 0) != 0)
+    GTEST_SKIP() << "the file system here keeps no user attributes (" << std::strerror(errno) << ")";
+  writeMesh(octahedron(2, {}), file);
+  char back[64] = {};
+  const ssize_t n = ::getxattr(file.c_str(), "user.reamsim.note", back, sizeof back);
+  ASSERT_EQ(n, static_cast<ssize_t>(value.size())) << std::strerror(errno);
+  EXPECT_EQ(std::string(back, static_cast<std::size_t>(n)), value);
+  EXPECT_EQ(readMesh(file, ReadOptions{Units::Millimetres}).mesh.vertices[0], (Vec3{2, 0, 0}));
 }
 
 // A process that died between writing and renaming leaves its new file (".NAME.reamsim-PID-….part") beside the

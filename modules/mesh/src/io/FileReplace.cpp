@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/xattr.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -91,6 +92,28 @@ class NewFile {
   bool placed_ = false;
 };
 
+// The replaced file's extended attributes on the new one: its ACLs (system.posix_acl_access) and the user's
+// own (user.*). Best effort, as the mode: a file system without them, or an attribute this process may not
+// set (security.*, trusted.* need privileges), is skipped.
+void copyExtendedAttributes(const fs::path& from, int toFd) {
+  const ssize_t size = ::listxattr(from.c_str(), nullptr, 0);
+  if (size <= 0) return;
+  std::string names(static_cast<std::size_t>(size), '\0');
+  const ssize_t got = ::listxattr(from.c_str(), names.data(), names.size());
+  if (got <= 0) return;
+  names.resize(static_cast<std::size_t>(got));
+  std::string value;
+  for (std::size_t at = 0; at < names.size();) {
+    const std::string name(names.c_str() + at);
+    at += name.size() + 1;
+    const ssize_t n = ::getxattr(from.c_str(), name.c_str(), nullptr, 0);
+    if (n < 0) continue;
+    value.resize(static_cast<std::size_t>(n));
+    if (n > 0 && ::getxattr(from.c_str(), name.c_str(), value.data(), value.size()) != n) continue;
+    (void)::fsetxattr(toFd, name.c_str(), value.data(), value.size(), 0);
+  }
+}
+
 // New files an earlier process left beside `target` (".NAME.reamsim-PID-…part") when it died between writing
 // and renaming: removed once that process is gone. Names of live processes (another ReamSim saving the same
 // file right now) and names not in this pattern are left alone.
@@ -149,9 +172,10 @@ void replaceFile(const std::string& path, const std::string& bytes, const Progre
   }
   NewFile file(temp, fd);
   removeLeftNewFiles(dir, target);
-  if (existed) {  // the replaced file's mode and group (best effort: the owner cannot be given away)
-    (void)::fchmod(fd, old.st_mode & 07777);
+  if (existed) {  // the replaced file's mode, group and ACLs (best effort: the owner cannot be given away)
     if (old.st_gid != ::getegid()) (void)::fchown(fd, static_cast<uid_t>(-1), old.st_gid);
+    (void)::fchmod(fd, old.st_mode & 07777);  // after the group: a chown may clear set-id bits
+    copyExtendedAttributes(target, fd);       // after the mode: an ACL's mask and the mode are one
   }
   const auto failed = [&](const std::string& what) {
     const int err = errno;
