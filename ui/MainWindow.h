@@ -173,6 +173,7 @@ class MainWindow : public QMainWindow {
   QString importStoppedAt_;
   bool saving_ = false;  // writeBoneFile is waiting for its worker
   QString savedPath_;    // where saveBoneAs last wrote the bone (cleared for another bone)
+  std::uint64_t boneGeneration_ = 0;  // counts bones installed or replaced: a save knows if its bone is still there
   static constexpr double kContactSearchMm = 100;
   static constexpr int kRecoveryDelayMs = 3000;  // after the last change (a feed's steps write one copy)
   static constexpr std::size_t kMaxQueuedFeedSteps = 4;  // feed key presses beyond this are ignored

@@ -82,6 +82,8 @@ void MainWindow::buildVolumeImport() {
   // An undo or redo of a replacement swaps the bone: the title follows the bone's name.
   connect(session_.get(), &ReamSession::boneReplaced, this, [this] {
     boneName_ = QString::fromStdString(session_->bone()->name());
+    savedPath_.clear();  // another bone: Save asks where (also when an undo brings the saved one back)
+    ++boneGeneration_;
     updateTitle();
     updateStatus();
   });

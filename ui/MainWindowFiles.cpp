@@ -158,6 +158,7 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
   session_->bone()->setSource(std::move(source));
   boneName_ = name;
   savedPath_.clear();  // another bone: Save asks where
+  ++boneGeneration_;
   if (!recentPath.isEmpty()) addRecent(recentPath);
   updateTitle();
   updateStatus();
@@ -167,12 +168,18 @@ bool MainWindow::saveBoneAs(const QString& path) {
   // The bone and its log as they are now. A step that lands while the file is written (a queued feed) is
   // in neither, and the bone is then not marked saved.
   bool changedMeanwhile = false;
+  const std::uint64_t generation = boneGeneration_;
   const QMetaObject::Connection watch =
       connect(session_->undoStack(), &QUndoStack::indexChanged, this, [&changedMeanwhile] { changedMeanwhile = true; });
   const std::string csv = cutLogCsv(session_->log()->entries());
   const bool written = writeBoneFile(path);
   disconnect(watch);
   if (!written) return false;
+  if (generation != boneGeneration_) {  // an import finished meanwhile: the file holds the bone that was there
+    showError(tr("Save"), tr("%1 holds the bone as it was when saving began; another bone has been opened since, "
+                             "and it is not saved.").arg(path));
+    return false;
+  }
   const QFileInfo info(path);
   const QString logPath = info.dir().filePath(info.completeBaseName() + ".cut_log.csv");
   try {

@@ -33,7 +33,7 @@ void WriteProgressDialog::showProgress(double fraction, const QString& stage) {
 
 void WriteProgressDialog::reject() {
   if (stop_->exchange(true)) return;
-  label_->setText(tr("Cancelling… (the file there is kept as it was)"));
+  label_->setText(tr("Cancelling…"));  // a write past its last check still ends; the caller says how it ended
   cancel_->setEnabled(false);
 }
 

@@ -9,6 +9,7 @@
 #include <QMessageBox>
 #include <QPushButton>
 #include <QTemporaryDir>
+#include <QThread>
 #include <QUndoStack>
 #include <QtTest/QTest>
 
@@ -210,6 +211,31 @@ TEST(GuiUnsavedChanges, SaveWritesWhereSaveAsWroteWithoutAsking) {
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("other.ply"))}, 2));
   EXPECT_TRUE(QFileInfo::exists(out.filePath("other.cut_log.csv")));
   EXPECT_EQ(contents(log).count('\n'), 3);
+}
+
+// A bone opened while the save is being written (its import ends inside the save's wait) is not the bone in the
+// file: the save says so and ties neither the file nor "saved" to the new bone, so Ctrl+S cannot write the new
+// bone over the earlier one's file without asking.
+TEST(GuiUnsavedChanges, ABoneOpenedDuringASaveIsNotTakenForTheSavedOne) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  const std::size_t cutFaces = s.bone()->current().liveTriangleCount();
+  QTemporaryDir out;
+  const QString path = out.filePath("bone.ply");
+  w.openFile(QString(REAMSIM_TEST_DATA_DIR) + "/good/cube_quads_comments.off", false);
+  while (w.importRunning()) QThread::msleep(5);  // done, but its result waits in the event queue
+  EXPECT_FALSE(w.saveBoneAs(path));               // the queue runs while the save waits for its worker
+  EXPECT_TRUE(w.lastError().contains("another bone has been opened since")) << w.lastError().toStdString();
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
+  EXPECT_EQ(s.bone()->current().liveTriangleCount(), 12u);  // the cube is the bone now
+  EXPECT_EQ(readMesh(path.toStdString()).mesh.triangles.size(), cutFaces);  // the file holds the cut scapula
+  EXPECT_TRUE(w.savedPath().isEmpty());
+  ModalAnswers answers({ModalAnswers::cancelFile()});
+  w.action("save_again")->trigger();  // asks where
+  EXPECT_EQ(answers.seen(), 1);
 }
 
 TEST(GuiUnsavedChanges, SavingMarksTheBoneSavedUntilTheHistoryMovesAway) {

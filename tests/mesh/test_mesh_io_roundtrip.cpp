@@ -10,6 +10,7 @@
 #include <csignal>
 
 #include <cctype>
+#include <chrono>
 #include <clocale>
 #include <cmath>
 #include <cstdio>
@@ -198,7 +199,7 @@ TEST_P(io_RoundTrip, ACancelledWriteLeavesTheFileThatWasThere) {
   wo.binary = c.binary;
   const TriangleMesh small = octahedron(1, {});
   writeMesh(small, file, wo);
-  TriangleMesh large;  // ~200,000 triangles (a few MiB): several pieces of the write
+  TriangleMesh large;  // ~200,000 triangles: 4-8 MiB binary, more in ASCII (then more than one piece)
   for (int k = 0; k < 25000; ++k) {
     const TriangleMesh o = octahedron(1, {3.0 * k, 0, 0});
     const auto base = static_cast<std::uint32_t>(large.vertices.size());
@@ -259,23 +260,30 @@ TEST_F(io_MeshIO, ReplacingAFileKeepsItsExtendedAttributes) {
 }
 
 // A process that died between writing and renaming leaves its new file (".NAME.reamsim-PID-….part") beside the
-// target; the next save of that target removes it. Those of live processes and of other targets stay.
+// target; the next save of that target removes it once it is over an hour old. Those of live processes, young
+// ones (perhaps another machine's, on a shared folder), other targets' and other names stay.
 TEST_F(io_MeshIO, ASaveRemovesTheNewFileADeadProcessLeftBesideIt) {
   const pid_t child = ::fork();
   ASSERT_GE(child, 0);
   if (child == 0) ::_exit(0);
   int status = 0;
   ASSERT_EQ(::waitpid(child, &status, 0), child);  // `child` names no process now
-  const std::string dead = "." + std::string("bone.ply") + ".reamsim-" + std::to_string(child) + "-5-0.part";
-  const std::string live = ".bone.ply.reamsim-1-5-0.part";  // init: alive
-  const std::string other = ".other.ply.reamsim-" + std::to_string(child) + "-5-0.part";
-  const std::string notOurs = ".bone.ply.reamsim-x1-5-0.part";
-  for (const std::string& name : {dead, live, other, notOurs}) writeText(name, "half a file");
+  const std::string pid = std::to_string(child);
+  const std::string dead = ".bone.ply.reamsim-" + pid + "-5-0.part";
+  const std::string young = ".bone.ply.reamsim-" + pid + "-6-0.part";  // minutes old: maybe another machine's
+  const std::string live = ".bone.ply.reamsim-1-5-0.part";             // init: alive
+  const std::string other = ".other.ply.reamsim-" + pid + "-5-0.part";
+  const std::string notOurs[] = {".bone.ply.reamsim-x1-5-0.part", ".bone.ply.reamsim-" + pid + "-5.part",
+                                 ".bone.ply.reamsim-" + pid + "-5-0a.part"};
+  const auto twoHoursAgo = fs::file_time_type::clock::now() - std::chrono::hours(2);
+  for (const std::string& name : {dead, young, live, other, notOurs[0], notOurs[1], notOurs[2]}) {
+    writeText(name, "half a file");
+    if (name != young) fs::last_write_time(path(name), twoHoursAgo);
+  }
   writeMesh(octahedron(1, {}), path("bone.ply"));
   EXPECT_FALSE(fs::exists(path(dead)));
-  EXPECT_TRUE(fs::exists(path(live)));
-  EXPECT_TRUE(fs::exists(path(other)));
-  EXPECT_TRUE(fs::exists(path(notOurs)));
+  for (const std::string& name : {young, live, other, notOurs[0], notOurs[1], notOurs[2]})
+    EXPECT_TRUE(fs::exists(path(name))) << name;
   EXPECT_EQ(readMesh(path("bone.ply"), ReadOptions{Units::Millimetres}).mesh.triangleCount(), 8u);
 }
 

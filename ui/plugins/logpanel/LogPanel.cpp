@@ -25,7 +25,8 @@ namespace {
 
 // "x, y, z" in the user's locale; where the decimal sign is a comma the coordinates are parted by "; ".
 QString pointText(const Vec3& p) {
-  const QLocale shown;
+  QLocale shown;
+  shown.setNumberOptions(QLocale::OmitGroupSeparator);
   const QString sep = shown.decimalPoint() == QChar(',') ? QStringLiteral("; ") : QStringLiteral(", ");
   return shown.toString(p.x, 'f', 2) + sep + shown.toString(p.y, 'f', 2) + sep + shown.toString(p.z, 'f', 2);
 }
@@ -97,8 +98,10 @@ void LogPanel::sync() {
     auto cell = [&](int col, const QString& text) { table_->setItem(row, col, new QTableWidgetItem(text)); };
     // The time the step was committed, in local time (the CSV has it in UTC).
     cell(0, e.timeUnixMs > 0 ? QDateTime::fromMSecsSinceEpoch(e.timeUnixMs).toString("HH:mm:ss.zzz") : QString());
-    // Numbers shown in the user's locale (decimal comma in de_DE); the CSV keeps the C locale's.
-    const QLocale shown;
+    // Numbers shown in the user's locale (decimal comma in de_DE), without group separators as in the CSV,
+    // which keeps the C locale's.
+    QLocale shown;
+    shown.setNumberOptions(QLocale::OmitGroupSeparator);
     cell(1, shown.toString(e.removedMm3, 'f', 3));
     cell(2, shown.toString(e.cumulativeMm3, 'f', 3));
     cell(3, shown.toString(e.cutMs, 'f', 1));

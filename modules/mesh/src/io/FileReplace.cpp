@@ -92,10 +92,10 @@ class NewFile {
   bool placed_ = false;
 };
 
-// The replaced file's extended attributes on the new one: its ACLs (system.posix_acl_access) and the user's
-// own (user.*). Best effort, as the mode: a file system without them, or an attribute this process may not
-// set (security.*, trusted.* need privileges), is skipped.
-void copyExtendedAttributes(const fs::path& from, int toFd) {
+// The replaced file's ACL (system.posix_acl_access) and the user's own attributes (user.*) on the new file.
+// Nothing else: security.* and trusted.* describe the old content (an IMA signature would not match the new
+// one). Best effort, as the mode: a file system without them is skipped.
+void copyAclAndUserAttributes(const fs::path& from, int toFd) {
   const ssize_t size = ::listxattr(from.c_str(), nullptr, 0);
   if (size <= 0) return;
   std::string names(static_cast<std::size_t>(size), '\0');
@@ -106,6 +106,7 @@ void copyExtendedAttributes(const fs::path& from, int toFd) {
   for (std::size_t at = 0; at < names.size();) {
     const std::string name(names.c_str() + at);
     at += name.size() + 1;
+    if (name != "system.posix_acl_access" && name.compare(0, 5, "user.") != 0) continue;
     const ssize_t n = ::getxattr(from.c_str(), name.c_str(), nullptr, 0);
     if (n < 0) continue;
     value.resize(static_cast<std::size_t>(n));
@@ -114,23 +115,32 @@ void copyExtendedAttributes(const fs::path& from, int toFd) {
   }
 }
 
-// New files an earlier process left beside `target` (".NAME.reamsim-PID-…part") when it died between writing
-// and renaming: removed once that process is gone. Names of live processes (another ReamSim saving the same
-// file right now) and names not in this pattern are left alone.
+// New files an earlier process left beside `target` (".NAME.reamsim-PID-STAMP-COUNT.part") when it died between
+// writing and renaming: removed when that process is gone and the file is over an hour old. The age keeps a
+// writer on another machine (a shared folder) or in another PID namespace, whose PID means nothing here, safe:
+// no save takes an hour. Names not exactly in this pattern are left alone.
 void removeLeftNewFiles(const fs::path& dir, const fs::path& target) {
-  const std::string prefix = "." + target.filename().string() + ".reamsim-";
+  const std::string prefix = "." + target.filename().string() + ".reamsim-", suffix = ".part";
+  const auto digitsAt = [](const std::string& s, std::size_t from, std::size_t to) {
+    return to > from && s.find_first_not_of("0123456789", from) >= to;
+  };
+  const auto oldEnough = fs::file_time_type::clock::now() - std::chrono::hours(1);
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (name.size() <= prefix.size() + 5 || name.compare(0, prefix.size(), prefix) != 0 ||
-        name.compare(name.size() - 5, 5, ".part") != 0)
+    if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
       continue;
-    const std::size_t dash = name.find('-', prefix.size());
-    if (dash == std::string::npos) continue;
-    const std::string digits = name.substr(prefix.size(), dash - prefix.size());
-    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
-    const pid_t pid = static_cast<pid_t>(std::stol(digits));
-    if (pid == ::getpid() || pid <= 0) continue;
+    const std::size_t body = prefix.size(), bodyEnd = name.size() - suffix.size();
+    const std::size_t dash1 = name.find('-', body), dash2 = dash1 == std::string::npos ? dash1 : name.find('-', dash1 + 1);
+    if (dash2 == std::string::npos || dash2 >= bodyEnd || !digitsAt(name, body, dash1) ||
+        !digitsAt(name, dash1 + 1, dash2) || !digitsAt(name, dash2 + 1, bodyEnd) || dash1 - body > 9)
+      continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(name.substr(body, dash1 - body)));
+    if (pid <= 0 || pid == ::getpid()) continue;
+    std::error_code timeError;
+    const auto written = fs::last_write_time(it->path(), timeError);
+    if (timeError || written > oldEnough) continue;
     if (::kill(pid, 0) != 0 && errno == ESRCH) ::unlink(it->path().c_str());
   }
 }
@@ -175,7 +185,7 @@ void replaceFile(const std::string& path, const std::string& bytes, const Progre
   if (existed) {  // the replaced file's mode, group and ACLs (best effort: the owner cannot be given away)
     if (old.st_gid != ::getegid()) (void)::fchown(fd, static_cast<uid_t>(-1), old.st_gid);
     (void)::fchmod(fd, old.st_mode & 07777);  // after the group: a chown may clear set-id bits
-    copyExtendedAttributes(target, fd);       // after the mode: an ACL's mask and the mode are one
+    copyAclAndUserAttributes(target, fd);     // after the mode: an ACL's mask and the mode are one
   }
   const auto failed = [&](const std::string& what) {
     const int err = errno;
