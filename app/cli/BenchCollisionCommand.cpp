@@ -3,11 +3,15 @@
 // AABB_tree for the queries CGAL has; then times the BVH's local update after a sequence of real cuts.
 // Prints one JSON object (docs/COLLISION.md explains every field).
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <locale>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <random>
@@ -302,12 +306,37 @@ void addComparison(json& q, const std::string& key, const std::vector<double>& o
   q[key] = percentile(other, 0.5) / std::max(1e-3, percentile(ours, 0.5));
 }
 
+// The random motions' first contacts one per row (--samples-out): what the JSON's medians and mean work counts
+// summarise, so that which motions sit near the 20 us line, and why, can be read without a patch.
+// Opened before the bench runs, so that a path it cannot write is said at once, not after minutes of timing.
+std::ofstream openSamplesFile(const std::string& path) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw InputError(path, "cannot write the samples file (" + std::string(std::strerror(errno)) + ")");
+  out.imbue(std::locale::classic());
+  return out;
+}
+
+void writeFirstContactSamples(std::ofstream& out, const std::string& path, const std::vector<double>& us,
+                              const std::vector<int>& kind, const std::vector<FirstContactResult::Work>& work,
+                              const std::vector<std::size_t>& pairs) {
+  static const char* const kOutcome[3] = {"no_contact", "touching_at_start", "contact_during_motion"};
+  out << "motion,outcome,us,start_test_nodes,sweep_pass_nodes,hull_bounds,pair_bounds,exact_pairs\n";
+  char time[32];
+  for (std::size_t i = 0; i < us.size(); ++i) {
+    std::snprintf(time, sizeof time, "%.3f", us[i]);
+    out << i << ',' << kOutcome[kind[i]] << ',' << time << ',' << work[i].startTestNodes << ','
+        << work[i].sweepPassNodes << ',' << work[i].hullBounds << ',' << work[i].pairBounds << ',' << pairs[i] << '\n';
+  }
+  out.flush();
+  if (!out) throw InputError(path, "could not write the samples file (disk full?)");
+}
+
 }  // namespace
 
 int runBenchCollision(const std::vector<std::string>& args) {
   CliArgs a(args,
             {"bone", "reamer", "segments", "rings", "units", "poses", "seed", "label", "cut-site", "cut", "cut-steps", "thesis-budget-s",
-             "cgal-budget-s", "hand-held-approaches"},
+             "cgal-budget-s", "hand-held-approaches", "samples-out"},
             {"json", "no-baselines", "solid-only"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string boneArg = a.required("bone");
@@ -321,6 +350,10 @@ int runBenchCollision(const std::vector<std::string>& args) {
   if (n < 10) throw UsageError("--poses must be at least 10");
   const int handApproaches = static_cast<int>(a.number("hand-held-approaches", 8));
   if (handApproaches < 0) throw UsageError("--hand-held-approaches must be 0 (none) or more");
+  const std::string samplesPath = a.value("samples-out", "");
+  if (a.has("samples-out") && samplesPath.empty()) throw UsageError("--samples-out needs a file name");
+  std::ofstream samplesOut;
+  if (!samplesPath.empty()) samplesOut = openSamplesFile(samplesPath);
 
   // Bone: used as given (no repair): the bench measures the mesh it is pointed at.
   std::vector<std::string> notes;
@@ -410,6 +443,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
     contactWork[i] = r.work;
     contactPairs[i] = r.trianglePairs;
   });
+  if (samplesOut.is_open()) writeFirstContactSamples(samplesOut, samplesPath, tContact, contactKind, contactWork, contactPairs);
   std::size_t tickHits = 0, tickPairs = 0;
   const auto tTick = timeEach(n, [&](std::size_t i) {
     const FirstContactResult r = collider.firstContact(rm, tickFrom[i], tickTo[i]);
@@ -711,6 +745,7 @@ int runBenchCollision(const std::vector<std::string>& args) {
               {"thesis", thesisInfo},
               {"cgal", cgalInfo},
               {"checks", checks}};
+  if (!samplesPath.empty()) out["queries"]["first_contact"]["samples_file"] = samplesPath;
   // The targets (stated for 400k faces; evaluated on whatever bone was given).
   bool all100 = !a.has("no-baselines"), fasterThanCgal = !a.has("no-baselines");
   for (auto& [name, qv] : out["queries"].items()) {

@@ -2,8 +2,12 @@
 // errors for bad input. Small and fast: the bundled 1.5k-face scapula, few poses, tiny baseline budgets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
+#include <map>
+#include <sstream>
+#include <vector>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -149,4 +153,62 @@ TEST(collisionBenchCli, BadInputIsAClearError) {
   r = run("bench collision --bone " + kBone + " --hand-held-approaches -1");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("--hand-held-approaches"), std::string::npos) << r.err;
+}
+
+// --samples-out: the random motions' first contacts one per row, the figures the JSON summarises.
+TEST(collisionBenchCli, FirstContactSamplesAreWrittenOnePerMotion) {
+  const std::string csv = testing::TempDir() + "/first_contact_samples.csv";
+  std::remove(csv.c_str());
+  const CliRun r = run("bench collision --bone " + kBone + " --poses 24 --no-baselines --hand-held-approaches 0 "
+                       "--cut-steps 1 --samples-out " + csv + " --json");
+  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& fc = j["queries"]["first_contact"];
+  EXPECT_EQ(fc["samples_file"], csv);
+  std::FILE* f = std::fopen(csv.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  std::string text;
+  std::array<char, 4096> buf{};
+  while (std::size_t n = fread(buf.data(), 1, buf.size(), f)) text.append(buf.data(), n);
+  std::fclose(f);
+  std::istringstream lines(text);
+  std::string line;
+  ASSERT_TRUE(std::getline(lines, line));
+  EXPECT_EQ(line, "motion,outcome,us,start_test_nodes,sweep_pass_nodes,hull_bounds,pair_bounds,exact_pairs");
+  std::map<std::string, int> byOutcome;
+  std::vector<double> times;
+  int row = 0;
+  while (std::getline(lines, line)) {
+    std::istringstream fields(line);
+    std::vector<std::string> v;
+    for (std::string field; std::getline(fields, field, ',');) v.push_back(field);
+    ASSERT_EQ(v.size(), 8u) << line;
+    EXPECT_EQ(std::stoi(v[0]), row++);
+    ++byOutcome[v[1]];
+    times.push_back(std::stod(v[2]));
+    EXPECT_GT(times.back(), 0.0) << line;
+    // A motion meeting the bone on the way solved at least one pair exactly; one touching at the start none.
+    if (v[1] == "contact_during_motion") {
+      EXPECT_GT(std::stoi(v[7]), 0) << line;
+    } else if (v[1] == "touching_at_start") {
+      EXPECT_EQ(std::stoi(v[7]), 0) << line;
+    }
+  }
+  EXPECT_EQ(row, 24);
+  int counted = 0;
+  for (const auto& [outcome, count] : byOutcome) {
+    ASSERT_TRUE(fc["by_outcome"].contains(outcome)) << outcome;
+    EXPECT_EQ(fc["by_outcome"][outcome]["samples"].get<int>(), count) << outcome;
+    counted += count;
+  }
+  EXPECT_EQ(counted, 24);
+  // The JSON's median is one of the rows' times (written to a nanosecond).
+  std::sort(times.begin(), times.end());
+  EXPECT_NEAR(times[11], fc["median_us"].get<double>(), 1e-3);
+
+  // A file it cannot write is said before the bench runs.
+  const CliRun bad = run("bench collision --bone " + kBone + " --poses 24 --samples-out /nonexistent/dir/s.csv");
+  EXPECT_EQ(bad.exitCode, 3);
+  EXPECT_NE(bad.err.find("/nonexistent/dir/s.csv"), std::string::npos) << bad.err;
+  EXPECT_EQ(bad.out, "");
 }
