@@ -5,24 +5,49 @@
 #include "reamsim/core/PlanNode.h"
 
 namespace reamsim::ui {
+namespace {
+
+// The plan's poses (and feed) are the cut bone's: they leave with it and come back with it.
+void exchangePlan(PlanNode& plan, std::vector<Pose>& otherPoses, std::optional<std::string>& otherFeed) {
+  std::vector<Pose> poses = plan.poses();
+  std::optional<std::string> feed = plan.feedDescription();
+  {
+    Document::BatchScope batch(*plan.document());
+    plan.setPoses(std::move(otherPoses));
+    plan.setFeedDescription(std::move(otherFeed));
+  }
+  otherPoses = std::move(poses);
+  otherFeed = std::move(feed);
+}
+
+}  // namespace
 
 ReplaceBoneCommand::ReplaceBoneCommand(ReamSession& session, BoneContent incoming, bool cuttable, const QString& text)
-    : session_(session), other_(std::move(incoming)), otherCuttable_(cuttable) {
+    : session_(session), other_(std::move(incoming)) {
+  other_.cuttable = cuttable;
   setText(text);
 }
 
 void ReplaceBoneCommand::exchange() {
-  PlanNode* plan = session_.plan();
-  std::vector<Pose> poses = plan->poses();
-  std::optional<std::string> feed = plan->feedDescription();
-  {
-    Document::BatchScope batch(session_.document());
-    plan->setPoses(std::move(otherPoses_));
-    plan->setFeedDescription(std::move(otherFeed_));
-  }
-  otherPoses_ = std::move(poses);
-  otherFeed_ = std::move(feed);
-  session_.exchangeBone(other_, otherCuttable_);
+  exchangePlan(*session_.plan(), otherPoses_, otherFeed_);
+  session_.exchangeBone(other_);
+}
+
+SwapBoneBesideCommand::SwapBoneBesideCommand(ReamSession& session, NodeId beside, const QString& text)
+    : session_(session), beside_(beside) {
+  setText(text);
+}
+
+void SwapBoneBesideCommand::exchange() {
+  BoneNode* beside = session_.document().findAs<BoneNode>(beside_);
+  if (!beside) return;  // not while this command is on the stack: removing the bone is a later command
+  // One batch: the views see the two bones swapped, never the bone beside emptied half way.
+  Document::BatchScope batch(session_.document());
+  BoneContent content;
+  beside->swapContent(content);
+  exchangePlan(*session_.plan(), otherPoses_, otherFeed_);
+  session_.exchangeBone(content);  // the session's bone takes the one beside, `content` the cut bone
+  beside->swapContent(content);
 }
 
 OtherBonesCommand::OtherBonesCommand(Document& document, std::vector<std::unique_ptr<BoneNode>> nodes,

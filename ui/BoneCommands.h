@@ -31,7 +31,23 @@ class ReplaceBoneCommand : public QUndoCommand {
   void exchange();
   ReamSession& session_;
   BoneContent other_;
-  bool otherCuttable_;
+  std::vector<Pose> otherPoses_;
+  std::optional<std::string> otherFeed_;
+};
+
+// Makes a bone beside the one that is cut, and the cut bone one beside it; undo swaps them back. The two
+// nodes keep their ids and exchange their contents (histories, cursors and cuttability included, no mesh
+// copied), and the plan's poses go with the cut bone as for a replacing import.
+class SwapBoneBesideCommand : public QUndoCommand {
+ public:
+  SwapBoneBesideCommand(ReamSession& session, NodeId beside, const QString& text);
+  void redo() override { exchange(); }
+  void undo() override { exchange(); }
+
+ private:
+  void exchange();
+  ReamSession& session_;
+  NodeId beside_;
   std::vector<Pose> otherPoses_;
   std::optional<std::string> otherFeed_;
 };

@@ -4,7 +4,7 @@
 
 namespace reamsim::ui {
 
-void ReamSession::exchangeBone(BoneContent& other, bool& otherCuttable) {
+void ReamSession::exchangeBone(BoneContent& other) {
   cancelQueued();
   if (running_) watcher_.waitForFinished();  // its result is dropped: revisions never repeat (BoneHistory)
   {
@@ -12,7 +12,6 @@ void ReamSession::exchangeBone(BoneContent& other, bool& otherCuttable) {
     bone_->swapContent(other);
     alerts_->clear();
   }
-  std::swap(boneCuttable_, otherCuttable);
   // As loadBone: the log's cumulative volume is measured against the bone as it was imported.
   initialVolume_ = bone_->history().entries().front().state.volume();
   lastComputedPose_.reset();

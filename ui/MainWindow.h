@@ -93,6 +93,10 @@ class MainWindow : public QMainWindow {
   // Replaces the bone (undoable) or adds it beside the current one (undoable; shown, not cut).
   void placeImportedVolume(VolumeImportResult result);
   void removeOtherBones();  // undoable
+  // Cuts a bone beside instead, and puts the cut bone beside it (undoable, SwapBoneBesideCommand): the
+  // `index`-th of the bones beside, or with -1 the only one, or the one the user picks from a list when
+  // there are several. False when nothing was swapped (no such bone, or the user cancelled the list).
+  bool cutBoneBesideInstead(int index = -1);
   void showBoneInfo();
   // Crash recovery (MainWindowRecovery.cpp, RecoveryFiles.h): while there are unsaved changes, a copy of
   // the bone and its cut log is kept in `dir`, rewritten `delayMs` after the last change; a copy left by a

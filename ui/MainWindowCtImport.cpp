@@ -6,6 +6,7 @@
 #include <QDialogButtonBox>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QInputDialog>
 #include <QLabel>
 #include <QMenu>
 #include <QMenuBar>
@@ -68,6 +69,7 @@ void MainWindow::buildVolumeImport() {
     a->setEnabled(ct != nullptr);  // reduced start: listed in Help → Plugins as not found
     if (!ct) a->setToolTip(noPlugin);
   }
+  add("cut_bone_beside", tr("C&ut a bone beside instead"), [this] { cutBoneBesideInstead(); });
   add("remove_other_bones", tr("Remove the bones &beside"), [this] { removeOtherBones(); });
   add("bone_info", tr("Bone &information…"), [this] { showBoneInfo(); });
   file->insertSeparator(before);
@@ -115,6 +117,7 @@ void MainWindow::placeImportedVolume(VolumeImportResult r) {
   content.importReport = std::move(r.bone.report);
   content.patientFrame = r.bone.frame;
   content.source = std::move(r.bone.source);
+  content.cuttable = r.bone.cuttable;
   const Bounds bounds = content.history.current().bounds();
 
   if (r.beside) {
@@ -149,6 +152,31 @@ void MainWindow::removeOtherBones() {
       new OtherBonesCommand(session_->document(), ids, ids.size() == 1 ? tr("Remove the bone beside") : tr("Remove %1 bones beside").arg(ids.size())));
 }
 
+bool MainWindow::cutBoneBesideInstead(int index) {
+  const std::vector<BoneNode*> others = otherBonesOf(*session_, session_->document());
+  if (index < 0 && others.size() > 1) {
+    QStringList names;
+    for (std::size_t i = 0; i < others.size(); ++i)
+      names << tr("%1. %2 (%L3 faces)").arg(i + 1).arg(QString::fromStdString(others[i]->name())).arg(others[i]->current().liveTriangleCount());
+    bool ok = false;
+    const QString picked = QInputDialog::getItem(this, tr("Cut a bone beside instead"),
+                                                 tr("The bone to cut (the one cut now goes beside it):"), names, 0, false, &ok);
+    if (!ok) return false;
+    index = static_cast<int>(names.indexOf(picked));
+  }
+  if (index < 0 && others.size() == 1) index = 0;
+  if (index < 0 || std::size_t(index) >= others.size()) return false;
+  const BoneNode& beside = *others[std::size_t(index)];
+  const QString name = QString::fromStdString(beside.name());
+  session_->undoStack()->push(new SwapBoneBesideCommand(*session_, beside.id(), tr("Cut %1 instead").arg(name)));
+  // As after an import that replaces the bone: the reamer starts clear of the bone it is now to cut.
+  session_->moveReamer(startPoseFor(session_->bone()->current().bounds()));
+  statusBar()->showMessage(session_->canCut() ? tr("Cutting %1; the previous bone is beside it (shown, not cut)").arg(name)
+                                              : tr("%1: %2").arg(name, session_->cuttingStatus()),
+                           5000);
+  return true;
+}
+
 QString MainWindow::boneFrameText() const { return frameLabel_->text(); }
 
 void MainWindow::updateBoneFrame() {
@@ -159,6 +187,7 @@ void MainWindow::updateBoneFrame() {
   frameLabel_->setText(text);
   frameLabel_->setToolTip(bone.source().empty() ? QString() : tr("source: %1").arg(QString::fromStdString(bone.source())));
   if (QAction* remove = action("remove_other_bones")) remove->setEnabled(others > 0);
+  if (QAction* swap = action("cut_bone_beside")) swap->setEnabled(others > 0);
 }
 
 void MainWindow::showBoneInfo() {
@@ -174,7 +203,9 @@ void MainWindow::showBoneInfo() {
               .arg(bone.history().cursor())
               .arg(session_->canCut() ? tr("on") : session_->cuttingStatus());
   for (BoneNode* other : otherBonesOf(*session_, session_->document()))
-    text += "\n" + tr("Beside (shown, not cut): ") + describe(*other) + "\n";
+    text += "\n" + tr("Beside (shown, not cut): ") + describe(*other) + "\n" +
+            (other->cuttable() ? tr("  can be cut (Cut a bone beside instead)\n")
+                               : tr("  not a clean closed solid: it could be shown, not cut\n"));
   text += "\n" + tr("Import report:") + "\n" + QString::fromStdString(bone.importReport());
   auto* body = new QPlainTextEdit(text, dialog);
   body->setObjectName("BoneInfoText");

@@ -53,13 +53,13 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
     bone_->resetHistory(BoneState::fromMesh(b.mesh), "import");
     bone_->setOriginalMesh(std::move(b.original));
     bone_->setImportReport(std::move(b.report));
+    bone_->setCuttable(b.cuttable);
     document_.remove(log_->id());  // the log is append-only: a new bone gets a new one
     log_ = &document_.create<LogNode>("Log");
     alerts_->clear();
     reamer_->setPose(start);
   }
   undo_.clear();
-  boneCuttable_ = b.cuttable;
   initialVolume_ = bone_->current().volume();
   cuts_ = steps_ = 0;
   removedBefore_.clear();
@@ -98,7 +98,7 @@ void ReamSession::rebuildEngine() {
   ++engineGeneration_;
   if (!reamer_->cuttingVolume() || bone_->current().empty()) return;
   std::unique_ptr<ContactBackend> contact = plugins_.collision() ? plugins_.collision()->createContactBackend() : nullptr;
-  CutBackendFactory cut = plugins_.csg() && boneCuttable_ ? plugins_.csg()->cutBackendFactory() : CutBackendFactory{};
+  CutBackendFactory cut = plugins_.csg() && bone_->cuttable() ? plugins_.csg()->cutBackendFactory() : CutBackendFactory{};
   engine_ = std::make_unique<ReamEngine>(reamer_->cuttingVolume(), std::move(contact), std::move(cut), reamer_->spec());
 }
 
@@ -108,7 +108,7 @@ bool ReamSession::canCut() const { return engine_ && engine_->canCollide() && en
 QString ReamSession::cuttingStatus() const {
   if (!plugins_.collision()) return tr("no collision plugin: the reamer moves without collision or cutting");
   if (!plugins_.csg()) return tr("no CSG plugin: collision alerts only, no cutting");
-  if (!boneCuttable_) return tr("the bone is not a closed solid: collision alerts only, no cutting");
+  if (!bone_->cuttable()) return tr("the bone is not a closed solid: collision alerts only, no cutting");
   return tr("collision: %1; cutting: %2").arg(plugins_.collision()->engineName(), plugins_.csg()->engineName());
 }
 

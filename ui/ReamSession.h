@@ -74,7 +74,7 @@ class ReamSession : public QObject {
   // Exchanges the whole bone (history and cursor included) and its cuttability with `other`: the
   // undoable replace of the CT import (BoneCommands.h); calling it twice restores the bone exactly.
   // Unlike loadBone, the undo stack and the log are kept. Defined in BoneExchange.cpp.
-  void exchangeBone(BoneContent& other, bool& otherCuttable);
+  void exchangeBone(BoneContent& other);
   void setReamer(const ReamerSpec& spec);
 
   bool canCollide() const;
@@ -149,7 +149,6 @@ class ReamSession : public QObject {
   PlanNode* plan_ = nullptr;
   QUndoStack undo_;
   bool pushingCut_ = false;
-  bool boneCuttable_ = false;
   double initialVolume_ = 0;
 
   std::unique_ptr<ReamEngine> engine_;

@@ -51,6 +51,7 @@ TEST(BoneContent, SwapIsExactAndReversible) {
   ct.patientFrame = PatientFrame::RAS;
   ct.source = "CT volume head.nrrd";
   ct.importReport = "CT report";
+  ct.cuttable = true;
   int changes = 0;
   Subscription s = doc.observeNode(bone.id(), [&] { ++changes; });
   {
@@ -65,6 +66,8 @@ TEST(BoneContent, SwapIsExactAndReversible) {
   EXPECT_EQ(bone.importReport(), "CT report");
   EXPECT_EQ(ct.name, "scapula");
   EXPECT_EQ(ct.patientFrame, PatientFrame::Unspecified);
+  EXPECT_TRUE(bone.cuttable());  // cuttability is part of the content: it goes with the bone
+  EXPECT_FALSE(ct.cuttable);
   EXPECT_NE(bone.currentRevision(), revisionBefore);
 
   bone.swapContent(ct);  // back: the very same state object, cursor and redo branch
@@ -76,6 +79,7 @@ TEST(BoneContent, SwapIsExactAndReversible) {
   EXPECT_EQ(bone.currentRevision(), revisionBefore);
   EXPECT_EQ(bone.history().cursor(), cursorBefore);
   EXPECT_EQ(bone.importReport(), "repaired");
+  EXPECT_FALSE(bone.cuttable());
   EXPECT_TRUE(bone.redo());
   EXPECT_NEAR(bone.current().volume(), 2, 1e-12);
 }

@@ -25,6 +25,7 @@
 
 #include "../ctimport/Phantom.h"
 #include "GuiEnvironment.h"
+#include "GuiHelpers.h"
 #include "CachedBoneLayer.h"
 #include "OtherBonesLayer.h"
 #include "reamsim/mesh/Validation.h"
@@ -264,6 +265,75 @@ TEST(GuiCtImport, BesideAddsASecondBoneThatUndoRemoves) {
   s.undoStack()->undo();
   EXPECT_EQ(s.document().nodesOf<BoneNode>().size(), 2u);
   EXPECT_EQ(s.bone()->currentRevision(), revision);
+}
+
+// A bone beside can be cut instead (File → Cut a bone beside instead): the two swap — each keeps its own
+// history, cuttability and plan poses — and undo swaps them back exactly. The bone it was is then beside,
+// shown and not cut; the log's cumulative volume starts from the newly cut bone's own.
+TEST(GuiCtImport, ABoneBesideCanBeCutInsteadAndUndoSwapsThemBack) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  EXPECT_FALSE(w.action("cut_bone_beside")->isEnabled());
+  EXPECT_FALSE(w.cutBoneBesideInstead());  // nothing beside
+  cutOnce(s);                              // the default bone with a cut in its history
+  const NodeId cutId = s.bone()->id();
+  const std::uint64_t scapulaRevision = s.bone()->currentRevision();
+  const double scapulaVolume = s.bone()->current().volume();
+  const std::size_t scapulaStates = s.bone()->history().size();
+  const std::vector<Pose> scapulaPlan = s.plan()->poses();
+  ASSERT_FALSE(scapulaPlan.empty());
+  ASSERT_TRUE(s.canCut());
+
+  QDialog* d = openInDialog(w, phantomVolume().path);
+  ASSERT_NE(d, nullptr);
+  setLower(d, 620);  // the 50 % partial-volume surface, a clean closed solid
+  clickImport(d, true);
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  auto besideBone = [&]() -> const BoneNode* {
+    for (const BoneNode* b : s.document().nodesOf<BoneNode>())
+      if (b != s.bone()) return b;
+    return nullptr;
+  };
+  ASSERT_NE(besideBone(), nullptr);
+  const NodeId besideId = besideBone()->id();
+  const std::uint64_t phantomRevision = besideBone()->currentRevision();
+  const double phantomVolumeMm3 = besideBone()->current().volume();
+  EXPECT_TRUE(besideBone()->cuttable());
+  EXPECT_TRUE(w.action("cut_bone_beside")->isEnabled());
+
+  ASSERT_TRUE(w.cutBoneBesideInstead());
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  EXPECT_EQ(s.bone()->id(), cutId);  // the nodes stay, their contents swap
+  EXPECT_EQ(s.bone()->currentRevision(), phantomRevision);
+  EXPECT_EQ(s.bone()->current().volume(), phantomVolumeMm3);
+  EXPECT_EQ(s.bone()->patientFrame(), PatientFrame::LPS);
+  EXPECT_TRUE(s.canCut()) << s.cuttingStatus().toStdString();
+  EXPECT_TRUE(s.plan()->poses().empty());  // the scapula's plan left with it
+  EXPECT_NEAR(s.initialVolumeMm3(), phantomVolumeMm3, 1e-9 * phantomVolumeMm3);
+  ASSERT_NE(besideBone(), nullptr);
+  EXPECT_EQ(besideBone()->id(), besideId);
+  EXPECT_EQ(besideBone()->currentRevision(), scapulaRevision);
+  EXPECT_EQ(besideBone()->history().size(), scapulaStates);
+  EXPECT_EQ(besideBone()->current().volume(), scapulaVolume);
+  EXPECT_TRUE(besideBone()->cuttable());
+  EXPECT_EQ(w.otherBones()->shownTriangles(), besideBone()->current().liveTriangleCount());
+  EXPECT_TRUE(w.boneFrameText().contains("LPS")) << w.boneFrameText().toStdString();
+
+  s.undoStack()->undo();
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  EXPECT_EQ(s.bone()->currentRevision(), scapulaRevision);
+  EXPECT_EQ(s.bone()->history().size(), scapulaStates);
+  EXPECT_EQ(s.plan()->poses().size(), scapulaPlan.size());
+  EXPECT_EQ(besideBone()->currentRevision(), phantomRevision);
+  EXPECT_EQ(w.otherBones()->shownTriangles(), besideBone()->current().liveTriangleCount());
+  // The scapula's own cut can still be undone: its history came back whole.
+  s.undoStack()->undo();  // the import beside
+  s.undoStack()->undo();  // the cut
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  EXPECT_EQ(s.bone()->history().cursor(), 0u);
+  EXPECT_GT(s.bone()->current().volume(), scapulaVolume);
 }
 
 // A bone beside that is removed leaves the picture even when nothing else changes: the view reuses its

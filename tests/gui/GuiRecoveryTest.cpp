@@ -138,10 +138,10 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   const double restoredStart = f.session().initialVolumeMm3();
   BoneContent other;
   other.history = BoneHistory(BoneState::fromMesh(buildBox(Bounds{{0, 0, 0}, {10, 10, 10}})));
-  bool otherCuttable = true;
-  f.session().exchangeBone(other, otherCuttable);
+  other.cuttable = true;
+  f.session().exchangeBone(other);
   EXPECT_NEAR(f.session().initialVolumeMm3(), 1000.0, 1e-9);
-  f.session().exchangeBone(other, otherCuttable);
+  f.session().exchangeBone(other);
   EXPECT_EQ(f.session().initialVolumeMm3(), restoredStart);
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
   EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());

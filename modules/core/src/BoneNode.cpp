@@ -47,6 +47,12 @@ void BoneNode::setSource(std::string text) {
   markModified();
 }
 
+void BoneNode::setCuttable(bool cuttable) {
+  if (cuttable == cuttable_) return;
+  cuttable_ = cuttable;
+  markModified();
+}
+
 void BoneNode::swapContent(BoneContent& other) {
   std::string name = this->name();
   std::swap(history_, other.history);
@@ -54,6 +60,7 @@ void BoneNode::swapContent(BoneContent& other) {
   std::swap(importReport_, other.importReport);
   std::swap(patientFrame_, other.patientFrame);
   std::swap(source_, other.source);
+  std::swap(cuttable_, other.cuttable);
   setName(std::move(other.name));  // marks the node modified (batched with the rest by the caller)
   other.name = std::move(name);
   markModified();

@@ -22,6 +22,7 @@ struct BoneContent {
   std::string importReport;
   PatientFrame patientFrame = PatientFrame::Unspecified;
   std::string source;
+  bool cuttable = false;  // a clean closed solid the engine may cut (else shown, with collision alerts only)
 };
 
 class BoneNode : public Node {
@@ -51,9 +52,13 @@ class BoneNode : public Node {
   // Where the bone came from, in words: "CT volume /data/head.nrrd", a mesh file path, "bundled default scapula".
   const std::string& source() const { return source_; }
   void setSource(std::string text);
+  // Whether the engine may cut it: set by whoever imported it, from the import's validation (closed,
+  // outward, free of self-intersections and degenerate faces). A bone that is not is shown, not cut.
+  bool cuttable() const { return cuttable_; }
+  void setCuttable(bool cuttable);
 
-  // Exchanges name, history, original mesh, report, frame and source with `other` (reported as modified;
-  // wrap in a Document::BatchScope for a single notification).
+  // Exchanges name, history, original mesh, report, frame, source and cuttability with `other` (reported
+  // as modified; wrap in a Document::BatchScope for a single notification).
   void swapContent(BoneContent& other);
 
  private:
@@ -62,6 +67,7 @@ class BoneNode : public Node {
   std::string importReport_;
   PatientFrame patientFrame_ = PatientFrame::Unspecified;
   std::string source_;
+  bool cuttable_ = false;
 };
 
 }  // namespace reamsim
