@@ -322,6 +322,44 @@ TEST_F(io_MeshIO, ReplacingAFileKeepsItsPermissionsAndLinks) {
   EXPECT_THROW(replaceFile(dir_.string(), "text"), InputError);  // a folder
 }
 
+// A file with other names: every name sees the new content (the file is overwritten in place once the new content
+// is safe beside it), the shorter content leaves no tail of the old, and nothing is left beside it.
+TEST_F(io_MeshIO, ReplacingAHardLinkedFileWritesEveryName) {
+  const std::string file = path("bone.txt"), other = path("other-name.txt");
+  replaceFile(file, std::string(100, 'o'));
+  fs::create_hard_link(file, other);
+  struct stat before {};
+  ASSERT_EQ(::stat(file.c_str(), &before), 0);
+  replaceFile(other, "new content");
+  auto text = [](const std::string& name) {
+    std::ifstream in(name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(text(file), "new content");
+  EXPECT_EQ(text(other), "new content");
+  struct stat after {};
+  ASSERT_EQ(::stat(file.c_str(), &after), 0);
+  EXPECT_EQ(after.st_ino, before.st_ino);
+  EXPECT_EQ(after.st_nlink, 2u);
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++entries;
+  EXPECT_EQ(entries, 2);  // the two names, no new file left
+}
+
+// Root saving another user's file gives the new file the old one's owner and group, so the user can still
+// write it (a user without the privilege keeps the group only; see ReplacingAFileKeepsItsPermissionsAndLinks).
+TEST_F(io_MeshIO, ReplacingAFileAsRootKeepsItsOwner) {
+  if (::geteuid() != 0) GTEST_SKIP() << "only root may give a file to another user";
+  const std::string file = path("users.txt");
+  replaceFile(file, "theirs");
+  ASSERT_EQ(::chown(file.c_str(), 4242, 4343), 0);
+  replaceFile(file, "written by root");
+  struct stat st {};
+  ASSERT_EQ(::stat(file.c_str(), &st), 0);
+  EXPECT_EQ(st.st_uid, 4242u);
+  EXPECT_EQ(st.st_gid, 4343u);
+}
+
 // PLY keeps comment lines (the GUI stores the bone's patient frame there); a line break cannot end one early.
 TEST_F(io_MeshIO, PlyCommentsRoundTripInBothEncodings) {
   for (bool binary : {true, false}) {

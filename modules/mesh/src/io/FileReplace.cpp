@@ -145,6 +145,37 @@ void removeLeftNewFiles(const fs::path& dir, const fs::path& target) {
   }
 }
 
+// The replaced file's owner and group on the new file. Only a privileged process may give a file away
+// (root saving a user's mesh); otherwise the group alone, where the user belongs to it.
+void keepOwnerAndGroup(int fd, const struct stat& old) {
+  if (old.st_uid == ::geteuid() && old.st_gid == ::getegid()) return;
+  if (old.st_uid != ::geteuid() && ::fchown(fd, old.st_uid, old.st_gid) == 0) return;
+  if (old.st_gid != ::getegid()) (void)::fchown(fd, static_cast<uid_t>(-1), old.st_gid);
+}
+
+// A file with other names (hard links): a rename would give this name a new file and leave the others with
+// the old content, so the file itself is overwritten, as a plain write would, but only once the complete new
+// content is safe on the disk beside it. If the overwrite fails half way, that copy is kept and the error says
+// where it is; otherwise it is removed. False when the file cannot be opened for writing (read-only): then
+// it is replaced by the rename, as a file without other names (they keep the old content).
+bool overwriteLinkedFile(const std::string& path, const fs::path& target, const std::string& bytes, NewFile& copy,
+                         const std::string& copyPath) {
+  const int fd = ::open(target.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  bool ok = writeAll(fd, bytes) && ::ftruncate(fd, static_cast<off_t>(bytes.size())) == 0 && ::fsync(fd) == 0;
+  int err = errno;
+  if (::close(fd) != 0 && ok) {
+    ok = false;
+    err = errno;
+  }
+  if (!ok) {
+    copy.placed();  // keep the complete new content: the file there may now be part old, part new
+    throw InputError(path, "write error: " + errnoText(err) + " (the file has other names and was written in place; "
+                                                              "the complete new content is in " + copyPath + ")");
+  }
+  return true;
+}
+
 }  // namespace
 
 void replaceFile(const std::string& path, const std::string& bytes, const ProgressCallback& progress) {
@@ -182,8 +213,8 @@ void replaceFile(const std::string& path, const std::string& bytes, const Progre
   }
   NewFile file(temp, fd);
   removeLeftNewFiles(dir, target);
-  if (existed) {  // the replaced file's mode, group and ACLs (best effort: the owner cannot be given away)
-    if (old.st_gid != ::getegid()) (void)::fchown(fd, static_cast<uid_t>(-1), old.st_gid);
+  if (existed) {  // the replaced file's owner, group, mode and ACLs (best effort, as far as we may)
+    keepOwnerAndGroup(fd, old);
     (void)::fchmod(fd, old.st_mode & 07777);  // after the group: a chown may clear set-id bits
     copyAclAndUserAttributes(target, fd);     // after the mode: an ACL's mask and the mode are one
   }
@@ -196,6 +227,7 @@ void replaceFile(const std::string& path, const std::string& bytes, const Progre
   if (::fsync(fd) != 0) throw failed("write error while flushing");
   if (file.close() != 0) throw failed("write error on close");
   check(progress, 1, "flushing");  // the last moment a cancel can keep the old file
+  if (existed && old.st_nlink > 1 && overwriteLinkedFile(path, target, bytes, file, temp)) return;
   if (::rename(temp.c_str(), target.c_str()) != 0) throw failed("cannot replace the file");
   file.placed();
   // The rename itself on the disk (best effort: some file systems refuse to sync a folder).

@@ -17,9 +17,10 @@ class WriteCancelled : public StageCancelled {
 // and only then is that file renamed over `path` (a rename within a directory is atomic). A failure at any
 // point (disk full, no permission, a size limit, a missing folder) leaves whatever was at `path` as it was,
 // removes the new file and throws InputError naming `path` and the reason. An existing file keeps its mode
-// and, where allowed, its group, ACL and user.* attributes (not its owner or hard links: it is a new file,
-// other names of the old one keep the old content); a symbolic link keeps
-// pointing where it did (its target is replaced, or created when it dangles). A device or pipe (/dev/stdout),
+// and, where allowed, its owner (root only), group, ACL and user.* attributes; a symbolic link keeps
+// pointing where it did (its target is replaced, or created when it dangles). A file with other names (hard
+// links) is overwritten in place once the new file beside it is complete and flushed, so every name sees the
+// new content; if that overwrite fails, the new file is kept and the error names it. A device or pipe (/dev/stdout),
 // and a file in a folder where no new file can be made, are written in place, as a plain write would.
 // New files an earlier process left beside `path` when it died before renaming are removed (when over an hour
 // old and their process is gone).
