@@ -391,15 +391,17 @@ TEST_F(io_MeshIO, CommentsRoundTripInEveryFormatWithRoomForThem) {
     EXPECT_EQ(m.comments, expected) << name;
   }
   // Without comments of its own a file still says who wrote it.
-  for (const char* name : {"n.obj", "n.off", "n.vtp", "n.stl"}) {
-    writeMesh(octahedron(1, {}), path(name));
+  for (const char* name : {"n.obj", "n.off", "n.vtp", "n.stl", "n.ascii.stl"}) {
+    WriteOptions o;
+    o.binary = std::string(name) != "n.ascii.stl";
+    writeMesh(octahedron(1, {}), path(name), o);
     EXPECT_EQ(readMesh(path(name), ReadOptions{Units::Millimetres}).comments, std::vector<std::string>{"written by ReamSim"})
         << name;
   }
 }
 
 // A binary STL header has 80 bytes: the comments that fit are kept in order, a longer one is left out; ASCII STL
-// has no place for any, and another program's header gives none.
+// keeps them all in its solid's name (a tab before each); another program's header or solid name gives none.
 TEST_F(io_MeshIO, StlKeepsTheCommentsItsHeaderHasRoomFor) {
   WriteOptions o;
   o.comments = {"reamsim patient_frame LPS", std::string(70, 'x'), "short"};
@@ -407,8 +409,18 @@ TEST_F(io_MeshIO, StlKeepsTheCommentsItsHeaderHasRoomFor) {
   EXPECT_EQ(readMesh(path("h.stl"), ReadOptions{Units::Millimetres}).comments,
             (std::vector<std::string>{"written by ReamSim", "reamsim patient_frame LPS", "short"}));
   o.binary = false;
+  o.comments.push_back("a\ttab");
   writeMesh(octahedron(1, {}), path("a.stl"), o);
-  EXPECT_TRUE(readMesh(path("a.stl"), ReadOptions{Units::Millimetres}).comments.empty());
+  EXPECT_EQ(readMesh(path("a.stl"), ReadOptions{Units::Millimetres}).comments,
+            (std::vector<std::string>{"written by ReamSim", "reamsim patient_frame LPS", std::string(70, 'x'), "short", "a tab"}));
+  {
+    std::ofstream f(path("other-ascii.stl"));
+    f << "solid part\twith tabs\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n"
+         "  endloop\n endfacet\nendsolid part\n";
+  }
+  EXPECT_TRUE(readMesh(path("other-ascii.stl"), ReadOptions{Units::Millimetres}).comments.empty());
+  o.binary = true;
+  o.comments.pop_back();
   o.binary = true;
   writeMesh(octahedron(1, {}), path("other.stl"), o);
   {

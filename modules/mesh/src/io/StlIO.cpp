@@ -51,6 +51,31 @@ std::vector<std::string> commentsOfHeader(std::string_view header) {
   return out;
 }
 
+// ASCII STL has no comment lines, only the solid's name, which readers show or ignore: ReamSim names its solid
+// "reamsim" followed by its comment lines, each after a tab ("solid reamsim<TAB>written by ReamSim<TAB>…").
+std::string asciiSolidName(const std::vector<std::string>& comments) {
+  std::string name = "reamsim";
+  for (std::string line : commentLinesToWrite(comments)) {
+    for (char& ch : line)
+      if (ch == '\t') ch = ' ';
+    name += '\t' + line;
+  }
+  return name;
+}
+
+// The comments of a solid name ReamSim wrote (asciiSolidName); none for others, or for "reamsim" alone (the
+// name before session 52).
+std::vector<std::string> commentsOfSolidName(std::string_view name) {
+  constexpr std::string_view mark = "reamsim\t";
+  if (name.substr(0, mark.size()) != mark) return {};
+  std::vector<std::string> out;
+  std::string_view rest = name.substr(mark.size());
+  for (std::size_t end; (end = rest.find('\t')) != std::string_view::npos; rest.remove_prefix(end + 1))
+    out.emplace_back(rest.substr(0, end));
+  out.emplace_back(rest);
+  return out;
+}
+
 RawMesh readBinary(const std::string& path, std::string_view data) {
   if (data.size() < kHeader)
     throw InputError(path, "not a valid STL file: too small for a binary STL header (" + std::to_string(data.size()) +
@@ -107,7 +132,8 @@ RawMesh readAscii(const std::string& path, std::string_view data) {
   while (s.tokenAcrossLines(tok)) {
     if (!inSolid) {
       if (tok != "solid") s.fail("expected 'solid', found " + quoteToken(tok));
-      s.restOfLine();  // the solid's name
+      const std::string_view name = s.restOfLine();
+      if (out.comments.empty()) out.comments = commentsOfSolidName(name);  // the first solid's
       inSolid = true;
       sawEnd = false;
       continue;
@@ -188,7 +214,7 @@ std::string writeStl(const TriangleMesh& mesh, const std::string& path, bool bin
     }
     return out;
   }
-  out += "solid reamsim\n";
+  out += "solid " + asciiSolidName(comments) + "\n";
   for (const Triangle& t : mesh.triangles) {
     const Vec3 n = unitNormal(mesh, t);
     out += "  facet normal ";
