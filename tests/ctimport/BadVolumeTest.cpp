@@ -101,7 +101,8 @@ TEST(BadVolumes, NrrdTruncatedWrongHeaderAndMissingSliceFiles) {
   expectInputError(lying, "lying.nrrd", "expected for");
 
   const std::string sheared = (d / "sheared.nrrd").string();
-  phantom::writeBytes(sheared, replaceOnce(bytes, "space directions: (1,0,0)", "space directions: (1,0.5,0)"));
+  // Slanted by 63°, beyond any gantry tilt (slants up to 45° are resampled: PhantomFormatsTest).
+  phantom::writeBytes(sheared, replaceOnce(bytes, "space directions: (1,0,0)", "space directions: (1,2,0)"));
   expectInputError(sheared, "sheared.nrrd", "not perpendicular");
 
   // Slice files: one missing, one short.

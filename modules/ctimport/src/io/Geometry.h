@@ -1,6 +1,8 @@
 #pragma once
 // Turns per-axis step vectors (spacing included, as NRRD "space directions" or a scaled matrix) into the
-// volume's spacing and orthonormal direction; errors name the file and header line.
+// volume's spacing and direction; errors name the file and header line. The direction is orthonormal, except
+// for slices slanted along one axis (SlantedSlices.h): then the slanted axis is left as the steps give it, for
+// readVolume to resample once the values are read.
 #include <array>
 #include <string>
 

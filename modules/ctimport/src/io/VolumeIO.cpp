@@ -5,6 +5,7 @@
 
 #include "HeaderText.h"
 #include "Readers.h"
+#include "SlantedSlices.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim::ct {
@@ -52,6 +53,7 @@ CtVolume readVolume(const std::string& path, const ProgressCallback& progress) {
     throw InputError(path, "unknown volume format (expected a DICOM directory or file, .nrrd, .nhdr, .mha, .mhd, "
                            ".nii or .nii.gz)");
   v.sourcePath = path;
+  if (!io::resampleSlantedSlices(v, [&] { return tick(1.0); })) throw ImportCancelled("reading");
   checkVolume(v);
   if (!tick(1.0)) throw ImportCancelled("reading");
   return v;
