@@ -142,6 +142,11 @@ void writeSeeds(const fs::path& dir) {
   phantom::writeNrrd((vol / "phantom.nrrd").string(), g, hu);
   phantom::writeMha((vol / "phantom.mha").string(), g, hu, false);
   phantom::writeMha((vol / "phantom_zlib.mha").string(), g, hu, true);
+  // Slices slanted by 20° (a gantry tilt kept in the header): resampled by readVolume (SlantedSlices.h).
+  phantom::Grid slanted = g;
+  slanted.direction = {1, 0, 0, 0, 1, std::sin(0.35), 0, 0, std::cos(0.35)};
+  phantom::writeNrrd((vol / "slanted.nrrd").string(), slanted, hu);
+  phantom::writeNifti((vol / "slanted.nii").string(), slanted, hu);
   phantom::writeDicomSeries((dcm / "explicit_le").string(), g, hu);
   phantom::writeDicomSeries((dcm / "implicit_le").string(), g, hu, "1.2.840.10008.1.2");
   phantom::writeDicomSeries((dcm / "explicit_be").string(), g, hu, "1.2.840.10008.1.2.2");
