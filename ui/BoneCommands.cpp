@@ -40,14 +40,22 @@ SwapBoneBesideCommand::SwapBoneBesideCommand(ReamSession& session, NodeId beside
 
 void SwapBoneBesideCommand::exchange() {
   BoneNode* beside = session_.document().findAs<BoneNode>(beside_);
-  if (!beside) return;  // not while this command is on the stack: removing the bone is a later command
+  // Always there while this command is on the stack: a later removal is undone before this command is, and a
+  // node put back keeps its id (Document::add).
+  if (!beside) return;
   // One batch: the views see the two bones swapped, never the bone beside emptied half way.
   Document::BatchScope batch(session_.document());
   BoneContent content;
   beside->swapContent(content);
+  // Whatever happens below (an engine that cannot be built for lack of memory), the bone in `content` goes
+  // back into a node: no bone is lost with this local.
+  struct PutBack {
+    BoneNode& node;
+    BoneContent& content;
+    ~PutBack() { node.swapContent(content); }
+  } putBack{*beside, content};
   exchangePlan(*session_.plan(), otherPoses_, otherFeed_);
   session_.exchangeBone(content);  // the session's bone takes the one beside, `content` the cut bone
-  beside->swapContent(content);
 }
 
 OtherBonesCommand::OtherBonesCommand(Document& document, std::vector<std::unique_ptr<BoneNode>> nodes,

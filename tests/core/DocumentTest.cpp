@@ -24,7 +24,7 @@ DocumentEvent removed(NodeId id) { return {Type::NodeRemoved, id}; }
 DocumentEvent modified(NodeId id) { return {Type::NodeModified, id}; }
 }  // namespace
 
-TEST(Document, IdsAreStableUniqueAndNeverReused) {
+TEST(Document, IdsAreStableUniqueAndNeverGivenToAnotherNode) {
   Document doc;
   BoneNode& bone = doc.create<BoneNode>();
   ReamerNode& r1 = doc.create<ReamerNode>("44 mm");
@@ -41,14 +41,24 @@ TEST(Document, IdsAreStableUniqueAndNeverReused) {
   EXPECT_EQ(detached->document(), nullptr);
   EXPECT_EQ(doc.find(r1Id), nullptr);
   EXPECT_EQ(doc.create<ReamerNode>().id().toString(), "Reamer3");
-  // Re-adding a removed node gives it a fresh id too.
-  EXPECT_EQ(doc.add(std::move(detached)).id().toString(), "Reamer4");
+  // A node from elsewhere never gets an id this document issued, even one whose node is gone...
+  Document other;
+  std::unique_ptr<Node> foreign = other.remove(other.create<ReamerNode>().id());  // "Reamer1" over there
+  EXPECT_EQ(foreign->id().toString(), "Reamer1");
+  EXPECT_EQ(doc.add(std::move(foreign)).id().toString(), "Reamer4");
+  // ...while the removed node itself comes back under its own id (an undone removal).
+  Node& back = doc.add(std::move(detached));
+  EXPECT_EQ(back.id(), r1Id);
+  EXPECT_EQ(doc.find(r1Id), &back);
+  detached = doc.remove(r1Id);
+  EXPECT_EQ(doc.add(std::move(detached)).id(), r1Id);  // again
   EXPECT_EQ(doc.find(bone.id()), &bone);  // others unaffected
   EXPECT_EQ(doc.findAs<BoneNode>(bone.id()), &bone);
   EXPECT_EQ(doc.findAs<ReamerNode>(bone.id()), nullptr);
-  EXPECT_EQ(doc.size(), 4u);
-  EXPECT_EQ(doc.nodesOf<ReamerNode>().size(), 3u);
+  EXPECT_EQ(doc.size(), 5u);
+  EXPECT_EQ(doc.nodesOf<ReamerNode>().size(), 4u);
   EXPECT_EQ(doc.firstOf<BoneNode>(), &bone);
+  ASSERT_TRUE(doc.remove(r1Id));
   EXPECT_EQ(doc.remove(r1Id), nullptr);  // already gone
 }
 

@@ -320,6 +320,12 @@ TEST(GuiCtImport, ABoneBesideCanBeCutInsteadAndUndoSwapsThemBack) {
   EXPECT_TRUE(besideBone()->cuttable());
   EXPECT_EQ(w.otherBones()->shownTriangles(), besideBone()->current().liveTriangleCount());
   EXPECT_TRUE(w.boneFrameText().contains("LPS")) << w.boneFrameText().toStdString();
+  // Removing the bone beside and undoing that brings it back under its id, so the swap can still be undone.
+  w.removeOtherBones();
+  ASSERT_EQ(besideBone(), nullptr);
+  s.undoStack()->undo();
+  ASSERT_NE(besideBone(), nullptr);
+  EXPECT_EQ(besideBone()->id(), besideId);
 
   s.undoStack()->undo();
   ASSERT_TRUE(s.waitIdle(kWaitMs));

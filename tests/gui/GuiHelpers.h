@@ -4,6 +4,7 @@
 
 #include <QAbstractButton>
 #include <QApplication>
+#include <QElapsedTimer>
 #include <QFileDialog>
 #include <QMessageBox>
 #include <QTimer>
@@ -64,6 +65,20 @@ class ModalAnswers {
       auto* dialog = qobject_cast<QFileDialog*>(w);
       ASSERT_NE(dialog, nullptr) << "expected the save dialog, got " << w->metaObject()->className();
       dialog->selectFile(path);
+      // The dialog takes a path in another folder once its file system model has been there (a worker thread):
+      // until then its line edit may still hold the proposed "bone.ply", and accepting would ask whether to
+      // replace that file (seen once under load: a nested question nobody answers).
+      QElapsedTimer waited;
+      waited.start();
+      while (dialog->selectedFiles().value(0) != path && waited.elapsed() < 5000) {
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+        dialog->selectFile(path);
+      }
+      if (dialog->selectedFiles().value(0) != path) {
+        ADD_FAILURE() << "the save dialog does not take " << path.toStdString() << ": it has "
+                      << dialog->selectedFiles().value(0).toStdString();
+        return dialog->reject();
+      }
       static_cast<QDialog*>(dialog)->accept();  // as the dialog's Save button (QFileDialog's own is protected)
     };
   }

@@ -419,7 +419,6 @@ TEST_F(io_MeshIO, StlKeepsTheCommentsItsHeaderHasRoomFor) {
          "  endloop\n endfacet\nendsolid part\n";
   }
   EXPECT_TRUE(readMesh(path("other-ascii.stl"), ReadOptions{Units::Millimetres}).comments.empty());
-  o.binary = true;
   o.comments.pop_back();
   o.binary = true;
   writeMesh(octahedron(1, {}), path("other.stl"), o);

@@ -13,7 +13,13 @@ Node& Document::add(std::unique_ptr<Node> node) {
   if (!node) throw std::invalid_argument("Document::add: null node");
   if (node->document_) throw std::invalid_argument("Document::add: node already belongs to a document");
   const NodeKind kind = node->kind();
-  node->id_ = NodeId::make(kind, ++lastSerial_[kind]);
+  // A node this document removed comes back under its id (undo of a removal: commands that name it by id
+  // still find it); any other node gets a new one.
+  const auto removed = removed_.find(node->id_);
+  if (node->id_.valid() && removed != removed_.end() && removed->second == node.get() && !index_.count(node->id_))
+    removed_.erase(removed);
+  else
+    node->id_ = NodeId::make(kind, ++lastSerial_[kind]);
   node->document_ = this;
   if (node->name_.empty()) node->name_ = node->id_.toString();
   Node& ref = *node;
@@ -30,6 +36,7 @@ std::unique_ptr<Node> Document::remove(NodeId id) {
   nodes_.erase(it);
   index_.erase(id);
   node->document_ = nullptr;
+  removed_[id] = node.get();
   post({DocumentEvent::Type::NodeRemoved, id});
   return node;
 }

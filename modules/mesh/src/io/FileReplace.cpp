@@ -155,25 +155,41 @@ void keepOwnerAndGroup(int fd, const struct stat& old) {
 
 // A file with other names (hard links): a rename would give this name a new file and leave the others with
 // the old content, so the file itself is overwritten, as a plain write would, but only once the complete new
-// content is safe on the disk beside it. If the overwrite fails half way, that copy is kept and the error says
-// where it is; otherwise it is removed. False when the file cannot be opened for writing (read-only): then
-// it is replaced by the rename, as a file without other names (they keep the old content).
-bool overwriteLinkedFile(const std::string& path, const fs::path& target, const std::string& bytes, NewFile& copy,
-                         const std::string& copyPath) {
-  const int fd = ::open(target.c_str(), O_WRONLY | O_CLOEXEC);
+// content is safe on the disk beside it. If the overwrite fails half way, that copy is kept under a name the
+// clean-up of left files never touches (NAME.reamsim-saved[-N]) and the error says where it is; otherwise it
+// is removed. False when the file cannot be opened for writing (read-only) or is no longer the file that was
+// stat'ed (replaced meanwhile, e.g. by a symbolic link): then it is replaced by the rename, as a file without
+// other names (they keep the old content).
+bool overwriteLinkedFile(const std::string& path, const fs::path& target, const struct stat& old,
+                         const std::string& bytes, NewFile& copy, const std::string& copyPath) {
+  const int fd = ::open(target.c_str(), O_WRONLY | O_NOFOLLOW | O_CLOEXEC);
   if (fd < 0) return false;
+  struct stat now {};
+  if (::fstat(fd, &now) != 0 || now.st_dev != old.st_dev || now.st_ino != old.st_ino || !S_ISREG(now.st_mode)) {
+    ::close(fd);
+    return false;
+  }
   bool ok = writeAll(fd, bytes) && ::ftruncate(fd, static_cast<off_t>(bytes.size())) == 0 && ::fsync(fd) == 0;
   int err = errno;
   if (::close(fd) != 0 && ok) {
     ok = false;
     err = errno;
   }
-  if (!ok) {
-    copy.placed();  // keep the complete new content: the file there may now be part old, part new
-    throw InputError(path, "write error: " + errnoText(err) + " (the file has other names and was written in place; "
-                                                              "the complete new content is in " + copyPath + ")");
+  if (ok) return true;
+  // The file there may now be part old, part new: keep the complete new content where the user can find it.
+  copy.placed();
+  std::string kept = copyPath;
+  for (int n = 0; n < 100; ++n) {
+    const std::string name = target.string() + ".reamsim-saved" + (n ? "-" + std::to_string(n) : std::string());
+    if (::link(copyPath.c_str(), name.c_str()) == 0) {  // link + unlink: never over an existing file
+      ::unlink(copyPath.c_str());
+      kept = name;
+      break;
+    }
+    if (errno != EEXIST) break;
   }
-  return true;
+  throw InputError(path, "write error: " + errnoText(err) + " (the file has other names and was written in place; "
+                                                            "the complete new content is in " + kept + ")");
 }
 
 }  // namespace
@@ -227,7 +243,7 @@ void replaceFile(const std::string& path, const std::string& bytes, const Progre
   if (::fsync(fd) != 0) throw failed("write error while flushing");
   if (file.close() != 0) throw failed("write error on close");
   check(progress, 1, "flushing");  // the last moment a cancel can keep the old file
-  if (existed && old.st_nlink > 1 && overwriteLinkedFile(path, target, bytes, file, temp)) return;
+  if (existed && old.st_nlink > 1 && overwriteLinkedFile(path, target, old, bytes, file, temp)) return;
   if (::rename(temp.c_str(), target.c_str()) != 0) throw failed("cannot replace the file");
   file.placed();
   // The rename itself on the disk (best effort: some file systems refuse to sync a folder).

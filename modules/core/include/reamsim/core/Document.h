@@ -44,9 +44,10 @@ class Document {
   Document(const Document&) = delete;
   Document& operator=(const Document&) = delete;
 
-  // Takes ownership and assigns a fresh id (even to a node that was removed earlier: ids are never
-  // reused). An empty name becomes the id text, e.g. "Bone1". Throws std::invalid_argument for a null
-  // node or one that belongs to a document.
+  // Takes ownership and assigns a fresh id; a node this document removed comes back under its own id (an
+  // undone removal: commands and views that name it by id find it again). No other node is ever given an id
+  // this document issued. An empty name becomes the id text, e.g. "Bone1". Throws std::invalid_argument for a
+  // null node or one that belongs to a document.
   Node& add(std::unique_ptr<Node> node);
   template <class T>
   T& add(std::unique_ptr<T> node) {
@@ -115,6 +116,7 @@ class Document {
   std::vector<std::unique_ptr<Node>> nodes_;
   std::unordered_map<NodeId, Node*> index_;
   std::unordered_map<NodeKind, std::uint64_t> lastSerial_;
+  std::unordered_map<NodeId, const Node*> removed_;  // the nodes removed, by id: only they get their id back
   Signal<DocumentEvent> signal_;
   std::deque<DocumentEvent> pending_;
   int batchDepth_ = 0;

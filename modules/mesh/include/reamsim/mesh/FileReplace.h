@@ -20,7 +20,9 @@ class WriteCancelled : public StageCancelled {
 // and, where allowed, its owner (root only), group, ACL and user.* attributes; a symbolic link keeps
 // pointing where it did (its target is replaced, or created when it dangles). A file with other names (hard
 // links) is overwritten in place once the new file beside it is complete and flushed, so every name sees the
-// new content; if that overwrite fails, the new file is kept and the error names it. A device or pipe (/dev/stdout),
+// new content: the one case where a failure (during that overwrite) can leave the file part old, part new;
+// then the complete new content is kept as `path`.reamsim-saved and the error names it. A linked file that
+// cannot be opened for writing is replaced by the rename (its other names keep the old content). A device or pipe (/dev/stdout),
 // and a file in a folder where no new file can be made, are written in place, as a plain write would.
 // New files an earlier process left beside `path` when it died before renaming are removed (when over an hour
 // old and their process is gone).
