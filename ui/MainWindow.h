@@ -9,6 +9,7 @@
 #include <QStringList>
 #include <atomic>
 #include <memory>
+#include <set>
 #include <optional>
 
 #include "BoneView.h"
@@ -77,6 +78,8 @@ class MainWindow : public QMainWindow {
   const QString& savedPath() const { return savedPath_; }  // empty until Save as wrote this bone
   // Changes since the bone was opened or last saved (the undo history is away from its saved point).
   bool hasUnsavedChanges() const;
+  // Bones beside with cuts in their history whose state no save wrote (their names): Save writes the cut bone only.
+  QStringList bonesBesideWithUnsavedCuts() const;
   // Depth below the first contact along the axis (searched on a worker, then fed in feed steps).
   void reamToDepth(double depthMm);
   bool contactSearchRunning() const { return pendingDepth_.has_value(); }
@@ -127,6 +130,8 @@ class MainWindow : public QMainWindow {
   // changes, asks Save / Discard / Cancel; true to go on. A running step is stopped first. Programmatic
   // calls (openFile, loadDefaultCase: tests, demo) do not ask.
   bool confirmDiscardChanges(const QString& action);
+  // The question on close about bonesBesideWithUnsavedCuts.
+  bool confirmDiscardBonesBeside(const QString& action);
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
   // The bone's mesh only, on a worker with a progress dialog (Cancel); errors in a dialog; does not mark it
   // saved. True when written.
@@ -176,6 +181,7 @@ class MainWindow : public QMainWindow {
   std::shared_ptr<std::atomic<bool>> importStop_;  // read by the import's worker at each progress check
   QString importStoppedAt_;
   bool saving_ = false;  // writeBoneFile is waiting for its worker
+  std::set<std::uint64_t> savedRevisions_;  // bone revisions a save wrote (revisions are never reused)
   QString savedPath_;    // where saveBoneAs last wrote the bone (cleared for another bone)
   std::uint64_t boneGeneration_ = 0;  // counts bones installed or replaced: a save knows if its bone is still there
   static constexpr double kContactSearchMm = 100;

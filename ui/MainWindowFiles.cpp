@@ -196,6 +196,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
     return true;
   }
   session_->undoStack()->setClean();
+  savedRevisions_.insert(session_->bone()->currentRevision());  // still saved if it is later moved beside
   statusBar()->showMessage(tr("Saved %1 and its cut log").arg(path), 5000);
   return true;
 }
@@ -258,8 +259,32 @@ bool MainWindow::writeBoneFile(const QString& path) {
 
 bool MainWindow::hasUnsavedChanges() const { return !session_->undoStack()->isClean(); }
 
+QStringList MainWindow::bonesBesideWithUnsavedCuts() const {
+  QStringList names;
+  for (const BoneNode* other : session_->document().nodesOf<BoneNode>())
+    if (other != session_->bone() && other->history().cursor() > 0 && !savedRevisions_.count(other->currentRevision()))
+      names << QString::fromStdString(other->name());
+  return names;
+}
+
+// Save writes the cut bone only; a bone moved beside it (Cut a bone beside instead) may keep cuts of its own.
+bool MainWindow::confirmDiscardBonesBeside(const QString& action) {
+  const QStringList names = bonesBesideWithUnsavedCuts();
+  if (names.isEmpty()) return true;
+  QMessageBox box(QMessageBox::Warning, tr("Unsaved bones beside"),
+                  names.size() == 1 ? tr("The bone beside, %1, has cuts that are not saved.").arg(names.front())
+                                    : tr("The bones beside, %1, have cuts that are not saved.").arg(names.join(", ")),
+                  QMessageBox::Discard | QMessageBox::Cancel, this);
+  box.setObjectName("UnsavedBonesBesideDialog");
+  box.setInformativeText(tr("Only the cut bone is saved. To keep them, cancel, make the bone the cut bone (File → "
+                            "Cut a bone beside instead) and save it. Discard their cuts and %1?").arg(action));
+  box.setDefaultButton(QMessageBox::Cancel);
+  return box.exec() == QMessageBox::Discard;
+}
+
 void MainWindow::closeEvent(QCloseEvent* e) {
-  if (saving_ || !confirmDiscardChanges(tr("close ReamSim"))) {  // a file being written finishes first
+  // A file being written finishes first; the bones beside are asked about after the cut bone.
+  if (saving_ || !confirmDiscardChanges(tr("close ReamSim")) || !confirmDiscardBonesBeside(tr("close ReamSim"))) {
     e->ignore();
     return;
   }

@@ -342,6 +342,44 @@ TEST(GuiCtImport, ABoneBesideCanBeCutInsteadAndUndoSwapsThemBack) {
   EXPECT_GT(s.bone()->current().volume(), scapulaVolume);
 }
 
+// Save writes the cut bone only: a bone moved beside with cuts no save wrote is asked about on close (Cancel keeps
+// the window), and not once those cuts are saved (the swap back makes it the cut bone, whose save writes them).
+TEST(GuiCtImport, ClosingAsksAboutABoneBesideWithUnsavedCuts) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);  // the scapula has a cut no save wrote
+  QDialog* d = openInDialog(w, phantomVolume().path);
+  ASSERT_NE(d, nullptr);
+  setLower(d, 620);
+  clickImport(d, true);
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  ASSERT_TRUE(w.cutBoneBesideInstead());
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  QTemporaryDir out;
+  ASSERT_TRUE(w.saveBoneAs(out.filePath("phantom.ply")));  // the cut bone (the phantom) is saved
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  EXPECT_EQ(w.bonesBesideWithUnsavedCuts().size(), 1);
+  QString text;
+  {
+    ModalAnswers answers({[&text](QWidget* m) {
+      if (auto* box = qobject_cast<QMessageBox*>(m)) text = box->text();
+      ModalAnswers::click("UnsavedBonesBesideDialog", "Cancel")(m);
+    }});
+    EXPECT_FALSE(w.close());
+    EXPECT_EQ(answers.seen(), 1);
+  }
+  EXPECT_TRUE(text.contains("has cuts that are not saved")) << text.toStdString();
+  EXPECT_TRUE(w.isVisible());
+
+  ASSERT_TRUE(w.cutBoneBesideInstead());  // the scapula is the cut bone again: its save writes its cut
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  ASSERT_TRUE(w.saveBoneAs(out.filePath("scapula.ply")));
+  EXPECT_TRUE(w.bonesBesideWithUnsavedCuts().isEmpty());  // the phantom beside has no cut
+  EXPECT_TRUE(closeAnswering(w, {}, 0));
+}
+
 // A bone beside that is removed leaves the picture even when nothing else changes: the view reuses its
 // bone layer while nothing in it is newer (CachedBoneLayer.h), and the same bone twice keeps the bounds,
 // so neither the camera nor the clipping range moves.
