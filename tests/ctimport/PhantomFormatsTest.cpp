@@ -188,6 +188,20 @@ TEST(PhantomOrientation, MirroredAxesGiveAnOutwardMeshInPlace) {
 
 namespace {
 
+// A volume resampled from sheared slices: a rectangular grid, and the phantom's import where it is (volume,
+// centroid) and not sheared (the cylinder's ends where they are: a shear keeps volume and centroid, not these).
+void expectRectifiedPhantomInPlace(const ct::CtVolume& v, const phantom::SphereAndCylinder& shape) {
+  for (int a = 0; a < 3; ++a)
+    for (int b = a + 1; b < 3; ++b) EXPECT_NEAR(dot(v.axis(a), v.axis(b)), 0.0, 1e-9);
+  ct::ImportOptions o;
+  o.lowerThreshold = 620;
+  const ct::ImportResult r = ct::importBone(v, o);
+  EXPECT_TRUE(r.report.validation.isCleanSolid()) << ct::toText(r.report);
+  EXPECT_NEAR(*r.report.validation.volumeMm3 / shape.mainVolume(), 1.0, 0.01);
+  EXPECT_NEAR(norm(cttest::solidCentroid(r.mesh) - shape.center), 0.0, 0.3);
+  expectCylinderEndsInPlace(r.mesh, shape);
+}
+
 // A gantry-tilted CT: the slices are parallel to each other but each is shifted within its plane (the gantry
 // leaned 15° about the patient's left-right axis), so the slice-to-slice step is not along the slices'
 // normal. The series is resampled onto a rectangular grid (with a note saying so) and comes back in place.
@@ -206,16 +220,7 @@ TEST(PhantomOrientation, GantryTiltedDicomSeriesIsResampledInPlace) {
   bool noted = false;
   for (const std::string& n : v.notes) noted = noted || n.find("gantry tilt of 15.0") != std::string::npos;
   EXPECT_TRUE(noted) << (v.notes.empty() ? "" : v.notes.front());
-  for (int a = 0; a < 3; ++a)
-    for (int b = a + 1; b < 3; ++b) EXPECT_NEAR(dot(v.axis(a), v.axis(b)), 0.0, 1e-9);
-  ct::ImportOptions o;
-  o.lowerThreshold = 620;
-  const ct::ImportResult r = ct::importBone(v, o);
-  EXPECT_TRUE(r.report.validation.isCleanSolid()) << ct::toText(r.report);
-  EXPECT_NEAR(*r.report.validation.volumeMm3 / shape.mainVolume(), 1.0, 0.01);
-  EXPECT_NEAR(norm(cttest::solidCentroid(r.mesh) - shape.center), 0.0, 0.3);
-  // Not sheared: the cylinder's ends where they are (a shear keeps volume and centroid, not these).
-  expectCylinderEndsInPlace(r.mesh, shape);
+  expectRectifiedPhantomInPlace(v, shape);
 }
 
 // The same slant in an NRRD, MetaImage or NIfTI header (a gantry-tilted CT converted without correction: the
@@ -259,20 +264,12 @@ TEST(PhantomOrientation, SlantedSlicesOfNrrdMetaImageAndNiftiAreResampledInPlace
     bool noted = false;
     for (const std::string& n : v.notes) noted = noted || n.find(slant) != std::string::npos;
     EXPECT_TRUE(noted) << slant << " in " << (v.notes.empty() ? "" : v.notes.back());
-    for (int a = 0; a < 3; ++a)
-      for (int b = a + 1; b < 3; ++b) EXPECT_NEAR(dot(v.axis(a), v.axis(b)), 0.0, 1e-9);
     // A voxel keeps its volume (which axis is taken as the slanted one may differ: a shear within the plane of
     // two axes slants either against the other).
     EXPECT_NEAR(v.spacing[0] * v.spacing[1] * v.spacing[2],
                 g.spacing[0] * g.spacing[1] * g.spacing[2] * dot(column, unit), 1e-6);  // NIfTI: float32
     if (c.onlyReading) EXPECT_NEAR(v.spacing[s], g.spacing[s] * dot(column, unit), 1e-9);
-    ct::ImportOptions o;
-    o.lowerThreshold = 620;
-    const ct::ImportResult r = ct::importBone(v, o);
-    EXPECT_TRUE(r.report.validation.isCleanSolid()) << ct::toText(r.report);
-    EXPECT_NEAR(*r.report.validation.volumeMm3 / shape.mainVolume(), 1.0, 0.01);
-    EXPECT_NEAR(norm(cttest::solidCentroid(r.mesh) - shape.center), 0.0, 0.3);
-    expectCylinderEndsInPlace(r.mesh, shape);
+    expectRectifiedPhantomInPlace(v, shape);
   }
 }
 
