@@ -30,6 +30,7 @@ namespace reamsim::ui {
 class OtherBonesLayer;
 class PluginHost;
 class RecoveryFiles;
+struct RecoveredBone;
 
 struct ImportOutcome {
   ImportedBone bone;
@@ -132,6 +133,9 @@ class MainWindow : public QMainWindow {
   bool confirmDiscardChanges(const QString& action);
   // The question on close about bonesBesideWithUnsavedCuts.
   bool confirmDiscardBonesBeside(const QString& action);
+  // Bones beside with cuts (or restored from a crash copy) whose state no save wrote.
+  std::vector<const BoneNode*> unsavedBonesBeside() const;
+  void restoreBonesBeside(const RecoveredBone& copy);  // its bones beside
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
   // The bone's mesh only, on a worker with a progress dialog (Cancel); errors in a dialog; does not mark it
   // saved. True when written.
@@ -182,6 +186,7 @@ class MainWindow : public QMainWindow {
   QString importStoppedAt_;
   bool saving_ = false;  // writeBoneFile is waiting for its worker
   std::set<std::uint64_t> savedRevisions_;  // bone revisions a save wrote (revisions are never reused)
+  std::set<std::uint64_t> recoveredBeside_;  // first revisions of the bones beside restored from a crash copy
   QString savedPath_;    // where saveBoneAs last wrote the bone (cleared for another bone)
   std::uint64_t boneGeneration_ = 0;  // counts bones installed or replaced: a save knows if its bone is still there
   static constexpr double kContactSearchMm = 100;

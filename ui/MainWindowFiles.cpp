@@ -259,11 +259,19 @@ bool MainWindow::writeBoneFile(const QString& path) {
 
 bool MainWindow::hasUnsavedChanges() const { return !session_->undoStack()->isClean(); }
 
+std::vector<const BoneNode*> MainWindow::unsavedBonesBeside() const {
+  std::vector<const BoneNode*> out;
+  for (const BoneNode* other : session_->document().nodesOf<BoneNode>()) {
+    if (other == session_->bone() || savedRevisions_.count(other->currentRevision())) continue;
+    const bool recovered = recoveredBeside_.count(other->history().entries().front().revision) > 0;
+    if (other->history().cursor() > 0 || recovered) out.push_back(other);
+  }
+  return out;
+}
+
 QStringList MainWindow::bonesBesideWithUnsavedCuts() const {
   QStringList names;
-  for (const BoneNode* other : session_->document().nodesOf<BoneNode>())
-    if (other != session_->bone() && other->history().cursor() > 0 && !savedRevisions_.count(other->currentRevision()))
-      names << QString::fromStdString(other->name());
+  for (const BoneNode* other : unsavedBonesBeside()) names << QString::fromStdString(other->name());
   return names;
 }
 

@@ -4,6 +4,7 @@
 #include <QDateTime>
 #include <QDir>
 #include <QFile>
+#include <QFileInfo>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QStatusBar>
@@ -11,6 +12,7 @@
 #include <utility>
 
 #include "BonePlacement.h"
+#include "OtherBonesLayer.h"
 #include "MainWindow.h"
 #include "PluginHost.h"
 #include "RecoveryFiles.h"
@@ -55,14 +57,26 @@ void MainWindow::writeRecoveryCopy() {
     recoveryTimer_.start();
     return;
   }
-  if (!hasUnsavedChanges()) {
+  const std::vector<const BoneNode*> beside = unsavedBonesBeside();
+  if (!hasUnsavedChanges() && beside.empty()) {
     recovery_->remove();
     return;
   }
   const MeshImportInterface* writer = plugins_.meshImport();
   if (!writer) return;  // nothing here writes meshes
   // The snapshot on the UI thread (the document's thread; a bone state is an immutable value, cheap to
-  // copy), the mesh and the files on a worker.
+  // copy), the mesh and the files on a worker. The bones beside whose cuts no save wrote go too: Save writes
+  // the cut bone only.
+  struct BesideCopy {
+    BoneState state;
+    PatientFrame frame;
+  };
+  std::vector<BesideCopy> besideCopies;
+  QStringList besideNames;
+  for (const BoneNode* b : beside) {
+    besideCopies.push_back({b->current(), b->patientFrame()});
+    besideNames << QString::fromStdString(b->name());
+  }
   BoneState state = session_->bone()->current();
   std::string csv = cutLogCsv(session_->log()->entries());
   const PatientFrame frame = session_->bone()->patientFrame();
@@ -71,15 +85,19 @@ void MainWindow::writeRecoveryCopy() {
   const double removed = session_->initialVolumeMm3() - state.volume();  // undone cuts not counted
   const RecoveryFiles* files = recovery_.get();
   recoveryWrite_.setFuture(QtConcurrent::run(
-      [writer, files, frame, name, cuts, removed, state = std::move(state), csv = std::move(csv)]() -> QString {
+      [writer, files, frame, name, cuts, removed, state = std::move(state), csv = std::move(csv),
+       besideCopies = std::move(besideCopies), besideNames]() -> QString {
         try {
           writer->exportMesh(state.toMesh(), files->nextBonePath().toStdString(), frame);
           writeTextFile(files->nextLogPath().toStdString(), csv);
+          for (std::size_t i = 0; i < besideCopies.size(); ++i)
+            writer->exportMesh(besideCopies[i].state.toMesh(), files->nextBesidePath(int(i)).toStdString(),
+                               besideCopies[i].frame);
         } catch (const std::exception& e) {
           return QString::fromStdString(e.what());
         }
         QString error;
-        files->commit(name, cuts, removed, error);
+        files->commit(name, cuts, removed, besideNames, error);
         return error;
       }));
 }
@@ -105,7 +123,11 @@ void MainWindow::offerRecovery() {
                       .arg(QLocale().toString(found->written, QLocale::ShortFormat)),
                   QMessageBox::NoButton, this);
   box.setObjectName("RecoveryDialog");
-  box.setInformativeText(tr("Restore it in place of the bone now open? Discard deletes the copy."));
+  const QString besideText =
+      found->beside.empty() ? QString()
+      : found->beside.size() == 1 ? tr(" The bone beside it with unsaved cuts, %1, is restored beside it.").arg(found->beside.front().name)
+                                  : tr(" Its %1 bones beside with unsaved cuts are restored beside it.").arg(found->beside.size());
+  box.setInformativeText(tr("Restore it in place of the bone now open?%1 Discard deletes the copy.").arg(besideText));
   QPushButton* restore = box.addButton(tr("Restore"), QMessageBox::AcceptRole);
   box.addButton(QMessageBox::Discard);
   box.setDefaultButton(restore);
@@ -133,6 +155,7 @@ void MainWindow::offerRecovery() {
   session_->plan()->setPoses({});
   installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
   session_->moveReamer(startPoseFor(b));
+  restoreBonesBeside(*found);
   session_->undoStack()->resetClean();  // saved nowhere but in the recovery copy
   // The log up to the crash goes back into the log panel. One that cannot be read is kept as a file for
   // the user (named in the message), never dropped.
@@ -156,6 +179,41 @@ void MainWindow::offerRecovery() {
   }
   const QString steps = logRows == 1 ? tr("1 step") : tr("%1 steps").arg(logRows);
   statusBar()->showMessage(tr("Restored %1 and its cut log (%2)").arg(name, steps), 20000);
+}
+
+// The bones beside of a recovery copy, beside the restored bone (not undoable: like the restore itself, the
+// start of this window's history). They count as unsaved until a save writes them (unsavedBonesBeside). One
+// that cannot be read is named in a message; the others are restored.
+void MainWindow::restoreBonesBeside(const RecoveredBone& found) {
+  QStringList failed;
+  for (const RecoveredBone::Beside& copy : found.beside) {
+    try {
+      ImportedBone read = plugins_.meshImport()->importBone(copy.path.toStdString(), false);
+      if (read.mesh.triangles.empty()) throw std::runtime_error(copy.path.toStdString() + ": the mesh has no triangles");
+      BoneContent content;
+      content.name = tr("%1 (recovered)").arg(copy.name).toStdString();
+      content.history = BoneHistory(BoneState::fromMesh(read.mesh), "recovered");
+      content.originalMesh = std::move(read.original);
+      content.importReport = std::move(read.report);
+      content.patientFrame = read.frame;
+      content.source = tr("crash-recovery copy of %1").arg(copy.name).toStdString();
+      content.cuttable = read.cuttable;
+      recoveredBeside_.insert(content.history.entries().front().revision);
+      auto node = std::make_unique<BoneNode>(content.name);
+      node->swapContent(content);
+      session_->document().add(std::move(node));
+    } catch (const std::exception& e) {
+      // Kept where the next save or close does not remove it, as a log that cannot be read back.
+      const QString kept = QDir(recovery_->dir()).filePath("restored");
+      QDir().mkpath(kept);
+      const QString keptFile = QDir(kept).filePath(
+          "beside_" + QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss") + "_" + QFileInfo(copy.path).fileName());
+      QFile::copy(copy.path, keptFile);
+      failed << tr("%1 (kept as %2)").arg(QString::fromStdString(e.what()), keptFile);
+    }
+  }
+  if (!failed.isEmpty()) showError(tr("A bone beside was not restored"), failed.join("\n"));
+  if (!found.beside.empty()) otherBones_->fitViewToAll();
 }
 
 }  // namespace reamsim::ui

@@ -4,6 +4,7 @@
 
 #include <QDir>
 #include <QFile>
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLockFile>
@@ -42,6 +43,9 @@ QString RecoveryFiles::currentSlot() const {
 
 QString RecoveryFiles::nextBonePath() const { return path("bone." + nextSlot() + ".ply"); }
 QString RecoveryFiles::nextLogPath() const { return path("cut_log." + nextSlot() + ".csv"); }
+QString RecoveryFiles::nextBesidePath(int index) const {
+  return path("beside" + QString::number(index) + "." + nextSlot() + ".ply");
+}
 
 std::optional<RecoveredBone> RecoveryFiles::found() const {
   const QJsonObject d = readDescription(path(kDescription));
@@ -56,14 +60,21 @@ std::optional<RecoveredBone> RecoveryFiles::found() const {
   r.cuts = d.value("cuts").toInt();
   r.written = QDateTime::fromString(d.value("written").toString(), Qt::ISODate).toLocalTime();
   if (d.value("removed_mm3").isDouble()) r.removedMm3 = d.value("removed_mm3").toDouble();
+  const QJsonArray beside = d.value("beside").toArray();
+  for (int i = 0; i < beside.size(); ++i) {
+    const QString file = path("beside" + QString::number(i) + "." + slot + ".ply");
+    if (QFile::exists(file)) r.beside.push_back({beside[i].toString(), file});
+  }
   return r;
 }
 
-bool RecoveryFiles::commit(const QString& name, int cuts, double removedMm3, QString& error) const {
+bool RecoveryFiles::commit(const QString& name, int cuts, double removedMm3, const QStringList& besideNames,
+                           QString& error) const {
   QJsonObject d;
   d.insert("slot", nextSlot());
   d.insert("name", name);
   d.insert("cuts", cuts);
+  if (!besideNames.isEmpty()) d.insert("beside", QJsonArray::fromStringList(besideNames));
   if (std::isfinite(removedMm3)) d.insert("removed_mm3", removedMm3);
   d.insert("written", QDateTime::currentDateTimeUtc().toString(Qt::ISODate));
   QSaveFile f(path(kDescription));
@@ -77,6 +88,7 @@ bool RecoveryFiles::commit(const QString& name, int cuts, double removedMm3, QSt
 void RecoveryFiles::remove() const {
   QFile::remove(path(kDescription));
   for (const char* f : {"bone.a.ply", "bone.b.ply", "cut_log.a.csv", "cut_log.b.csv"}) QFile::remove(path(f));
+  for (const QString& f : QDir(dir_).entryList({"beside*.ply"}, QDir::Files)) QFile::remove(path(f));
 }
 
 }  // namespace reamsim::ui

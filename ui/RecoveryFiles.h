@@ -8,8 +8,10 @@
 // Files only; when and what to write is MainWindow's (MainWindowRecovery.cpp).
 #include <QDateTime>
 #include <QString>
+#include <QStringList>
 #include <memory>
 #include <optional>
+#include <vector>
 
 class QLockFile;
 
@@ -23,6 +25,11 @@ struct RecoveredBone {
   // The bone volume removed since its log began, at the copy (the log's last row counts cuts undone since;
   // this does not). Unset in a description written before session 49.
   std::optional<double> removedMm3;
+  // Bones beside the cut bone whose cuts no save wrote (session 52): restored beside it.
+  struct Beside {
+    QString name, path;
+  };
+  std::vector<Beside> beside;
 };
 
 class RecoveryFiles {
@@ -39,8 +46,10 @@ class RecoveryFiles {
   // description at it (written whole or not at all: QSaveFile). Safe on a worker thread (files only).
   QString nextBonePath() const;  // "bone.a.ply" or "bone.b.ply": the writer picks the format from the suffix
   QString nextLogPath() const;
+  QString nextBesidePath(int index) const;  // "beside<index>.a.ply" or ".b.ply": a bone beside
   // False (with `error` naming the file) when the description cannot be written; the previous copy stays.
-  bool commit(const QString& name, int cuts, double removedMm3, QString& error) const;
+  // `besideNames`: the bones beside written to nextBesidePath(0…), in order.
+  bool commit(const QString& name, int cuts, double removedMm3, const QStringList& besideNames, QString& error) const;
   void remove() const;  // the description first, so a half-removed copy is never offered
 
  private:

@@ -12,7 +12,9 @@
 #include <QtTest/QTest>
 
 #include "GuiEnvironment.h"
+#include "BoneCommands.h"
 #include "GuiHelpers.h"
+#include "OtherBonesLayer.h"
 #include "RecoveryFiles.h"
 #include "reamsim/mesh/MeshIO.h"
 #include "reamsim/tools/Primitives.h"
@@ -149,6 +151,55 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
 
 // A log that cannot be read back (damaged after the crash) does not stop the bone's restore; the message
 // names the file and the problem, and the log is kept as a file for the user.
+// Save writes the cut bone only: a bone moved beside with cuts no save wrote goes into the copy even once the cut
+// bone is saved, and the next window restores it beside the bone, still unsaved.
+TEST(GuiRecovery, ABoneBesideWithUnsavedCutsIsCopiedAndRestoredBesideTheBone) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  double besideVolume = 0;
+  {
+    GuiFixture crashed;
+    MainWindow& w = *crashed.window;
+    ReamSession& s = crashed.session();
+    w.enableRecovery(dir.filePath("recovery"), 0);
+    cutOnce(s);  // the scapula's cut
+    besideVolume = s.bone()->current().volume();
+    // A second bone beside it (the scapula's own shape, 200 mm away), then cut that one instead.
+    TriangleMesh other = s.bone()->current().toMesh();
+    for (Vec3& v : other.vertices) v.x += 200;
+    auto node = std::make_unique<BoneNode>("second");
+    BoneContent content;
+    content.name = "second";
+    content.history = BoneHistory(BoneState::fromMesh(other), "test");
+    content.cuttable = true;
+    node->swapContent(content);
+    std::vector<std::unique_ptr<BoneNode>> nodes;
+    nodes.push_back(std::move(node));
+    s.undoStack()->push(new OtherBonesCommand(s.document(), std::move(nodes), "Add second beside"));
+    ASSERT_TRUE(w.cutBoneBesideInstead());
+    ASSERT_TRUE(s.waitIdle(60000));
+    ASSERT_TRUE(w.saveBoneAs(dir.filePath("second.ply")));  // the cut bone is saved, the scapula's cut is not
+    EXPECT_FALSE(w.hasUnsavedChanges());
+    const std::optional<RecoveredBone> copy = settledCopy(w);
+    ASSERT_TRUE(copy);
+    ASSERT_EQ(copy->beside.size(), 1u);
+    EXPECT_TRUE(QFileInfo::exists(copy->beside[0].path));
+  }  // gone without a close
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
+  QTest::qWait(50);
+  const std::vector<BoneNode*> bones = f.session().document().nodesOf<BoneNode>();
+  ASSERT_EQ(bones.size(), 2u);
+  const BoneNode* beside = bones[0] == f.session().bone() ? bones[1] : bones[0];
+  EXPECT_NEAR(beside->current().volume(), besideVolume, 1e-9 * besideVolume);
+  EXPECT_TRUE(QString::fromStdString(beside->name()).contains("(recovered)"));
+  EXPECT_EQ(w.bonesBesideWithUnsavedCuts().size(), 1);  // kept nowhere but in the copy: closing asks
+  EXPECT_EQ(w.otherBones()->shownBones(), 1u);
+}
+
 TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;
