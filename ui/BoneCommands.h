@@ -53,8 +53,8 @@ class SwapBoneBesideCommand : public QUndoCommand {
 };
 
 // Adds bones to the document beside the session's bone (shown, not cut), or removes them: `add` says
-// which of the two redo does; undo does the other. Node ids are never reused, so a bone added back
-// gets a new id.
+// which of the two redo does; undo does the other. A bone put back keeps its id (Document::add), so
+// commands that name it by id (SwapBoneBesideCommand, an earlier add) still find it.
 class OtherBonesCommand : public QUndoCommand {
  public:
   // Adding: `nodes` are detached nodes. Removing: `ids` are bones of the document.

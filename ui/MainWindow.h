@@ -186,7 +186,9 @@ class MainWindow : public QMainWindow {
   QString importStoppedAt_;
   bool saving_ = false;  // writeBoneFile is waiting for its worker
   std::set<std::uint64_t> savedRevisions_;  // bone revisions a save wrote (revisions are never reused)
-  std::set<std::uint64_t> recoveredBeside_;  // first revisions of the bones beside restored from a crash copy
+  // First revisions of the bones restored from a crash copy (the cut bone and those beside): unsaved until a
+  // save writes them, wherever a swap moves them.
+  std::set<std::uint64_t> recoveredRevisions_;
   QString savedPath_;    // where saveBoneAs last wrote the bone (cleared for another bone)
   std::uint64_t boneGeneration_ = 0;  // counts bones installed or replaced: a save knows if its bone is still there
   static constexpr double kContactSearchMm = 100;

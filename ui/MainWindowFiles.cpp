@@ -263,7 +263,7 @@ std::vector<const BoneNode*> MainWindow::unsavedBonesBeside() const {
   std::vector<const BoneNode*> out;
   for (const BoneNode* other : session_->document().nodesOf<BoneNode>()) {
     if (other == session_->bone() || savedRevisions_.count(other->currentRevision())) continue;
-    const bool recovered = recoveredBeside_.count(other->history().entries().front().revision) > 0;
+    const bool recovered = recoveredRevisions_.count(other->history().entries().front().revision) > 0;
     if (other->history().cursor() > 0 || recovered) out.push_back(other);
   }
   return out;

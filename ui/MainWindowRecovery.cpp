@@ -154,6 +154,7 @@ void MainWindow::offerRecovery() {
   const Bounds b = BoneState::fromMesh(bone.mesh).bounds();
   session_->plan()->setPoses({});
   installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
+  recoveredRevisions_.insert(session_->bone()->history().entries().front().revision);  // also once moved beside
   session_->moveReamer(startPoseFor(b));
   restoreBonesBeside(*found);
   session_->undoStack()->resetClean();  // saved nowhere but in the recovery copy
@@ -198,7 +199,7 @@ void MainWindow::restoreBonesBeside(const RecoveredBone& found) {
       content.patientFrame = read.frame;
       content.source = tr("crash-recovery copy of %1").arg(copy.name).toStdString();
       content.cuttable = read.cuttable;
-      recoveredBeside_.insert(content.history.entries().front().revision);
+      recoveredRevisions_.insert(content.history.entries().front().revision);
       auto node = std::make_unique<BoneNode>(content.name);
       node->swapContent(content);
       session_->document().add(std::move(node));

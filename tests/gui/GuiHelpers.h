@@ -64,10 +64,12 @@ class ModalAnswers {
     return [path](QWidget* w) {
       auto* dialog = qobject_cast<QFileDialog*>(w);
       ASSERT_NE(dialog, nullptr) << "expected the save dialog, got " << w->metaObject()->className();
+      // selectFile sets the name box only while it has no keyboard focus (Qt 5.15), and the dialog takes a path
+      // in another folder once its file system model has been there (a worker thread): until then the box may
+      // still hold the proposed "bone.ply", and accepting would ask whether to replace that file (seen once
+      // under load: a nested question nobody answers).
+      if (QWidget* focused = dialog->focusWidget()) focused->clearFocus();
       dialog->selectFile(path);
-      // The dialog takes a path in another folder once its file system model has been there (a worker thread):
-      // until then its line edit may still hold the proposed "bone.ply", and accepting would ask whether to
-      // replace that file (seen once under load: a nested question nobody answers).
       QElapsedTimer waited;
       waited.start();
       while (dialog->selectedFiles().value(0) != path && waited.elapsed() < 5000) {

@@ -149,8 +149,6 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());
 }
 
-// A log that cannot be read back (damaged after the crash) does not stop the bone's restore; the message
-// names the file and the problem, and the log is kept as a file for the user.
 // Save writes the cut bone only: a bone moved beside with cuts no save wrote goes into the copy even once the cut
 // bone is saved, and the next window restores it beside the bone, still unsaved.
 TEST(GuiRecovery, ABoneBesideWithUnsavedCutsIsCopiedAndRestoredBesideTheBone) {
@@ -198,8 +196,17 @@ TEST(GuiRecovery, ABoneBesideWithUnsavedCutsIsCopiedAndRestoredBesideTheBone) {
   EXPECT_TRUE(QString::fromStdString(beside->name()).contains("(recovered)"));
   EXPECT_EQ(w.bonesBesideWithUnsavedCuts().size(), 1);  // kept nowhere but in the copy: closing asks
   EXPECT_EQ(w.otherBones()->shownBones(), 1u);
+  // Swapped, the restored cut bone goes beside with no cut in its (new) history: still unsaved, still asked
+  // about once the other one is saved.
+  ASSERT_TRUE(w.cutBoneBesideInstead());
+  ASSERT_TRUE(f.session().waitIdle(60000));
+  QTemporaryDir out;
+  ASSERT_TRUE(w.saveBoneAs(out.filePath("saved.ply")));
+  EXPECT_EQ(w.bonesBesideWithUnsavedCuts().size(), 1);
 }
 
+// A log that cannot be read back (damaged after the crash) does not stop the bone's restore; the message
+// names the file and the problem, and the log is kept as a file for the user.
 TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;

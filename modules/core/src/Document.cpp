@@ -16,7 +16,7 @@ Node& Document::add(std::unique_ptr<Node> node) {
   // A node this document removed comes back under its id (undo of a removal: commands that name it by id
   // still find it); any other node gets a new one.
   const auto removed = removed_.find(node->id_);
-  if (node->id_.valid() && removed != removed_.end() && removed->second == node.get() && !index_.count(node->id_))
+  if (node->id_.valid() && removed != removed_.end() && removed->second == node->instance_ && !index_.count(node->id_))
     removed_.erase(removed);
   else
     node->id_ = NodeId::make(kind, ++lastSerial_[kind]);
@@ -36,7 +36,7 @@ std::unique_ptr<Node> Document::remove(NodeId id) {
   nodes_.erase(it);
   index_.erase(id);
   node->document_ = nullptr;
-  removed_[id] = node.get();
+  removed_[id] = node->instance_;
   post({DocumentEvent::Type::NodeRemoved, id});
   return node;
 }

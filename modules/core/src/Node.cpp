@@ -2,7 +2,14 @@
 
 #include "reamsim/core/Document.h"
 
+#include <atomic>
+
 namespace reamsim {
+
+std::uint64_t Node::nextInstance() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
 
 void Node::setName(std::string name) {
   if (name == name_) return;

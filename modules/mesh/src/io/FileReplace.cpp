@@ -162,7 +162,8 @@ void keepOwnerAndGroup(int fd, const struct stat& old) {
 // other names (they keep the old content).
 bool overwriteLinkedFile(const std::string& path, const fs::path& target, const struct stat& old,
                          const std::string& bytes, NewFile& copy, const std::string& copyPath) {
-  const int fd = ::open(target.c_str(), O_WRONLY | O_NOFOLLOW | O_CLOEXEC);
+  // O_NONBLOCK: a pipe put there meanwhile must not block the open (it fails the same-file check below).
+  const int fd = ::open(target.c_str(), O_WRONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) return false;
   struct stat now {};
   if (::fstat(fd, &now) != 0 || now.st_dev != old.st_dev || now.st_ino != old.st_ino || !S_ISREG(now.st_mode)) {

@@ -116,7 +116,8 @@ class Document {
   std::vector<std::unique_ptr<Node>> nodes_;
   std::unordered_map<NodeId, Node*> index_;
   std::unordered_map<NodeKind, std::uint64_t> lastSerial_;
-  std::unordered_map<NodeId, const Node*> removed_;  // the nodes removed, by id: only they get their id back
+  // The nodes removed (their Node::instance_), by id: only they get their id back. 16 bytes a removal.
+  std::unordered_map<NodeId, std::uint64_t> removed_;
   Signal<DocumentEvent> signal_;
   std::deque<DocumentEvent> pending_;
   int batchDepth_ = 0;

@@ -34,6 +34,8 @@ class Node {
  private:
   friend class Document;
   NodeId id_;
+  const std::uint64_t instance_ = nextInstance();  // which object this is (addresses are reused, this is not)
+  static std::uint64_t nextInstance();
   Document* document_ = nullptr;
   std::string name_;
   std::uint64_t modifiedCount_ = 0;
