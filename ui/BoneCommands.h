@@ -26,6 +26,8 @@ class ReplaceBoneCommand : public QUndoCommand {
   ReplaceBoneCommand(ReamSession& session, BoneContent incoming, bool cuttable, const QString& text);
   void redo() override { exchange(); }
   void undo() override { exchange(); }
+  // The bone not in the document: the replaced one once done, the imported one once undone.
+  const BoneContent& held() const { return other_; }
 
  private:
   void exchange();

@@ -81,6 +81,8 @@ class MainWindow : public QMainWindow {
   bool hasUnsavedChanges() const;
   // Bones beside with cuts in their history whose state no save wrote (their names): Save writes the cut bone only.
   QStringList bonesBesideWithUnsavedCuts() const;
+  // Bones replaced by a CT import (held by the undo history) with cuts no save wrote (their names).
+  QStringList replacedBonesWithUnsavedCuts() const;
   // Depth below the first contact along the axis (searched on a worker, then fed in feed steps).
   void reamToDepth(double depthMm);
   bool contactSearchRunning() const { return pendingDepth_.has_value(); }

@@ -22,6 +22,7 @@
 #include <utility>
 
 #include "BonePlacement.h"
+#include "BoneCommands.h"
 #include "MainWindow.h"
 #include "PluginHost.h"
 #include "WriteProgressDialog.h"
@@ -276,16 +277,31 @@ QStringList MainWindow::bonesBesideWithUnsavedCuts() const {
 }
 
 // Save writes the cut bone only; a bone moved beside it (Cut a bone beside instead) may keep cuts of its own.
+QStringList MainWindow::replacedBonesWithUnsavedCuts() const {
+  QStringList names;
+  const QUndoStack* stack = session_->undoStack();
+  for (int i = 0; i < stack->count(); ++i) {
+    const auto* replace = dynamic_cast<const ReplaceBoneCommand*>(stack->command(i));
+    if (!replace) continue;
+    const BoneHistory& h = replace->held().history;
+    if (savedRevisions_.count(h.currentRevision())) continue;
+    if (h.cursor() > 0 || recoveredRevisions_.count(h.entries().front().revision))
+      names << QString::fromStdString(replace->held().name);
+  }
+  return names;
+}
+
 bool MainWindow::confirmDiscardBonesBeside(const QString& action) {
-  const QStringList names = bonesBesideWithUnsavedCuts();
-  if (names.isEmpty()) return true;
-  QMessageBox box(QMessageBox::Warning, tr("Unsaved bones beside"),
-                  names.size() == 1 ? tr("The bone beside, %1, has cuts that are not saved.").arg(names.front())
-                                    : tr("The bones beside, %1, have cuts that are not saved.").arg(names.join(", ")),
+  QStringList items;
+  for (const QString& n : bonesBesideWithUnsavedCuts()) items << tr("%1 (beside the cut bone)").arg(n);
+  for (const QString& n : replacedBonesWithUnsavedCuts()) items << tr("%1 (replaced by a CT import)").arg(n);
+  if (items.isEmpty()) return true;
+  QMessageBox box(QMessageBox::Warning, tr("Unsaved bones"), tr("Cuts that are not saved: %1.").arg(items.join(", ")),
                   QMessageBox::Discard | QMessageBox::Cancel, this);
   box.setObjectName("UnsavedBonesBesideDialog");
-  box.setInformativeText(tr("Only the cut bone is saved. To keep them, cancel, make the bone the cut bone (File → "
-                            "Cut a bone beside instead) and save it. Discard their cuts and %1?").arg(action));
+  box.setInformativeText(tr("Only the cut bone is saved. To keep a bone beside, cancel, make it the cut bone (File → "
+                            "Cut a bone beside instead) and save it; to keep a replaced bone, cancel and undo the "
+                            "import. Discard their cuts and %1?").arg(action));
   box.setDefaultButton(QMessageBox::Cancel);
   return box.exec() == QMessageBox::Discard;
 }

@@ -370,7 +370,7 @@ TEST(GuiCtImport, ClosingAsksAboutABoneBesideWithUnsavedCuts) {
     EXPECT_FALSE(w.close());
     EXPECT_EQ(answers.seen(), 1);
   }
-  EXPECT_TRUE(text.contains("has cuts that are not saved")) << text.toStdString();
+  EXPECT_TRUE(text.contains("Cuts that are not saved") && text.contains("(beside the cut bone)")) << text.toStdString();
   EXPECT_TRUE(w.isVisible());
 
   ASSERT_TRUE(w.cutBoneBesideInstead());  // the scapula is the cut bone again: its save writes its cut
@@ -378,6 +378,40 @@ TEST(GuiCtImport, ClosingAsksAboutABoneBesideWithUnsavedCuts) {
   ASSERT_TRUE(w.saveBoneAs(out.filePath("scapula.ply")));
   EXPECT_TRUE(w.bonesBesideWithUnsavedCuts().isEmpty());  // the phantom beside has no cut
   EXPECT_TRUE(closeAnswering(w, {}, 0));
+}
+
+// A bone replaced by a CT import lives on in the undo history only: its cuts, which Save does not write (it writes
+// the CT bone), are asked about on close; undoing the import brings it back to be saved.
+TEST(GuiCtImport, ClosingAsksAboutABoneAnImportReplacedWithUnsavedCuts) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  QDialog* d = openInDialog(w, phantomVolume().path);
+  ASSERT_NE(d, nullptr);
+  setLower(d, 620);
+  clickImport(d, false);  // replaces the cut scapula
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  QTemporaryDir out;
+  ASSERT_TRUE(w.saveBoneAs(out.filePath("phantom.ply")));
+  EXPECT_TRUE(w.bonesBesideWithUnsavedCuts().isEmpty());
+  ASSERT_EQ(w.replacedBonesWithUnsavedCuts().size(), 1);
+  QString text;
+  {
+    ModalAnswers answers({[&text](QWidget* m) {
+      if (auto* box = qobject_cast<QMessageBox*>(m)) text = box->text();
+      ModalAnswers::click("UnsavedBonesBesideDialog", "Cancel")(m);
+    }});
+    EXPECT_FALSE(w.close());
+    EXPECT_EQ(answers.seen(), 1);
+  }
+  EXPECT_TRUE(text.contains("(replaced by a CT import)")) << text.toStdString();
+  s.undoStack()->undo();  // the scapula with its cut is the cut bone again: the usual question covers it
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  EXPECT_TRUE(w.replacedBonesWithUnsavedCuts().isEmpty());
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
 }
 
 // A bone beside that is removed leaves the picture even when nothing else changes: the view reuses its
