@@ -362,14 +362,7 @@ TEST(GuiCtImport, ClosingAsksAboutABoneBesideWithUnsavedCuts) {
   EXPECT_FALSE(w.hasUnsavedChanges());
   EXPECT_EQ(w.bonesBesideWithUnsavedCuts().size(), 1);
   QString text;
-  {
-    ModalAnswers answers({[&text](QWidget* m) {
-      if (auto* box = qobject_cast<QMessageBox*>(m)) text = box->text();
-      ModalAnswers::click("UnsavedBonesBesideDialog", "Cancel")(m);
-    }});
-    EXPECT_FALSE(w.close());
-    EXPECT_EQ(answers.seen(), 1);
-  }
+  EXPECT_FALSE(closeAnswering(w, {ModalAnswers::click("UnsavedBonesBesideDialog", "Cancel", &text)}, 1));
   EXPECT_TRUE(text.contains("Cuts that are not saved") && text.contains("(beside the cut bone)")) << text.toStdString();
   EXPECT_TRUE(w.isVisible());
 
@@ -398,14 +391,7 @@ TEST(GuiCtImport, ClosingAsksAboutABoneAnImportReplacedWithUnsavedCuts) {
   EXPECT_TRUE(w.bonesBesideWithUnsavedCuts().isEmpty());
   ASSERT_EQ(w.replacedBonesWithUnsavedCuts().size(), 1);
   QString text;
-  {
-    ModalAnswers answers({[&text](QWidget* m) {
-      if (auto* box = qobject_cast<QMessageBox*>(m)) text = box->text();
-      ModalAnswers::click("UnsavedBonesBesideDialog", "Cancel")(m);
-    }});
-    EXPECT_FALSE(w.close());
-    EXPECT_EQ(answers.seen(), 1);
-  }
+  EXPECT_FALSE(closeAnswering(w, {ModalAnswers::click("UnsavedBonesBesideDialog", "Cancel", &text)}, 1));
   EXPECT_TRUE(text.contains("(replaced by a CT import)")) << text.toStdString();
   s.undoStack()->undo();  // the scapula with its cut is the cut bone again: the usual question covers it
   ASSERT_TRUE(s.waitIdle(kWaitMs));

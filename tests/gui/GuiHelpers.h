@@ -48,12 +48,13 @@ class ModalAnswers {
       box->button(which)->click();
     };
   }
-  // A message box `dialogName`: its button labelled `buttonText`.
-  static Answer click(const QString& dialogName, const QString& buttonText) {
-    return [dialogName, buttonText](QWidget* w) {
+  // A message box `dialogName`: its button labelled `buttonText` (`text`, when given, gets the box's text).
+  static Answer click(const QString& dialogName, const QString& buttonText, QString* text = nullptr) {
+    return [dialogName, buttonText, text](QWidget* w) {
       auto* box = qobject_cast<QMessageBox*>(w);
       ASSERT_NE(box, nullptr) << "expected " << dialogName.toStdString() << ", got " << w->metaObject()->className();
       EXPECT_EQ(box->objectName(), dialogName);
+      if (text) *text = box->text();
       for (QAbstractButton* b : box->buttons())
         if (b->text().remove('&') == buttonText) return b->click();
       ADD_FAILURE() << "no button " << buttonText.toStdString() << " in " << dialogName.toStdString();
