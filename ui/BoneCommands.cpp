@@ -22,9 +22,20 @@ void exchangePlan(PlanNode& plan, std::vector<Pose>& otherPoses, std::optional<s
 
 }  // namespace
 
-ReplaceBoneCommand::ReplaceBoneCommand(ReamSession& session, BoneContent incoming, bool cuttable, const QString& text)
+BoneContent boneContentFrom(ImportedBone bone, std::string name, std::string label) {
+  BoneContent content;
+  content.name = std::move(name);
+  content.history = BoneHistory(BoneState::fromMesh(bone.mesh), std::move(label));
+  content.originalMesh = std::move(bone.original);
+  content.importReport = std::move(bone.report);
+  content.patientFrame = bone.frame;
+  content.source = std::move(bone.source);
+  content.cuttable = bone.cuttable;
+  return content;
+}
+
+ReplaceBoneCommand::ReplaceBoneCommand(ReamSession& session, BoneContent incoming, const QString& text)
     : session_(session), other_(std::move(incoming)) {
-  other_.cuttable = cuttable;
   setText(text);
 }
 

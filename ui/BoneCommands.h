@@ -9,6 +9,7 @@
 
 #include "reamsim/core/BoneNode.h"
 #include "reamsim/core/Pose.h"
+#include "reamsim/ui/PluginInterfaces.h"
 
 namespace reamsim {
 class Document;
@@ -19,11 +20,15 @@ namespace reamsim::ui {
 
 class ReamSession;
 
+// A whole bone from what an importer read (mesh, original, report, frame, source, cuttability), its history
+// starting from the mesh under `label`; for a node of its own or a ReplaceBoneCommand.
+BoneContent boneContentFrom(ImportedBone bone, std::string name, std::string label);
+
 // Replaces the session's bone (the one that is cut) and back. The plan's poses go with the bone: a plan
 // made for the previous bone does not apply to the new one, and comes back with it on undo.
 class ReplaceBoneCommand : public QUndoCommand {
  public:
-  ReplaceBoneCommand(ReamSession& session, BoneContent incoming, bool cuttable, const QString& text);
+  ReplaceBoneCommand(ReamSession& session, BoneContent incoming, const QString& text);
   void redo() override { exchange(); }
   void undo() override { exchange(); }
   // The bone not in the document: the replaced one once done, the imported one once undone.

@@ -135,6 +135,7 @@ class MainWindow : public QMainWindow {
   bool confirmDiscardChanges(const QString& action);
   // The question on close about bonesBesideWithUnsavedCuts.
   bool confirmDiscardBonesBeside(const QString& action);
+  bool unsavedOutsideTheCutBone(const BoneHistory& history) const;
   // Bones beside with cuts (or restored from a crash copy) whose state no save wrote.
   std::vector<const BoneNode*> unsavedBonesBeside() const;
   void restoreBonesBeside(const RecoveredBone& copy);  // its bones beside

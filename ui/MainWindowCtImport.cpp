@@ -110,14 +110,7 @@ void MainWindow::placeImportedVolume(VolumeImportResult r) {
     showError(tr("Import CT"), tr("%1: the imported surface has no triangles").arg(r.name));
     return;
   }
-  BoneContent content;
-  content.name = r.name.toStdString();
-  content.history = BoneHistory(BoneState::fromMesh(r.bone.mesh), "import");
-  content.originalMesh = std::move(r.bone.original);
-  content.importReport = std::move(r.bone.report);
-  content.patientFrame = r.bone.frame;
-  content.source = std::move(r.bone.source);
-  content.cuttable = r.bone.cuttable;
+  BoneContent content = boneContentFrom(std::move(r.bone), r.name.toStdString(), "import");
   const Bounds bounds = content.history.current().bounds();
 
   if (r.beside) {
@@ -131,8 +124,7 @@ void MainWindow::placeImportedVolume(VolumeImportResult r) {
     statusBar()->showMessage(tr("Added %1 beside the bone (shown, not cut)").arg(r.name), 5000);
     return;
   }
-  session_->undoStack()->push(new ReplaceBoneCommand(*session_, std::move(content), r.bone.cuttable,
-                                                     tr("Import %1").arg(r.name)));
+  session_->undoStack()->push(new ReplaceBoneCommand(*session_, std::move(content), tr("Import %1").arg(r.name)));
   if (!session_->reamer()->cuttingVolume()) {
     try {
       session_->setReamer(loadPreset(kDefaultReamerPreset, reamerPresetsPath()));

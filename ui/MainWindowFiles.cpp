@@ -260,13 +260,17 @@ bool MainWindow::writeBoneFile(const QString& path) {
 
 bool MainWindow::hasUnsavedChanges() const { return !session_->undoStack()->isClean(); }
 
+// A bone that is not the cut one holds work no save wrote: cuts in its history, or a crash copy restored, and
+// its state was not written by a save (of when it was the cut bone).
+bool MainWindow::unsavedOutsideTheCutBone(const BoneHistory& history) const {
+  if (savedRevisions_.count(history.currentRevision())) return false;
+  return history.cursor() > 0 || recoveredRevisions_.count(history.entries().front().revision) > 0;
+}
+
 std::vector<const BoneNode*> MainWindow::unsavedBonesBeside() const {
   std::vector<const BoneNode*> out;
-  for (const BoneNode* other : session_->document().nodesOf<BoneNode>()) {
-    if (other == session_->bone() || savedRevisions_.count(other->currentRevision())) continue;
-    const bool recovered = recoveredRevisions_.count(other->history().entries().front().revision) > 0;
-    if (other->history().cursor() > 0 || recovered) out.push_back(other);
-  }
+  for (const BoneNode* other : session_->document().nodesOf<BoneNode>())
+    if (other != session_->bone() && unsavedOutsideTheCutBone(other->history())) out.push_back(other);
   return out;
 }
 
@@ -276,21 +280,18 @@ QStringList MainWindow::bonesBesideWithUnsavedCuts() const {
   return names;
 }
 
-// Save writes the cut bone only; a bone moved beside it (Cut a bone beside instead) may keep cuts of its own.
 QStringList MainWindow::replacedBonesWithUnsavedCuts() const {
   QStringList names;
   const QUndoStack* stack = session_->undoStack();
   for (int i = 0; i < stack->count(); ++i) {
     const auto* replace = dynamic_cast<const ReplaceBoneCommand*>(stack->command(i));
-    if (!replace) continue;
-    const BoneHistory& h = replace->held().history;
-    if (savedRevisions_.count(h.currentRevision())) continue;
-    if (h.cursor() > 0 || recoveredRevisions_.count(h.entries().front().revision))
-      names << QString::fromStdString(replace->held().name);
+    if (replace && unsavedOutsideTheCutBone(replace->held().history)) names << QString::fromStdString(replace->held().name);
   }
   return names;
 }
 
+// Save writes the cut bone only; a bone moved beside it (Cut a bone beside instead) or replaced by an import may
+// keep cuts of its own.
 bool MainWindow::confirmDiscardBonesBeside(const QString& action) {
   QStringList items;
   for (const QString& n : bonesBesideWithUnsavedCuts()) items << tr("%1 (beside the cut bone)").arg(n);

@@ -11,6 +11,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <utility>
 
+#include "BoneCommands.h"
 #include "BonePlacement.h"
 #include "OtherBonesLayer.h"
 #include "MainWindow.h"
@@ -191,14 +192,8 @@ void MainWindow::restoreBonesBeside(const RecoveredBone& found) {
     try {
       ImportedBone read = plugins_.meshImport()->importBone(copy.path.toStdString(), false);
       if (read.mesh.triangles.empty()) throw std::runtime_error(copy.path.toStdString() + ": the mesh has no triangles");
-      BoneContent content;
-      content.name = tr("%1 (recovered)").arg(copy.name).toStdString();
-      content.history = BoneHistory(BoneState::fromMesh(read.mesh), "recovered");
-      content.originalMesh = std::move(read.original);
-      content.importReport = std::move(read.report);
-      content.patientFrame = read.frame;
-      content.source = tr("crash-recovery copy of %1").arg(copy.name).toStdString();
-      content.cuttable = read.cuttable;
+      read.source = tr("crash-recovery copy of %1").arg(copy.name).toStdString();
+      BoneContent content = boneContentFrom(std::move(read), tr("%1 (recovered)").arg(copy.name).toStdString(), "recovered");
       recoveredRevisions_.insert(content.history.entries().front().revision);
       auto node = std::make_unique<BoneNode>(content.name);
       node->swapContent(content);

@@ -43,9 +43,10 @@ QString RecoveryFiles::currentSlot() const {
 
 QString RecoveryFiles::nextBonePath() const { return path("bone." + nextSlot() + ".ply"); }
 QString RecoveryFiles::nextLogPath() const { return path("cut_log." + nextSlot() + ".csv"); }
-QString RecoveryFiles::nextBesidePath(int index) const {
-  return path("beside" + QString::number(index) + "." + nextSlot() + ".ply");
+QString RecoveryFiles::besidePath(const QString& slot, int index) const {
+  return path("beside" + QString::number(index) + "." + slot + ".ply");
 }
+QString RecoveryFiles::nextBesidePath(int index) const { return besidePath(nextSlot(), index); }
 
 std::optional<RecoveredBone> RecoveryFiles::found() const {
   const QJsonObject d = readDescription(path(kDescription));
@@ -62,7 +63,7 @@ std::optional<RecoveredBone> RecoveryFiles::found() const {
   if (d.value("removed_mm3").isDouble()) r.removedMm3 = d.value("removed_mm3").toDouble();
   const QJsonArray beside = d.value("beside").toArray();
   for (int i = 0; i < beside.size(); ++i) {
-    const QString file = path("beside" + QString::number(i) + "." + slot + ".ply");
+    const QString file = besidePath(slot, i);
     if (QFile::exists(file)) r.beside.push_back({beside[i].toString(), file});
   }
   return r;

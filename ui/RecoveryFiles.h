@@ -54,6 +54,7 @@ class RecoveryFiles {
 
  private:
   QString path(const QString& file) const;
+  QString besidePath(const QString& slot, int index) const;
   QString currentSlot() const;  // "a", "b", or "" without a description
   QString nextSlot() const { return currentSlot() == "a" ? "b" : "a"; }
   QString dir_;
