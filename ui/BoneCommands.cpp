@@ -20,6 +20,17 @@ void exchangePlan(PlanNode& plan, std::vector<Pose>& otherPoses, std::optional<s
   otherFeed = std::move(feed);
 }
 
+// The reamer's pose goes with the bone it was on, as the plan's poses do. Undo and redo put it back where it was
+// on the incoming bone (often seated in that bone's own cut); a pose from the other bone could bury it in this
+// one, and the next move would cut all it overlaps. The first redo has no pose to give back: the caller puts the
+// reamer clear of the new bone (startPoseFor).
+// `leaving`: the pose the outgoing bone was last computed at, taken before exchangeBone dropped the moves not
+// computed yet.
+void exchangeReamerPose(ReamSession& session, const Pose& leaving, std::optional<Pose>& otherPose) {
+  if (otherPose) session.returnReamerTo(*otherPose);
+  otherPose = leaving;
+}
+
 }  // namespace
 
 BoneContent boneContentFrom(ImportedBone bone, std::string name, std::string label) {
@@ -41,7 +52,9 @@ ReplaceBoneCommand::ReplaceBoneCommand(ReamSession& session, BoneContent incomin
 
 void ReplaceBoneCommand::exchange() {
   exchangePlan(*session_.plan(), otherPoses_, otherFeed_);
+  const Pose leaving = session_.settledReamerPose();
   session_.exchangeBone(other_);
+  exchangeReamerPose(session_, leaving, otherReamerPose_);
 }
 
 SwapBoneBesideCommand::SwapBoneBesideCommand(ReamSession& session, NodeId beside, const QString& text)
@@ -66,7 +79,9 @@ void SwapBoneBesideCommand::exchange() {
     ~PutBack() { node.swapContent(content); }
   } putBack{*beside, content};
   exchangePlan(*session_.plan(), otherPoses_, otherFeed_);
+  const Pose leaving = session_.settledReamerPose();
   session_.exchangeBone(content);  // the session's bone takes the one beside, `content` the cut bone
+  exchangeReamerPose(session_, leaving, otherReamerPose_);
 }
 
 OtherBonesCommand::OtherBonesCommand(Document& document, std::vector<std::unique_ptr<BoneNode>> nodes,

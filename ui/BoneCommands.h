@@ -25,7 +25,9 @@ class ReamSession;
 BoneContent boneContentFrom(ImportedBone bone, std::string name, std::string label);
 
 // Replaces the session's bone (the one that is cut) and back. The plan's poses go with the bone: a plan
-// made for the previous bone does not apply to the new one, and comes back with it on undo.
+// made for the previous bone does not apply to the new one, and comes back with it on undo. So does the
+// reamer's pose: undo and redo put the reamer back where it was on the bone that comes back (the first redo
+// leaves it to the caller, which puts it clear of the new bone).
 class ReplaceBoneCommand : public QUndoCommand {
  public:
   ReplaceBoneCommand(ReamSession& session, BoneContent incoming, const QString& text);
@@ -40,11 +42,12 @@ class ReplaceBoneCommand : public QUndoCommand {
   BoneContent other_;
   std::vector<Pose> otherPoses_;
   std::optional<std::string> otherFeed_;
+  std::optional<Pose> otherReamerPose_;
 };
 
 // Makes a bone beside the one that is cut, and the cut bone one beside it; undo swaps them back. The two
 // nodes keep their ids and exchange their contents (histories, cursors and cuttability included, no mesh
-// copied), and the plan's poses go with the cut bone as for a replacing import.
+// copied), and the plan's poses and the reamer's pose go with the cut bone as for a replacing import.
 class SwapBoneBesideCommand : public QUndoCommand {
  public:
   SwapBoneBesideCommand(ReamSession& session, NodeId beside, const QString& text);
@@ -57,6 +60,7 @@ class SwapBoneBesideCommand : public QUndoCommand {
   NodeId beside_;
   std::vector<Pose> otherPoses_;
   std::optional<std::string> otherFeed_;
+  std::optional<Pose> otherReamerPose_;
 };
 
 // Adds bones to the document beside the session's bone (shown, not cut), or removes them: `add` says

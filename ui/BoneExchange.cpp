@@ -20,4 +20,15 @@ void ReamSession::exchangeBone(BoneContent& other) {
   Q_EMIT boneReplaced();
 }
 
+Pose ReamSession::settledReamerPose() const {
+  const std::optional<Pose>& computed = running_ ? poseBeforeRunning_ : lastComputedPose_;
+  return computed ? *computed : reamer_->pose();
+}
+
+void ReamSession::returnReamerTo(const Pose& pose) {
+  cancelQueued();
+  reamer_->setPose(pose);
+  lastComputedPose_ = pose;
+}
+
 }  // namespace reamsim::ui

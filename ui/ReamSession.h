@@ -75,6 +75,12 @@ class ReamSession : public QObject {
   // undoable replace of the CT import (BoneCommands.h); calling it twice restores the bone exactly.
   // Unlike loadBone, the undo stack and the log are kept. Defined in BoneExchange.cpp.
   void exchangeBone(BoneContent& other);
+  // Where the reamer is as far as the bone knows: the pose of the last step computed on it (not a move still
+  // waiting or running), else where it is shown. With returnReamerTo, what a bone exchange keeps for its undo.
+  Pose settledReamerPose() const;
+  // Puts the reamer at `pose`, without a step, as if the bone's last step had been computed there (the next
+  // move sweeps from it): for undo and redo of an exchange, whose bone was last computed with the reamer there.
+  void returnReamerTo(const Pose& pose);
   void setReamer(const ReamerSpec& spec);
 
   bool canCollide() const;

@@ -150,6 +150,7 @@ TEST(GuiCtImport, SlicesFollowTheThresholdAndImportReplacesTheBoneWithUndo) {
   MainWindow& w = *f.window;
   ReamSession& s = f.session();
   const std::uint64_t revisionBefore = s.bone()->currentRevision();
+  const Pose reamerBefore = s.reamer()->pose();
   const TriangleMesh meshBefore = s.bone()->current().toMesh();
   const std::string nameBefore = s.bone()->name();
   const std::string sourceBefore = s.bone()->source();
@@ -212,6 +213,8 @@ TEST(GuiCtImport, SlicesFollowTheThresholdAndImportReplacesTheBoneWithUndo) {
   ASSERT_EQ(s.undoStack()->count(), 1);
   const std::uint64_t ctRevision = bone.currentRevision();
   const double ctVolume = bone.current().volume();
+  const Pose ctReamerPose = s.reamer()->pose();  // clear of the phantom
+  EXPECT_FALSE(samePose(ctReamerPose, reamerBefore));
 
   s.undoStack()->undo();  // the previous bone, exactly
   ASSERT_TRUE(s.waitIdle(kWaitMs));
@@ -223,9 +226,11 @@ TEST(GuiCtImport, SlicesFollowTheThresholdAndImportReplacesTheBoneWithUndo) {
   EXPECT_EQ(w.windowTitle(), titleBefore);
   EXPECT_TRUE(s.canCut());
   EXPECT_EQ(w.view()->displayedTriangleCount(), meshBefore.triangles.size());
+  EXPECT_TRUE(samePose(s.reamer()->pose(), reamerBefore));  // the reamer's pose comes back with its bone
 
   s.undoStack()->redo();
   ASSERT_TRUE(s.waitIdle(kWaitMs));
+  EXPECT_TRUE(samePose(s.reamer()->pose(), ctReamerPose));
   EXPECT_EQ(s.bone()->currentRevision(), ctRevision);
   EXPECT_EQ(s.bone()->current().volume(), ctVolume);
   EXPECT_EQ(s.bone()->patientFrame(), PatientFrame::LPS);
@@ -278,6 +283,7 @@ TEST(GuiCtImport, ABoneBesideCanBeCutInsteadAndUndoSwapsThemBack) {
   EXPECT_FALSE(w.action("cut_bone_beside")->isEnabled());
   EXPECT_FALSE(w.cutBoneBesideInstead());  // nothing beside
   cutOnce(s);                              // the default bone with a cut in its history
+  const Pose scapulaReamerPose = s.reamer()->pose();  // seated in the scapula's cut
   const NodeId cutId = s.bone()->id();
   const std::uint64_t scapulaRevision = s.bone()->currentRevision();
   const double scapulaVolume = s.bone()->current().volume();
@@ -320,6 +326,11 @@ TEST(GuiCtImport, ABoneBesideCanBeCutInsteadAndUndoSwapsThemBack) {
   EXPECT_TRUE(besideBone()->cuttable());
   EXPECT_EQ(w.otherBones()->shownTriangles(), besideBone()->current().liveTriangleCount());
   EXPECT_TRUE(w.boneFrameText().contains("LPS")) << w.boneFrameText().toStdString();
+  EXPECT_FALSE(samePose(s.reamer()->pose(), scapulaReamerPose));  // put clear of the phantom
+  Pose phantomReamerPose = s.reamer()->pose();
+  phantomReamerPose.tip = phantomReamerPose.tip - 2.0 * phantomReamerPose.axis;  // a move on the phantom
+  s.moveReamer(phantomReamerPose, true);
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
   // Removing the bone beside and undoing that brings it back under its id, so the swap can still be undone.
   w.removeOtherBones();
   ASSERT_EQ(besideBone(), nullptr);
@@ -334,6 +345,29 @@ TEST(GuiCtImport, ABoneBesideCanBeCutInsteadAndUndoSwapsThemBack) {
   EXPECT_EQ(s.plan()->poses().size(), scapulaPlan.size());
   EXPECT_EQ(besideBone()->currentRevision(), phantomRevision);
   EXPECT_EQ(w.otherBones()->shownTriangles(), besideBone()->current().liveTriangleCount());
+  // The reamer's pose went with each bone: back in the scapula's cut, not where it was over the phantom (from
+  // where the next move would have cut all the reamer overlaps), and the next move sweeps on from there.
+  EXPECT_TRUE(samePose(s.reamer()->pose(), scapulaReamerPose));
+  s.undoStack()->redo();
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  EXPECT_TRUE(samePose(s.reamer()->pose(), phantomReamerPose));
+  s.undoStack()->undo();
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  EXPECT_TRUE(samePose(s.reamer()->pose(), scapulaReamerPose));
+  const double beforeFeed = s.bone()->current().volume();
+  const std::size_t cutsBefore = s.cutsCommitted();
+  Pose aside = scapulaReamerPose;  // 0.3 mm across the axis
+  const Vec3 across = cross(aside.axis, std::abs(aside.axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+  aside.tip = aside.tip + (0.3 / norm(across)) * across;
+  s.moveReamer(aside, true);
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
+  ASSERT_EQ(s.cutsCommitted(), cutsBefore + 1);
+  EXPECT_TRUE(s.lastStepSwept()) << "the move sweeps from the returned pose";
+  const double movedMm3 = beforeFeed - s.bone()->current().volume();
+  EXPECT_GT(movedMm3, 0.0);
+  EXPECT_LT(movedMm3, s.initialVolumeMm3() - scapulaVolume);  // a 0.3 mm crescent, less than the 0.5 mm cut
+  s.undoStack()->undo();  // the move
+  ASSERT_TRUE(s.waitIdle(kWaitMs));
   // The scapula's own cut can still be undone: its history came back whole.
   s.undoStack()->undo();  // the import beside
   s.undoStack()->undo();  // the cut
