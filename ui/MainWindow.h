@@ -138,6 +138,8 @@ class MainWindow : public QMainWindow {
   bool unsavedOutsideTheCutBone(const BoneHistory& history) const;
   // Bones beside with cuts (or restored from a crash copy) whose state no save wrote.
   std::vector<const BoneNode*> unsavedBonesBeside() const;
+  // Bones a CT import replaced whose cuts no save wrote: held by the undo history (ReplaceBoneCommand::held).
+  std::vector<const BoneContent*> unsavedReplacedBones() const;
   void restoreBonesBeside(const RecoveredBone& copy);  // its bones beside
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
   // The bone's mesh only, on a worker with a progress dialog (Cancel); errors in a dialog; does not mark it

@@ -280,13 +280,19 @@ QStringList MainWindow::bonesBesideWithUnsavedCuts() const {
   return names;
 }
 
-QStringList MainWindow::replacedBonesWithUnsavedCuts() const {
-  QStringList names;
+std::vector<const BoneContent*> MainWindow::unsavedReplacedBones() const {
+  std::vector<const BoneContent*> out;
   const QUndoStack* stack = session_->undoStack();
   for (int i = 0; i < stack->count(); ++i) {
     const auto* replace = dynamic_cast<const ReplaceBoneCommand*>(stack->command(i));
-    if (replace && unsavedOutsideTheCutBone(replace->held().history)) names << QString::fromStdString(replace->held().name);
+    if (replace && unsavedOutsideTheCutBone(replace->held().history)) out.push_back(&replace->held());
   }
+  return out;
+}
+
+QStringList MainWindow::replacedBonesWithUnsavedCuts() const {
+  QStringList names;
+  for (const BoneContent* replaced : unsavedReplacedBones()) names << QString::fromStdString(replaced->name);
   return names;
 }
 

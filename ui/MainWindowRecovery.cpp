@@ -58,26 +58,30 @@ void MainWindow::writeRecoveryCopy() {
     recoveryTimer_.start();
     return;
   }
-  const std::vector<const BoneNode*> beside = unsavedBonesBeside();
-  if (!hasUnsavedChanges() && beside.empty()) {
-    recovery_->remove();
-    return;
-  }
-  const MeshImportInterface* writer = plugins_.meshImport();
-  if (!writer) return;  // nothing here writes meshes
   // The snapshot on the UI thread (the document's thread; a bone state is an immutable value, cheap to
-  // copy), the mesh and the files on a worker. The bones beside whose cuts no save wrote go too: Save writes
-  // the cut bone only.
+  // copy), the mesh and the files on a worker. The other bones whose cuts no save wrote go too, to be restored
+  // beside the cut bone: Save writes the cut bone only. They are the bones beside and the bones a CT import
+  // replaced (held by the undo history, which a restore does not bring back).
   struct BesideCopy {
     BoneState state;
     PatientFrame frame;
   };
   std::vector<BesideCopy> besideCopies;
   QStringList besideNames;
-  for (const BoneNode* b : beside) {
+  for (const BoneNode* b : unsavedBonesBeside()) {
     besideCopies.push_back({b->current(), b->patientFrame()});
     besideNames << QString::fromStdString(b->name());
   }
+  for (const BoneContent* replaced : unsavedReplacedBones()) {
+    besideCopies.push_back({replaced->history.current(), replaced->patientFrame});
+    besideNames << tr("%1 (replaced by a CT import)").arg(QString::fromStdString(replaced->name));
+  }
+  if (!hasUnsavedChanges() && besideCopies.empty()) {
+    recovery_->remove();
+    return;
+  }
+  const MeshImportInterface* writer = plugins_.meshImport();
+  if (!writer) return;  // nothing here writes meshes
   BoneState state = session_->bone()->current();
   std::string csv = cutLogCsv(session_->log()->entries());
   const PatientFrame frame = session_->bone()->patientFrame();
@@ -126,8 +130,8 @@ void MainWindow::offerRecovery() {
   box.setObjectName("RecoveryDialog");
   const QString besideText =
       found->beside.empty() ? QString()
-      : found->beside.size() == 1 ? tr(" The bone beside it with unsaved cuts, %1, is restored beside it.").arg(found->beside.front().name)
-                                  : tr(" Its %1 bones beside with unsaved cuts are restored beside it.").arg(found->beside.size());
+      : found->beside.size() == 1 ? tr(" Another bone with unsaved cuts, %1, is restored beside it.").arg(found->beside.front().name)
+                                  : tr(" %1 other bones with unsaved cuts are restored beside it.").arg(found->beside.size());
   box.setInformativeText(tr("Restore it in place of the bone now open?%1 Discard deletes the copy.").arg(besideText));
   QPushButton* restore = box.addButton(tr("Restore"), QMessageBox::AcceptRole);
   box.addButton(QMessageBox::Discard);

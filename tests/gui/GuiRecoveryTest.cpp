@@ -205,6 +205,48 @@ TEST(GuiRecovery, ABoneBesideWithUnsavedCutsIsCopiedAndRestoredBesideTheBone) {
   EXPECT_EQ(w.bonesBesideWithUnsavedCuts().size(), 1);
 }
 
+// A bone a CT import replaced is held by the undo history only, which a restore does not bring back: with cuts no
+// save wrote it goes into the copy even once the new bone is saved, and comes back beside the restored bone.
+TEST(GuiRecovery, ABoneAnImportReplacedWithUnsavedCutsIsCopiedAndRestoredBesideTheBone) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  double replacedVolume = 0;
+  {
+    GuiFixture crashed;
+    MainWindow& w = *crashed.window;
+    ReamSession& s = crashed.session();
+    w.enableRecovery(dir.filePath("recovery"), 0);
+    cutOnce(s);  // the scapula's cut
+    replacedVolume = s.bone()->current().volume();
+    TriangleMesh other = s.bone()->current().toMesh();  // the importer's place: the scapula's shape, moved
+    for (Vec3& v : other.vertices) v.x += 200;
+    ImportedBone imported;
+    imported.mesh = std::move(other);
+    imported.cuttable = true;
+    s.undoStack()->push(new ReplaceBoneCommand(s, boneContentFrom(std::move(imported), "ct bone", "import"), "Import ct bone"));
+    ASSERT_TRUE(s.waitIdle(60000));
+    ASSERT_TRUE(w.saveBoneAs(dir.filePath("ct.ply")));  // the new bone is saved, the replaced scapula's cut is not
+    EXPECT_FALSE(w.hasUnsavedChanges());
+    ASSERT_EQ(w.replacedBonesWithUnsavedCuts().size(), 1);
+    const std::optional<RecoveredBone> copy = settledCopy(w);
+    ASSERT_TRUE(copy);
+    ASSERT_EQ(copy->beside.size(), 1u);
+    EXPECT_TRUE(copy->beside[0].name.contains("replaced by a CT import")) << copy->beside[0].name.toStdString();
+  }  // gone without a close
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
+  QTest::qWait(50);
+  const std::vector<BoneNode*> bones = f.session().document().nodesOf<BoneNode>();
+  ASSERT_EQ(bones.size(), 2u);
+  const BoneNode* beside = bones[0] == f.session().bone() ? bones[1] : bones[0];
+  EXPECT_NEAR(beside->current().volume(), replacedVolume, 1e-9 * replacedVolume);
+  EXPECT_TRUE(QString::fromStdString(beside->name()).contains("replaced by a CT import")) << beside->name();
+  EXPECT_EQ(w.bonesBesideWithUnsavedCuts().size(), 1);  // kept nowhere but in the copy: closing asks
+}
+
 // A log that cannot be read back (damaged after the crash) does not stop the bone's restore; the message
 // names the file and the problem, and the log is kept as a file for the user.
 TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
