@@ -11,6 +11,8 @@ CutCommand::CutCommand(BoneNode& bone, const CutLogEntry& entry) : bone_(bone) {
               .arg(entry.faces));
 }
 
+CutCommand::CutCommand(BoneNode& bone, const QString& text) : bone_(bone) { setText(text); }
+
 void CutCommand::undo() { bone_.undo(); }
 
 void CutCommand::redo() {

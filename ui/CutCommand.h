@@ -11,6 +11,8 @@ namespace reamsim::ui {
 class CutCommand : public QUndoCommand {
  public:
   CutCommand(BoneNode& bone, const CutLogEntry& entry);
+  // A step of the bone's history already committed elsewhere (the cuts before a crash, restored as one state).
+  CutCommand(BoneNode& bone, const QString& text);
   void undo() override;
   void redo() override;  // the first redo is the cut itself, already committed by the session
 

@@ -141,6 +141,8 @@ class MainWindow : public QMainWindow {
   // Bones a CT import replaced whose cuts no save wrote: held by the undo history (ReplaceBoneCommand::held).
   std::vector<const BoneContent*> unsavedReplacedBones() const;
   void restoreBonesBeside(const RecoveredBone& copy);  // its bones beside
+  std::optional<TriangleMesh> readRecoveredOriginal(const QString& path);  // the bone as opened, or a message
+  QString keepInRestored(const QString& file, const QString& prefix) const;
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
   // The bone's mesh only, on a worker with a progress dialog (Cancel); errors in a dialog; does not mark it
   // saved. True when written.

@@ -13,6 +13,7 @@
 
 #include "BoneCommands.h"
 #include "BonePlacement.h"
+#include "CutCommand.h"
 #include "OtherBonesLayer.h"
 #include "MainWindow.h"
 #include "PluginHost.h"
@@ -83,6 +84,10 @@ void MainWindow::writeRecoveryCopy() {
   const MeshImportInterface* writer = plugins_.meshImport();
   if (!writer) return;  // nothing here writes meshes
   BoneState state = session_->bone()->current();
+  // The bone as opened, when cuts are on top of it: the restore puts it under the recovered bone for undo.
+  const BoneHistory& history = session_->bone()->history();
+  const std::uint64_t originalRevision = history.cursor() > 0 ? history.entries().front().revision : 0;
+  BoneState original = originalRevision ? history.entries().front().state : BoneState{};
   std::string csv = cutLogCsv(session_->log()->entries());
   const PatientFrame frame = session_->bone()->patientFrame();
   const QString name = boneName_;
@@ -91,7 +96,13 @@ void MainWindow::writeRecoveryCopy() {
   const RecoveryFiles* files = recovery_.get();
   recoveryWrite_.setFuture(QtConcurrent::run(
       [writer, files, frame, name, cuts, removed, state = std::move(state), csv = std::move(csv),
-       besideCopies = std::move(besideCopies), besideNames]() -> QString {
+       besideCopies = std::move(besideCopies), besideNames, originalRevision, original = std::move(original)]() -> QString {
+        QString error;
+        if (originalRevision &&
+            !files->writeOriginal(originalRevision, [&](const QString& path) {
+              writer->exportMesh(original.toMesh(), path.toStdString(), frame);
+            }, error))
+          return error;
         try {
           writer->exportMesh(state.toMesh(), files->nextBonePath().toStdString(), frame);
           writeTextFile(files->nextLogPath().toStdString(), csv);
@@ -101,8 +112,7 @@ void MainWindow::writeRecoveryCopy() {
         } catch (const std::exception& e) {
           return QString::fromStdString(e.what());
         }
-        QString error;
-        files->commit(name, cuts, removed, besideNames, error);
+        files->commit(name, cuts, removed, besideNames, originalRevision, error);
         return error;
       }));
 }
@@ -158,7 +168,23 @@ void MainWindow::offerRecovery() {
   }
   const Bounds b = BoneState::fromMesh(bone.mesh).bounds();
   session_->plan()->setPoses({});
-  installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
+  // The bone as opened goes under the recovered one, so that one undo takes back every cut made before the
+  // crash (the undo history itself is not in the copy). One that cannot be read is reported and kept; the
+  // recovered bone is then the history's only state.
+  std::optional<TriangleMesh> original;
+  if (!found->originalPath.isEmpty()) original = readRecoveredOriginal(found->originalPath);
+  const double recoveredVolume = BoneState::fromMesh(bone.mesh).volume();
+  double originalVolume = recoveredVolume;
+  if (original) {
+    TriangleMesh recovered = std::move(bone.mesh);
+    bone.mesh = std::move(*original);
+    installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
+    originalVolume = session_->bone()->current().volume();
+    session_->bone()->commit(BoneState::fromMesh(recovered), "cuts before the crash");
+    session_->undoStack()->push(new CutCommand(*session_->bone(), tr("The cuts before the crash")));
+  } else {
+    installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
+  }
   recoveredRevisions_.insert(session_->bone()->history().entries().front().revision);  // also once moved beside
   session_->moveReamer(startPoseFor(b));
   restoreBonesBeside(*found);
@@ -170,7 +196,10 @@ void MainWindow::offerRecovery() {
     try {
       std::vector<CutLogEntry> rows = readCutLogCsv(found->logPath.toStdString());
       logRows = rows.size();
-      session_->continueLog(std::move(rows), found->removedMm3);
+      // What was removed before the history's first state: all of it when that is the recovered bone, less the
+      // cuts between the two when it is the bone as opened.
+      const double removed = found->removedMm3.value_or(rows.empty() ? 0.0 : rows.back().cumulativeMm3);
+      session_->continueLog(std::move(rows), removed - (originalVolume - recoveredVolume));
     } catch (const std::exception& e) {
       const QString kept = QDir(recovery_->dir()).filePath("restored");
       QDir().mkpath(kept);
@@ -184,7 +213,34 @@ void MainWindow::offerRecovery() {
     }
   }
   const QString steps = logRows == 1 ? tr("1 step") : tr("%1 steps").arg(logRows);
-  statusBar()->showMessage(tr("Restored %1 and its cut log (%2)").arg(name, steps), 20000);
+  statusBar()->showMessage(original ? tr("Restored %1 and its cut log (%2); Undo goes back to the bone as opened").arg(name, steps)
+                                    : tr("Restored %1 and its cut log (%2)").arg(name, steps),
+                           20000);
+}
+
+std::optional<TriangleMesh> MainWindow::readRecoveredOriginal(const QString& path) {
+  try {
+    ImportedBone read = plugins_.meshImport()->importBone(path.toStdString(), false);
+    if (read.mesh.triangles.empty()) throw std::runtime_error(path.toStdString() + ": the mesh has no triangles");
+    return std::move(read.mesh);
+  } catch (const std::exception& e) {
+    const QString kept = keepInRestored(path, "original_");
+    showError(tr("The bone as opened was not restored"),
+              tr("The recovered bone is restored, but not the bone it was cut from (Undo cannot go back to it):\n%1\n\n"
+                 "It is kept as %2.").arg(QString::fromStdString(e.what()), kept));
+    return std::nullopt;
+  }
+}
+
+// A copy of `file` where the next save or close does not remove it (recovery/restored/), for a file that could
+// not be read back.
+QString MainWindow::keepInRestored(const QString& file, const QString& prefix) const {
+  const QString kept = QDir(recovery_->dir()).filePath("restored");
+  QDir().mkpath(kept);
+  const QString keptFile =
+      QDir(kept).filePath(prefix + QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss") + "_" + QFileInfo(file).fileName());
+  QFile::copy(file, keptFile);
+  return keptFile;
 }
 
 // The bones beside of a recovery copy, beside the restored bone (not undoable: like the restore itself, the
@@ -203,13 +259,7 @@ void MainWindow::restoreBonesBeside(const RecoveredBone& found) {
       node->swapContent(content);
       session_->document().add(std::move(node));
     } catch (const std::exception& e) {
-      // Kept where the next save or close does not remove it, as a log that cannot be read back.
-      const QString kept = QDir(recovery_->dir()).filePath("restored");
-      QDir().mkpath(kept);
-      const QString keptFile = QDir(kept).filePath(
-          "beside_" + QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss") + "_" + QFileInfo(copy.path).fileName());
-      QFile::copy(copy.path, keptFile);
-      failed << tr("%1 (kept as %2)").arg(QString::fromStdString(e.what()), keptFile);
+      failed << tr("%1 (kept as %2)").arg(QString::fromStdString(e.what()), keepInRestored(copy.path, "beside_"));
     }
   }
   if (!failed.isEmpty()) showError(tr("A bone beside was not restored"), failed.join("\n"));

@@ -9,6 +9,8 @@
 #include <QDateTime>
 #include <QString>
 #include <QStringList>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -30,6 +32,9 @@ struct RecoveredBone {
     QString name, path;
   };
   std::vector<Beside> beside;
+  // The bone as it was opened (its history's first state), when cuts were on top of it (session 53): the
+  // restore puts it under the recovered bone, so that undo goes back to it. Empty without one.
+  QString originalPath;
 };
 
 class RecoveryFiles {
@@ -47,9 +52,18 @@ class RecoveryFiles {
   QString nextBonePath() const;  // "bone.a.ply" or "bone.b.ply": the writer picks the format from the suffix
   QString nextLogPath() const;
   QString nextBesidePath(int index) const;  // "beside<index>.a.ply" or ".b.ply": a bone beside
+  // The bone as it was opened, under a name of its own (its revision): written once however many copies
+  // follow, since it does not change while the bone is cut. Written whole or not at all (`writeOriginal`
+  // gets a temporary path, then it is renamed), so one that exists is complete.
+  QString originalPath(std::uint64_t revision) const;  // "original-<revision>.ply"
+  // False with `error` when it cannot be written; nothing is left under the final name then.
+  bool writeOriginal(std::uint64_t revision, const std::function<void(const QString& path)>& write, QString& error) const;
   // False (with `error` naming the file) when the description cannot be written; the previous copy stays.
-  // `besideNames`: the bones beside written to nextBesidePath(0…), in order.
-  bool commit(const QString& name, int cuts, double removedMm3, const QStringList& besideNames, QString& error) const;
+  // `besideNames`: the bones beside written to nextBesidePath(0…), in order. `originalRevision`: the
+  // original written by writeOriginal, 0 for none; the other originals are removed once the description
+  // names it.
+  bool commit(const QString& name, int cuts, double removedMm3, const QStringList& besideNames,
+              std::uint64_t originalRevision, QString& error) const;
   void remove() const;  // the description first, so a half-removed copy is never offered
 
  private:

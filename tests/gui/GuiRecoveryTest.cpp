@@ -71,18 +71,22 @@ TEST(GuiRecovery, UnsavedCutsAreCopiedASaveOrACloseRemovesTheCopy) {
 TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;
-  std::size_t faces = 0;
-  double volume = 0, removed = 0;
+  std::size_t faces = 0, openedFaces = 0;
+  double volume = 0, removed = 0, openedVolume = 0;
   std::vector<CutLogEntry> logged;
   std::vector<Pose> plan;
   {
     GuiFixture crashed;
     crashed.window->enableRecovery(dir.filePath("recovery"), 0);
+    openedFaces = crashed.session().bone()->current().liveTriangleCount();
+    openedVolume = crashed.session().bone()->current().volume();
     cutOnce(crashed.session());
     cutOnce(crashed.session(), 1.0);
     crashed.window->action("undo")->trigger();  // the log keeps both rows; the bone is back after the first
     ASSERT_TRUE(crashed.session().waitIdle(60000));
-    ASSERT_TRUE(settledCopy(*crashed.window));
+    const std::optional<RecoveredBone> copy = settledCopy(*crashed.window);
+    ASSERT_TRUE(copy);
+    EXPECT_FALSE(copy->originalPath.isEmpty());  // the bone as opened, under the cuts
     faces = crashed.session().bone()->current().liveTriangleCount();
     volume = crashed.session().bone()->current().volume();
     removed = crashed.session().initialVolumeMm3() - volume;
@@ -122,6 +126,20 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   EXPECT_EQ(table->rowCount(), 2);
   const QString status = w.statusBar()->currentMessage();
   EXPECT_TRUE(status.contains("cut log (2 steps)")) << status.toStdString();
+  // Under the restored bone lies the bone as opened: one undo takes back every cut made before the crash
+  // (the undo history itself is not in the copy), and redo brings the restored bone back.
+  EXPECT_EQ(f.session().bone()->history().size(), 2u);
+  ASSERT_EQ(f.session().undoStack()->count(), 1);
+  w.action("undo")->trigger();
+  ASSERT_TRUE(f.session().waitIdle(60000));
+  EXPECT_EQ(f.session().bone()->current().liveTriangleCount(), openedFaces);
+  EXPECT_NEAR(f.session().bone()->current().volume(), openedVolume, 1e-9 * openedVolume);
+  EXPECT_NEAR(f.session().initialVolumeMm3(), openedVolume, 1e-9 * openedVolume);
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  w.action("redo")->trigger();
+  ASSERT_TRUE(f.session().waitIdle(60000));
+  EXPECT_EQ(f.session().bone()->current().liveTriangleCount(), faces);
+  EXPECT_NEAR(f.session().initialVolumeMm3() - f.session().bone()->current().volume(), removed, 1e-6 * removed);
   // The next cut continues the log: its step number after the last, its cumulative volume from what had
   // been removed at the crash (the undone cut not counted).
   f.session().plan()->setPoses(plan);
@@ -147,6 +165,7 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   EXPECT_EQ(f.session().initialVolumeMm3(), restoredStart);
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
   EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());
+  EXPECT_TRUE(QDir(dir.filePath("recovery")).entryList({"original-*", "bone.*", "beside*"}, QDir::Files).isEmpty());
 }
 
 // Save writes the cut bone only: a bone moved beside with cuts no save wrote goes into the copy even once the cut
@@ -281,6 +300,44 @@ TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
   ASSERT_FALSE(w.recoveredLogPath().isEmpty());
   EXPECT_NE(message.find(w.recoveredLogPath().toStdString()), std::string::npos) << message;
   EXPECT_EQ(lines(w.recoveredLogPath()), 3);  // the header, the cut and the torn row, as they were
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
+}
+
+// The bone as opened (under the recovered one, for undo) damaged after the crash: the restore goes on with the
+// recovered bone as its history's only state, and the message names the file and where it is kept.
+TEST(GuiRecovery, ABoneAsOpenedThatCannotBeReadBackIsReportedAndKept) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  double volume = 0;
+  {
+    GuiFixture crashed;
+    crashed.window->enableRecovery(dir.filePath("recovery"), 0);
+    cutOnce(crashed.session());
+    ASSERT_TRUE(settledCopy(*crashed.window));
+    volume = crashed.session().bone()->current().volume();
+  }
+  const std::optional<RecoveredBone> copy = RecoveryFiles(dir.filePath("recovery")).found();
+  ASSERT_TRUE(copy && !copy->originalPath.isEmpty());
+  {
+    QFile original(copy->originalPath);
+    ASSERT_TRUE(original.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    original.write("ply\nformat binary_little_endian 1.0\nelement vertex 3\n");  // torn in its header
+  }
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !w.lastError().isEmpty(); }, 30000));
+  EXPECT_TRUE(w.windowTitle().contains("(recovered)"));
+  EXPECT_NEAR(f.session().bone()->current().volume(), volume, 1e-9 * volume);  // the bone is back
+  EXPECT_EQ(f.session().bone()->history().size(), 1u);
+  EXPECT_EQ(f.session().undoStack()->count(), 0);
+  EXPECT_EQ(f.session().log()->size(), 1u);  // and its log
+  const std::string message = w.lastError().toStdString();
+  EXPECT_NE(message.find(QFileInfo(copy->originalPath).fileName().toStdString()), std::string::npos) << message;
+  const QStringList kept = QDir(dir.filePath("recovery/restored")).entryList({"original_*"}, QDir::Files);
+  ASSERT_EQ(kept.size(), 1);
+  EXPECT_NE(message.find(kept.front().toStdString()), std::string::npos) << message;
   for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
 }
 
