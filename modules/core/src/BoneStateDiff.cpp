@@ -163,7 +163,14 @@ SlotChanges BoneState::changedTriangleSlots(const BoneState& prev, const BoneSta
     for (std::size_t s = first; s < last; ++s) {
       const auto slot = std::uint32_t(s);
       const bool wasLive = prev.isTriangleLive(slot), isLive = next.isTriangleLive(slot);
-      if (wasLive && isLive && prev.triangles_[s] == next.triangles_[s]) continue;
+      // The same corner slots are the same triangle unless a corner's slot was freed and taken again by a new
+      // vertex in between (one applyDelta can do both, and put the triangle back in the slot it left).
+      if (wasLive && isLive && prev.triangles_[s] == next.triangles_[s]) {
+        const Triangle& t = next.triangles_[s];
+        if (prev.vertices_[t[0]] == next.vertices_[t[0]] && prev.vertices_[t[1]] == next.vertices_[t[1]] &&
+            prev.vertices_[t[2]] == next.vertices_[t[2]])
+          continue;
+      }
       if (wasLive) out.removed.push_back(slot);
       if (isLive) out.added.push_back(slot);
     }

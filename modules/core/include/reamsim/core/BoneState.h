@@ -58,7 +58,9 @@ class BoneState {
   // commitByDiff) share their unchanged chunks, which are skipped by identity: O(slots / kChunkSize +
   // changed chunks × kChunkSize), microseconds for a cut of a 400k bone. Unrelated states are compared
   // slot by slot. Sound because vertices never move: a vertex slot takes new coordinates only after it
-  // was freed, when no live triangle uses it, so an unchanged triangle keeps its corners.
+  // was freed, when no live triangle uses it, so a triangle in a shared chunk keeps its corners. One edit can
+  // free a vertex slot, give it to a new vertex and put a triangle with the same corner slots back in the slot
+  // it left: in the chunks that differ, a triangle counts as unchanged only if its corners' coordinates do too.
   static SlotChanges changedTriangleSlots(const BoneState& prev, const BoneState& next);
 
   std::size_t liveTriangleCount() const { return liveTriangles_; }
