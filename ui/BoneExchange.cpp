@@ -20,6 +20,14 @@ void ReamSession::exchangeBone(BoneContent& other) {
   Q_EMIT boneReplaced();
 }
 
+void ReamSession::adoptHistory(BoneHistory history) {
+  Document::BatchScope batch(document_);  // the views never see the bone emptied between the two swaps
+  BoneContent content;
+  bone_->swapContent(content);
+  content.history = std::move(history);
+  exchangeBone(content);
+}
+
 Pose ReamSession::settledReamerPose() const {
   const std::optional<Pose>& computed = running_ ? poseBeforeRunning_ : lastComputedPose_;
   return computed ? *computed : reamer_->pose();

@@ -21,6 +21,7 @@
 #include "OtherBonesLayer.h"
 #include "PluginHost.h"
 #include "RecoveryFiles.h"
+#include "reamsim/core/HistoryJournal.h"
 
 namespace reamsim::ui {
 

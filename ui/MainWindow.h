@@ -25,6 +25,10 @@ class QProgressBar;
 class QPushButton;
 class QDockWidget;
 
+namespace reamsim {
+class HistoryJournalWriter;
+}
+
 namespace reamsim::ui {
 
 class OtherBonesLayer;
@@ -141,7 +145,10 @@ class MainWindow : public QMainWindow {
   // Bones a CT import replaced whose cuts no save wrote: held by the undo history (ReplaceBoneCommand::held).
   std::vector<const BoneContent*> unsavedReplacedBones() const;
   void restoreBonesBeside(const RecoveredBone& copy);  // its bones beside
-  std::optional<TriangleMesh> readRecoveredOriginal(const QString& path);  // the bone as opened, or a message
+  // The copy's undo history (all of it, cursor at the end), or a message and nothing; `faces` and `volume`:
+  // the copied bone, which the history's state at the copy must be.
+  std::optional<BoneHistory> readRecoveredHistory(const RecoveredBone& copy, std::size_t faces, double volume);
+  void removeRecoveryCopy();
   QString keepInRestored(const QString& file, const QString& prefix) const;
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
   // The bone's mesh only, on a worker with a progress dialog (Cancel); errors in a dialog; does not mark it
@@ -216,6 +223,7 @@ class MainWindow : public QMainWindow {
   Subscription boneFrameSubscription_;
   // Crash recovery (MainWindowRecovery.cpp)
   std::unique_ptr<RecoveryFiles> recovery_;
+  std::unique_ptr<HistoryJournalWriter> journal_;  // the cut bone's undo history in the copy (the writer's alone)
   QTimer recoveryTimer_;
   QFutureWatcher<QString> recoveryWrite_;  // the error, empty when the copy was written
   bool recoveryOfferPending_ = false;      // a found copy not yet answered: nothing is written or removed

@@ -2,6 +2,7 @@
 // a moment after each change, removed by a save or a normal close, offered at the next start after a crash
 // (RecoveryFiles.h; docs/GUI.md "Unsaved changes").
 #include <QDateTime>
+#include <cmath>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -18,6 +19,7 @@
 #include "MainWindow.h"
 #include "PluginHost.h"
 #include "RecoveryFiles.h"
+#include "reamsim/core/HistoryJournal.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/tools/ReamerPresets.h"
@@ -78,31 +80,44 @@ void MainWindow::writeRecoveryCopy() {
     besideNames << tr("%1 (replaced by a CT import)").arg(QString::fromStdString(replaced->name));
   }
   if (!hasUnsavedChanges() && besideCopies.empty()) {
-    recovery_->remove();
+    removeRecoveryCopy();
     return;
   }
   const MeshImportInterface* writer = plugins_.meshImport();
   if (!writer) return;  // nothing here writes meshes
   BoneState state = session_->bone()->current();
-  // The bone as opened, when cuts are on top of it: the restore puts it under the recovered bone for undo.
+  // The undo history goes into its journal (HistoryJournal.h): each state once, appended, so a copy costs the
+  // cuts since the last one, not the whole history.
   const BoneHistory& history = session_->bone()->history();
-  const std::uint64_t originalRevision = history.cursor() > 0 ? history.entries().front().revision : 0;
-  BoneState original = originalRevision ? history.entries().front().state : BoneState{};
+  std::vector<BoneHistory::Entry> entries = history.entries();  // states share storage: cheap to copy
+  HistoryInCopy inCopy;
+  for (const BoneHistory::Entry& e : entries) inCopy.revisions.push_back(e.revision);
+  inCopy.cursor = history.cursor();
   std::string csv = cutLogCsv(session_->log()->entries());
   const PatientFrame frame = session_->bone()->patientFrame();
   const QString name = boneName_;
   const int cuts = static_cast<int>(session_->log()->entries().size());
   const double removed = session_->initialVolumeMm3() - state.volume();  // undone cuts not counted
   const RecoveryFiles* files = recovery_.get();
+  std::unique_ptr<HistoryJournalWriter>* journal = &journal_;  // the worker's alone while it runs
   recoveryWrite_.setFuture(QtConcurrent::run(
       [writer, files, frame, name, cuts, removed, state = std::move(state), csv = std::move(csv),
-       besideCopies = std::move(besideCopies), besideNames, originalRevision, original = std::move(original)]() -> QString {
+       besideCopies = std::move(besideCopies), besideNames, journal, entries = std::move(entries),
+       inCopy = std::move(inCopy)]() -> QString {
+        // Without its history the copy still holds the bone: a journal that cannot be written is reported, not
+        // a reason to keep no copy.
+        std::optional<HistoryInCopy> history = inCopy;
+        QString historyError;
+        try {
+          const std::string path = files->historyPath(inCopy.revisions.front()).toStdString();
+          if (!*journal || (*journal)->path() != path) *journal = std::make_unique<HistoryJournalWriter>(path);
+          (*journal)->append(entries);
+        } catch (const std::exception& e) {
+          journal->reset();  // commit removes its file: the next copy starts it again
+          history.reset();
+          historyError = QString::fromStdString(e.what());
+        }
         QString error;
-        if (originalRevision &&
-            !files->writeOriginal(originalRevision, [&](const QString& path) {
-              writer->exportMesh(original.toMesh(), path.toStdString(), frame);
-            }, error))
-          return error;
         try {
           writer->exportMesh(state.toMesh(), files->nextBonePath().toStdString(), frame);
           writeTextFile(files->nextLogPath().toStdString(), csv);
@@ -112,7 +127,9 @@ void MainWindow::writeRecoveryCopy() {
         } catch (const std::exception& e) {
           return QString::fromStdString(e.what());
         }
-        files->commit(name, cuts, removed, besideNames, originalRevision, error);
+        files->commit(name, cuts, removed, besideNames, history, error);
+        if (error.isEmpty() && !historyError.isEmpty())
+          error = QObject::tr("the undo history is not in the copy (%1)").arg(historyError);
         return error;
       }));
 }
@@ -121,7 +138,13 @@ void MainWindow::endRecovery() {
   if (!recovery_) return;
   recoveryTimer_.stop();
   if (recoveryWrite_.isRunning()) recoveryWrite_.waitForFinished();
-  if (!recoveryOfferPending_) recovery_->remove();
+  if (!recoveryOfferPending_) removeRecoveryCopy();
+}
+
+// Only while no copy is being written (the worker uses the journal's writer).
+void MainWindow::removeRecoveryCopy() {
+  recovery_->remove();
+  journal_.reset();
 }
 
 void MainWindow::offerRecovery() {
@@ -149,7 +172,7 @@ void MainWindow::offerRecovery() {
   box.exec();
   recoveryOfferPending_ = false;
   if (box.clickedButton() != restore) {
-    recovery_->remove();
+    removeRecoveryCopy();
     if (hasUnsavedChanges()) recoveryTimer_.start();
     return;
   }
@@ -168,22 +191,28 @@ void MainWindow::offerRecovery() {
   }
   const Bounds b = BoneState::fromMesh(bone.mesh).bounds();
   session_->plan()->setPoses({});
-  // The bone as opened goes under the recovered one, so that one undo takes back every cut made before the
-  // crash (the undo history itself is not in the copy). One that cannot be read is reported and kept; the
-  // recovered bone is then the history's only state.
-  std::optional<TriangleMesh> original;
-  if (!found->originalPath.isEmpty()) original = readRecoveredOriginal(found->originalPath);
   const double recoveredVolume = BoneState::fromMesh(bone.mesh).volume();
+  const std::size_t recoveredFaces = bone.mesh.triangles.size();
+  installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
+  // The undo history up to the crash, from its journal, with the History dock's steps: undo and redo as before
+  // the crash. One that cannot be read back (or does not end at the copied bone) is reported and kept; the
+  // recovered bone is then the history's only state.
   double originalVolume = recoveredVolume;
-  if (original) {
-    TriangleMesh recovered = std::move(bone.mesh);
-    bone.mesh = std::move(*original);
-    installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
-    originalVolume = session_->bone()->current().volume();
-    session_->bone()->commit(BoneState::fromMesh(recovered), "cuts before the crash");
-    session_->undoStack()->push(new CutCommand(*session_->bone(), tr("The cuts before the crash")));
-  } else {
-    installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
+  if (std::optional<BoneHistory> history = readRecoveredHistory(*found, recoveredFaces, recoveredVolume)) {
+    originalVolume = history->entries().front().state.volume();
+    std::vector<std::string> labels;
+    for (const BoneHistory::Entry& e : history->entries()) labels.push_back(e.label);
+    session_->adoptHistory(std::move(*history));
+    const BoneHistory& adopted = session_->bone()->history();
+    for (std::size_t k = 1; k < adopted.size(); ++k) {
+      const BoneState& before = adopted.entries()[k - 1].state;
+      const BoneState& after = adopted.entries()[k].state;
+      session_->undoStack()->push(new CutCommand(*session_->bone(), tr("%1 (before the crash): %L2 mm³, %L3 faces")
+                                                                        .arg(QString::fromStdString(labels[k]))
+                                                                        .arg(before.volume() - after.volume(), 0, 'f', 2)
+                                                                        .arg(after.liveTriangleCount())));
+    }
+    session_->undoStack()->setIndex(int(found->historyCursor));  // undoes what had been undone before the crash
   }
   recoveredRevisions_.insert(session_->bone()->history().entries().front().revision);  // also once moved beside
   session_->moveReamer(startPoseFor(b));
@@ -213,21 +242,30 @@ void MainWindow::offerRecovery() {
     }
   }
   const QString steps = logRows == 1 ? tr("1 step") : tr("%1 steps").arg(logRows);
-  statusBar()->showMessage(original ? tr("Restored %1 and its cut log (%2); Undo goes back to the bone as opened").arg(name, steps)
-                                    : tr("Restored %1 and its cut log (%2)").arg(name, steps),
+  const int undoSteps = session_->undoStack()->count();
+  statusBar()->showMessage(undoSteps > 0 ? tr("Restored %1, its cut log (%2) and its undo history (%3 steps)").arg(name, steps).arg(undoSteps)
+                                         : tr("Restored %1 and its cut log (%2)").arg(name, steps),
                            20000);
 }
 
-std::optional<TriangleMesh> MainWindow::readRecoveredOriginal(const QString& path) {
+std::optional<BoneHistory> MainWindow::readRecoveredHistory(const RecoveredBone& found, std::size_t faces, double volume) {
+  if (found.historyPath.isEmpty()) return std::nullopt;
   try {
-    ImportedBone read = plugins_.meshImport()->importBone(path.toStdString(), false);
-    if (read.mesh.triangles.empty()) throw std::runtime_error(path.toStdString() + ": the mesh has no triangles");
-    return std::move(read.mesh);
+    const std::size_t last = found.historyRevisions.size() - 1;
+    BoneHistory history = readHistoryJournal(found.historyPath.toStdString(), found.historyRevisions, last);
+    // The state the copy was made at must be the copied bone: a journal from another copy is not this one's.
+    const BoneState& atCopy = history.entries()[found.historyCursor].state;
+    if (atCopy.liveTriangleCount() != faces || std::abs(atCopy.volume() - volume) > 1e-9 * (1.0 + std::abs(volume)))
+      throw std::runtime_error(QFileInfo(found.historyPath).fileName().toStdString() +
+                               ": its state at the copy is not the copied bone (" + std::to_string(atCopy.liveTriangleCount()) +
+                               " faces, " + std::to_string(atCopy.volume()) + " mm³, against " + std::to_string(faces) +
+                               " faces, " + std::to_string(volume) + " mm³)");
+    return history;
   } catch (const std::exception& e) {
-    const QString kept = keepInRestored(path, "original_");
-    showError(tr("The bone as opened was not restored"),
-              tr("The recovered bone is restored, but not the bone it was cut from (Undo cannot go back to it):\n%1\n\n"
-                 "It is kept as %2.").arg(QString::fromStdString(e.what()), kept));
+    const QString kept = keepInRestored(found.historyPath, "history_");
+    showError(tr("The undo history was not restored"),
+              tr("The recovered bone is restored, but not its undo history (Undo cannot go back before it):\n%1\n\n"
+                 "The history is kept as %2.").arg(QString::fromStdString(e.what()), kept));
     return std::nullopt;
   }
 }

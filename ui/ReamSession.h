@@ -75,6 +75,10 @@ class ReamSession : public QObject {
   // undoable replace of the CT import (BoneCommands.h); calling it twice restores the bone exactly.
   // Unlike loadBone, the undo stack and the log are kept. Defined in BoneExchange.cpp.
   void exchangeBone(BoneContent& other);
+  // The bone's history becomes `history` (a crash copy's, read back), the rest of the bone staying; as
+  // exchangeBone for the engine and the log's reference volume (the history's first state). Defined in
+  // BoneExchange.cpp.
+  void adoptHistory(BoneHistory history);
   // Where the reamer is as far as the bone knows: the pose of the last step computed on it (not a move still
   // waiting or running), else where it is shown. With returnReamerTo, what a bone exchange keeps for its undo.
   Pose settledReamerPose() const;

@@ -49,28 +49,8 @@ QString RecoveryFiles::besidePath(const QString& slot, int index) const {
 }
 QString RecoveryFiles::nextBesidePath(int index) const { return besidePath(nextSlot(), index); }
 
-QString RecoveryFiles::originalPath(std::uint64_t revision) const {
-  return path("original-" + QString::number(revision) + ".ply");
-}
-
-bool RecoveryFiles::writeOriginal(std::uint64_t revision, const std::function<void(const QString&)>& write,
-                                  QString& error) const {
-  const QString final = originalPath(revision);
-  if (QFile::exists(final)) return true;
-  const QString part = final + ".part.ply";  // the writer picks the format from the suffix
-  try {
-    write(part);
-  } catch (const std::exception& e) {
-    QFile::remove(part);
-    error = QString::fromStdString(e.what());
-    return false;
-  }
-  if (!QFile::rename(part, final)) {
-    QFile::remove(part);
-    error = final + ": cannot write it (renaming " + part + " failed)";
-    return false;
-  }
-  return true;
+QString RecoveryFiles::historyPath(std::uint64_t firstRevision) const {
+  return path("history-" + QString::number(firstRevision) + ".rsj");
 }
 
 std::optional<RecoveredBone> RecoveryFiles::found() const {
@@ -91,20 +71,44 @@ std::optional<RecoveredBone> RecoveryFiles::found() const {
     const QString file = besidePath(slot, i);
     if (QFile::exists(file)) r.beside.push_back({beside[i].toString(), file});
   }
-  const QString original = d.value("original").toString();
-  if (!original.isEmpty() && QFile::exists(path(original))) r.originalPath = path(original);
+  // Revisions as strings: JSON numbers are doubles.
+  const QJsonObject history = d.value("history").toObject();
+  const QJsonArray revisions = history.value("revisions").toArray();
+  for (const QJsonValue& v : revisions) {
+    bool ok = false;
+    const std::uint64_t revision = v.toString().toULongLong(&ok);
+    if (!ok) {
+      r.historyRevisions.clear();
+      break;
+    }
+    r.historyRevisions.push_back(revision);
+  }
+  if (!r.historyRevisions.empty()) {
+    r.historyPath = historyPath(r.historyRevisions.front());
+    r.historyCursor = std::size_t(std::max(0, history.value("cursor").toInt()));
+    if (!QFile::exists(r.historyPath) || r.historyCursor >= r.historyRevisions.size()) {
+      r.historyPath.clear();
+      r.historyRevisions.clear();
+      r.historyCursor = 0;
+    }
+  }
   return r;
 }
 
 bool RecoveryFiles::commit(const QString& name, int cuts, double removedMm3, const QStringList& besideNames,
-                           std::uint64_t originalRevision, QString& error) const {
-  const QString original = originalRevision ? QFileInfo(originalPath(originalRevision)).fileName() : QString();
+                           const std::optional<HistoryInCopy>& history, QString& error) const {
+  const QString journal = history && !history->revisions.empty()
+                              ? QFileInfo(historyPath(history->revisions.front())).fileName() : QString();
   QJsonObject d;
   d.insert("slot", nextSlot());
   d.insert("name", name);
   d.insert("cuts", cuts);
   if (!besideNames.isEmpty()) d.insert("beside", QJsonArray::fromStringList(besideNames));
-  if (!original.isEmpty()) d.insert("original", original);
+  if (!journal.isEmpty()) {
+    QJsonArray revisions;
+    for (std::uint64_t r : history->revisions) revisions.append(QString::number(r));
+    d.insert("history", QJsonObject{{"revisions", revisions}, {"cursor", int(history->cursor)}});
+  }
   if (std::isfinite(removedMm3)) d.insert("removed_mm3", removedMm3);
   d.insert("written", QDateTime::currentDateTimeUtc().toString(Qt::ISODate));
   QSaveFile f(path(kDescription));
@@ -112,15 +116,15 @@ bool RecoveryFiles::commit(const QString& name, int cuts, double removedMm3, con
     error = path(kDescription) + ": cannot write it (" + f.errorString() + ")";
     return false;
   }
-  for (const QString& f : QDir(dir_).entryList({"original-*.ply"}, QDir::Files))  // an earlier bone's
-    if (f != original) QFile::remove(path(f));
+  for (const QString& f : QDir(dir_).entryList({"history-*.rsj"}, QDir::Files))  // an earlier bone's
+    if (f != journal) QFile::remove(path(f));
   return true;
 }
 
 void RecoveryFiles::remove() const {
   QFile::remove(path(kDescription));
   for (const char* f : {"bone.a.ply", "bone.b.ply", "cut_log.a.csv", "cut_log.b.csv"}) QFile::remove(path(f));
-  for (const QString& f : QDir(dir_).entryList({"beside*.ply", "original-*.ply"}, QDir::Files)) QFile::remove(path(f));
+  for (const QString& f : QDir(dir_).entryList({"beside*.ply", "history-*.rsj"}, QDir::Files)) QFile::remove(path(f));
 }
 
 }  // namespace reamsim::ui

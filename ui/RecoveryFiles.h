@@ -10,7 +10,6 @@
 #include <QString>
 #include <QStringList>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -32,9 +31,17 @@ struct RecoveredBone {
     QString name, path;
   };
   std::vector<Beside> beside;
-  // The bone as it was opened (its history's first state), when cuts were on top of it (session 53): the
-  // restore puts it under the recovered bone, so that undo goes back to it. Empty without one.
-  QString originalPath;
+  // The bone's undo history (session 53): the journal (HistoryJournal.h) and, in it, the revisions of the
+  // history's states in order and the position among them of the copied bone. Empty without one.
+  QString historyPath;
+  std::vector<std::uint64_t> historyRevisions;
+  std::size_t historyCursor = 0;
+};
+
+// The history a copy names: its journal is RecoveryFiles::historyPath(revisions.front()).
+struct HistoryInCopy {
+  std::vector<std::uint64_t> revisions;
+  std::size_t cursor = 0;
 };
 
 class RecoveryFiles {
@@ -52,18 +59,14 @@ class RecoveryFiles {
   QString nextBonePath() const;  // "bone.a.ply" or "bone.b.ply": the writer picks the format from the suffix
   QString nextLogPath() const;
   QString nextBesidePath(int index) const;  // "beside<index>.a.ply" or ".b.ply": a bone beside
-  // The bone as it was opened, under a name of its own (its revision): written once however many copies
-  // follow, since it does not change while the bone is cut. Written whole or not at all (`writeOriginal`
-  // gets a temporary path, then it is renamed), so one that exists is complete.
-  QString originalPath(std::uint64_t revision) const;  // "original-<revision>.ply"
-  // False with `error` when it cannot be written; nothing is left under the final name then.
-  bool writeOriginal(std::uint64_t revision, const std::function<void(const QString& path)>& write, QString& error) const;
+  // The journal of the undo history whose first state has `firstRevision`: one file per bone, appended to by
+  // every copy (HistoryJournalWriter), never rewritten, so the copies' two slots do not apply to it.
+  QString historyPath(std::uint64_t firstRevision) const;  // "history-<revision>.rsj"
   // False (with `error` naming the file) when the description cannot be written; the previous copy stays.
-  // `besideNames`: the bones beside written to nextBesidePath(0…), in order. `originalRevision`: the
-  // original written by writeOriginal, 0 for none; the other originals are removed once the description
-  // names it.
+  // `besideNames`: the bones beside written to nextBesidePath(0…), in order. `history`: what of the journal
+  // belongs to this copy (none: the bone alone); once the description names it, other bones' journals go.
   bool commit(const QString& name, int cuts, double removedMm3, const QStringList& besideNames,
-              std::uint64_t originalRevision, QString& error) const;
+              const std::optional<HistoryInCopy>& history, QString& error) const;
   void remove() const;  // the description first, so a half-removed copy is never offered
 
  private:

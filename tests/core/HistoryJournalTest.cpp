@@ -51,7 +51,9 @@ std::uint32_t someLiveVertex(const BoneState& s, std::mt19937& rng) {
 
 // A history of dents and whole-mesh commits (commitByDiff), with the redo branch of an undo left in it.
 BoneHistory sampleHistory(std::mt19937& rng, int steps) {
-  BoneHistory h(BoneState::fromMesh(grid(60)), "opened");
+  TriangleMesh opened = grid(60);
+  for (int i = 0; i < 40; ++i) opened.vertices.push_back({-1.0 - i, 0, 0});  // unused: free slots among the live ones
+  BoneHistory h(BoneState::fromMesh(opened), "opened");
   for (int i = 0; i < steps; ++i) {
     BoneState next = h.current();
     if (i % 4 == 3) {

@@ -71,8 +71,9 @@ TEST(GuiRecovery, UnsavedCutsAreCopiedASaveOrACloseRemovesTheCopy) {
 TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;
-  std::size_t faces = 0, openedFaces = 0;
-  double volume = 0, removed = 0, openedVolume = 0;
+  std::size_t faces = 0, openedFaces = 0, secondCutFaces = 0;
+  double volume = 0, removed = 0, openedVolume = 0, secondCutVolume = 0;
+  QString undoText;
   std::vector<CutLogEntry> logged;
   std::vector<Pose> plan;
   {
@@ -82,11 +83,15 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
     openedVolume = crashed.session().bone()->current().volume();
     cutOnce(crashed.session());
     cutOnce(crashed.session(), 1.0);
+    secondCutFaces = crashed.session().bone()->current().liveTriangleCount();
+    secondCutVolume = crashed.session().bone()->current().volume();
     crashed.window->action("undo")->trigger();  // the log keeps both rows; the bone is back after the first
     ASSERT_TRUE(crashed.session().waitIdle(60000));
     const std::optional<RecoveredBone> copy = settledCopy(*crashed.window);
     ASSERT_TRUE(copy);
-    EXPECT_FALSE(copy->originalPath.isEmpty());  // the bone as opened, under the cuts
+    EXPECT_FALSE(copy->historyPath.isEmpty());  // the undo history: three states, at the second
+    EXPECT_EQ(copy->historyRevisions.size(), 3u);
+    EXPECT_EQ(copy->historyCursor, 1u);
     faces = crashed.session().bone()->current().liveTriangleCount();
     volume = crashed.session().bone()->current().volume();
     removed = crashed.session().initialVolumeMm3() - volume;
@@ -126,17 +131,25 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   EXPECT_EQ(table->rowCount(), 2);
   const QString status = w.statusBar()->currentMessage();
   EXPECT_TRUE(status.contains("cut log (2 steps)")) << status.toStdString();
-  // Under the restored bone lies the bone as opened: one undo takes back every cut made before the crash
-  // (the undo history itself is not in the copy), and redo brings the restored bone back.
-  EXPECT_EQ(f.session().bone()->history().size(), 2u);
-  ASSERT_EQ(f.session().undoStack()->count(), 1);
+  EXPECT_TRUE(status.contains("undo history (2 steps)")) << status.toStdString() << w.lastError().toStdString();
+  // The undo history is back as it was at the crash: the bone as opened, the first cut (here), the undone second.
+  EXPECT_EQ(f.session().bone()->history().size(), 3u);
+  EXPECT_EQ(f.session().bone()->history().cursor(), 1u);
+  ASSERT_EQ(f.session().undoStack()->count(), 2);
+  EXPECT_EQ(f.session().undoStack()->index(), 1);
+  EXPECT_TRUE(f.session().undoStack()->text(0).contains("before the crash")) << f.session().undoStack()->text(0).toStdString();
+  w.action("redo")->trigger();  // the cut undone before the crash
+  ASSERT_TRUE(f.session().waitIdle(60000));
+  EXPECT_EQ(f.session().bone()->current().liveTriangleCount(), secondCutFaces);
+  EXPECT_NEAR(f.session().bone()->current().volume(), secondCutVolume, 1e-9 * secondCutVolume);
   w.action("undo")->trigger();
+  w.action("undo")->trigger();  // back to the bone as opened
   ASSERT_TRUE(f.session().waitIdle(60000));
   EXPECT_EQ(f.session().bone()->current().liveTriangleCount(), openedFaces);
   EXPECT_NEAR(f.session().bone()->current().volume(), openedVolume, 1e-9 * openedVolume);
   EXPECT_NEAR(f.session().initialVolumeMm3(), openedVolume, 1e-9 * openedVolume);
   EXPECT_TRUE(w.hasUnsavedChanges());
-  w.action("redo")->trigger();
+  w.action("redo")->trigger();  // the restored bone again
   ASSERT_TRUE(f.session().waitIdle(60000));
   EXPECT_EQ(f.session().bone()->current().liveTriangleCount(), faces);
   EXPECT_NEAR(f.session().initialVolumeMm3() - f.session().bone()->current().volume(), removed, 1e-6 * removed);
@@ -165,7 +178,7 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   EXPECT_EQ(f.session().initialVolumeMm3(), restoredStart);
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
   EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());
-  EXPECT_TRUE(QDir(dir.filePath("recovery")).entryList({"original-*", "bone.*", "beside*"}, QDir::Files).isEmpty());
+  EXPECT_TRUE(QDir(dir.filePath("recovery")).entryList({"history-*", "bone.*", "beside*"}, QDir::Files).isEmpty());
 }
 
 // Save writes the cut bone only: a bone moved beside with cuts no save wrote goes into the copy even once the cut
@@ -303,9 +316,9 @@ TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
   for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
 }
 
-// The bone as opened (under the recovered one, for undo) damaged after the crash: the restore goes on with the
-// recovered bone as its history's only state, and the message names the file and where it is kept.
-TEST(GuiRecovery, ABoneAsOpenedThatCannotBeReadBackIsReportedAndKept) {
+// The undo history's journal damaged after the crash: the restore goes on with the recovered bone as its
+// history's only state, and the message names the file, the problem and where the journal is kept.
+TEST(GuiRecovery, AnUndoHistoryThatCannotBeReadBackIsReportedAndKept) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;
   double volume = 0;
@@ -317,11 +330,10 @@ TEST(GuiRecovery, ABoneAsOpenedThatCannotBeReadBackIsReportedAndKept) {
     volume = crashed.session().bone()->current().volume();
   }
   const std::optional<RecoveredBone> copy = RecoveryFiles(dir.filePath("recovery")).found();
-  ASSERT_TRUE(copy && !copy->originalPath.isEmpty());
+  ASSERT_TRUE(copy && !copy->historyPath.isEmpty());
   {
-    QFile original(copy->originalPath);
-    ASSERT_TRUE(original.open(QIODevice::WriteOnly | QIODevice::Truncate));
-    original.write("ply\nformat binary_little_endian 1.0\nelement vertex 3\n");  // torn in its header
+    QFile journal(copy->historyPath);
+    ASSERT_TRUE(journal.resize(journal.size() - 40));  // the cut's record torn
   }
   GuiFixture f;
   MainWindow& w = *f.window;
@@ -334,8 +346,9 @@ TEST(GuiRecovery, ABoneAsOpenedThatCannotBeReadBackIsReportedAndKept) {
   EXPECT_EQ(f.session().undoStack()->count(), 0);
   EXPECT_EQ(f.session().log()->size(), 1u);  // and its log
   const std::string message = w.lastError().toStdString();
-  EXPECT_NE(message.find(QFileInfo(copy->originalPath).fileName().toStdString()), std::string::npos) << message;
-  const QStringList kept = QDir(dir.filePath("recovery/restored")).entryList({"original_*"}, QDir::Files);
+  EXPECT_NE(message.find(QFileInfo(copy->historyPath).fileName().toStdString()), std::string::npos) << message;
+  EXPECT_NE(message.find("is not in the journal"), std::string::npos) << message;
+  const QStringList kept = QDir(dir.filePath("recovery/restored")).entryList({"history_*"}, QDir::Files);
   ASSERT_EQ(kept.size(), 1);
   EXPECT_NE(message.find(kept.front().toStdString()), std::string::npos) << message;
   for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();

@@ -194,31 +194,30 @@ class Replay {
   explicit Replay(const std::string& file) : file_(file) {}
   BoneState apply(const Record& r) {
     const std::string where = "the record of revision " + std::to_string(r.revision);
-    const bool first = addedTriangles_ == 0 && addedVertices_ == 0;
-    addedTriangles_ += r.triangles.size();
-    addedVertices_ += r.vertices.size();
+    const bool first = !started_;
+    started_ = true;
     MeshDelta delta;
     for (std::uint32_t s : r.removed) {
-      if (s >= triangles_.size() || triangles_[s] == kBad)
+      const auto it = triangles_.find(s);
+      if (it == triangles_.end())
         throw InputError(file_, where + " removes triangle slot " + std::to_string(s) + ", which is not there");
-      delta.removedTriangles.push_back(triangles_[s]);
+      delta.removedTriangles.push_back(it->second);
     }
     std::unordered_map<std::uint32_t, std::uint32_t> newIndex;
     for (const Record::NewVertex& v : r.vertices) {
       if (!isFinite(v.p)) throw InputError(file_, where + " has a non-finite vertex");
-      if (v.slot >= addedVertices_ || !newIndex.emplace(v.slot, std::uint32_t(delta.addedVertices.size())).second)
-        throw InputError(file_, where + " has vertex slot " + std::to_string(v.slot) + " out of range or twice");
+      if (!newIndex.emplace(v.slot, std::uint32_t(delta.addedVertices.size())).second)
+        throw InputError(file_, where + " has vertex slot " + std::to_string(v.slot) + " twice");
       delta.addedVertices.push_back(v.p);
     }
     for (const Record::Added& t : r.triangles) {
-      if (t.slot >= addedTriangles_) throw InputError(file_, where + " adds triangle slot " + std::to_string(t.slot) + ", out of range");
       Triangle mapped;
       for (int i = 0; i < 3; ++i) {
         const std::uint32_t c = t.corners[i];
         if (auto it = newIndex.find(c); it != newIndex.end()) {
           mapped[i] = MeshDelta::newVertex(it->second);
-        } else if (c < vertices_.size() && vertices_[c] != kBad) {
-          mapped[i] = vertices_[c];
+        } else if (const auto known = vertices_.find(c); known != vertices_.end()) {
+          mapped[i] = known->second;
         } else {
           throw InputError(file_, where + " uses vertex slot " + std::to_string(c) + ", which is not there");
         }
@@ -245,26 +244,22 @@ class Replay {
     } catch (const std::invalid_argument& e) {
       throw InputError(file_, where + " does not apply: " + e.what());
     }
-    for (std::uint32_t s : r.removed) triangles_[s] = kBad;
-    for (std::size_t i = 0; i < r.triangles.size(); ++i) set(triangles_, r.triangles[i].slot, placement.triangleSlots[i]);
+    for (std::uint32_t s : r.removed) triangles_.erase(s);
+    for (std::size_t i = 0; i < r.triangles.size(); ++i) triangles_[r.triangles[i].slot] = placement.triangleSlots[i];
     for (std::size_t j = 0; j < r.vertices.size(); ++j) {
       if (placement.vertexSlots[j] == kBad) throw InputError(file_, where + " has a new vertex that no triangle uses");
-      set(vertices_, r.vertices[j].slot, placement.vertexSlots[j]);
+      vertices_[r.vertices[j].slot] = placement.vertexSlots[j];
     }
     return state_;
   }
 
  private:
-  static void set(std::vector<std::uint32_t>& map, std::uint32_t at, std::uint32_t value) {
-    if (at >= map.size()) map.resize(std::size_t(at) + 1, kBad);
-    map[at] = value;
-  }
   const std::string& file_;
   BoneState state_;
-  std::vector<std::uint32_t> triangles_, vertices_;  // written slot → restored slot (kBad: none)
-  // Bounds on the written slot numbers: a history's slots never exceed what it has added so far, so a damaged
-  // record cannot make the maps above huge.
-  std::size_t addedTriangles_ = 0, addedVertices_ = 0;
+  bool started_ = false;
+  // Written slot → restored slot. Hash maps, not arrays indexed by the written slot: a damaged record's slot
+  // number cannot make them huge. A vertex that died stays mapped: no record names it again unless it is new.
+  std::unordered_map<std::uint32_t, std::uint32_t> triangles_, vertices_;
 };
 
 }  // namespace
