@@ -1,5 +1,8 @@
 #include "BoneCommands.h"
 
+#include <utility>
+
+#include "BonePlacement.h"
 #include "ReamSession.h"
 #include "reamsim/core/Document.h"
 #include "reamsim/core/PlanNode.h"
@@ -21,13 +24,16 @@ void exchangePlan(PlanNode& plan, std::vector<Pose>& otherPoses, std::optional<s
 }
 
 // The reamer's pose goes with the bone it was on, as the plan's poses do. Undo and redo put it back where it was
-// on the incoming bone (often seated in that bone's own cut); a pose from the other bone could bury it in this
-// one, and the next move would cut all it overlaps. The first redo has no pose to give back: the caller puts the
-// reamer clear of the new bone (startPoseFor).
-// `leaving`: the pose the outgoing bone was last computed at, taken before exchangeBone dropped the moves not
-// computed yet.
-void exchangeReamerPose(ReamSession& session, const Pose& leaving, std::optional<Pose>& otherPose) {
-  if (otherPose) session.returnReamerTo(*otherPose);
+// last computed on the incoming bone (often seated in that bone's own cut); a pose from the other bone could bury
+// it in this one, and the next move would cut all it overlaps. Where no step had been computed on the incoming
+// bone, the reamer goes clear of it. The first redo leaves the reamer to the caller, which puts it clear of the
+// new bone. `leaving`: the outgoing bone's settled pose, taken before exchangeBone dropped the moves not computed
+// yet.
+void exchangeReamerPose(ReamSession& session, bool first, const std::optional<Pose>& leaving, std::optional<Pose>& otherPose) {
+  if (otherPose)
+    session.returnReamerTo(*otherPose);
+  else if (!first)
+    session.moveReamer(startPoseFor(session.bone()->current().bounds()));
   otherPose = leaving;
 }
 
@@ -52,9 +58,9 @@ ReplaceBoneCommand::ReplaceBoneCommand(ReamSession& session, BoneContent incomin
 
 void ReplaceBoneCommand::exchange() {
   exchangePlan(*session_.plan(), otherPoses_, otherFeed_);
-  const Pose leaving = session_.settledReamerPose();
+  const std::optional<Pose> leaving = session_.settledReamerPose();
   session_.exchangeBone(other_);
-  exchangeReamerPose(session_, leaving, otherReamerPose_);
+  exchangeReamerPose(session_, std::exchange(first_, false), leaving, otherReamerPose_);
 }
 
 SwapBoneBesideCommand::SwapBoneBesideCommand(ReamSession& session, NodeId beside, const QString& text)
@@ -79,9 +85,9 @@ void SwapBoneBesideCommand::exchange() {
     ~PutBack() { node.swapContent(content); }
   } putBack{*beside, content};
   exchangePlan(*session_.plan(), otherPoses_, otherFeed_);
-  const Pose leaving = session_.settledReamerPose();
+  const std::optional<Pose> leaving = session_.settledReamerPose();
   session_.exchangeBone(content);  // the session's bone takes the one beside, `content` the cut bone
-  exchangeReamerPose(session_, leaving, otherReamerPose_);
+  exchangeReamerPose(session_, std::exchange(first_, false), leaving, otherReamerPose_);
 }
 
 OtherBonesCommand::OtherBonesCommand(Document& document, std::vector<std::unique_ptr<BoneNode>> nodes,

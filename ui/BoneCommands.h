@@ -43,6 +43,7 @@ class ReplaceBoneCommand : public QUndoCommand {
   std::vector<Pose> otherPoses_;
   std::optional<std::string> otherFeed_;
   std::optional<Pose> otherReamerPose_;
+  bool first_ = true;  // the first redo: the caller places the reamer
 };
 
 // Makes a bone beside the one that is cut, and the cut bone one beside it; undo swaps them back. The two
@@ -61,6 +62,7 @@ class SwapBoneBesideCommand : public QUndoCommand {
   std::vector<Pose> otherPoses_;
   std::optional<std::string> otherFeed_;
   std::optional<Pose> otherReamerPose_;
+  bool first_ = true;  // the first redo: the caller places the reamer
 };
 
 // Adds bones to the document beside the session's bone (shown, not cut), or removes them: `add` says

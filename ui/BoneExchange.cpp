@@ -28,9 +28,9 @@ void ReamSession::adoptHistory(BoneHistory history) {
   exchangeBone(content);
 }
 
-Pose ReamSession::settledReamerPose() const {
-  const std::optional<Pose>& computed = running_ ? poseBeforeRunning_ : lastComputedPose_;
-  return computed ? *computed : reamer_->pose();
+std::optional<Pose> ReamSession::settledReamerPose() const {
+  // A running step has moved lastComputedPose_ to where it goes; a running contact search moves nothing.
+  return running_ && control_ ? poseBeforeRunning_ : lastComputedPose_;
 }
 
 void ReamSession::returnReamerTo(const Pose& pose) {

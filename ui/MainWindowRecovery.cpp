@@ -197,9 +197,7 @@ void MainWindow::offerRecovery() {
   // The undo history up to the crash, from its journal, with the History dock's steps: undo and redo as before
   // the crash. One that cannot be read back (or does not end at the copied bone) is reported and kept; the
   // recovered bone is then the history's only state.
-  double originalVolume = recoveredVolume;
   if (std::optional<BoneHistory> history = readRecoveredHistory(*found, recoveredFaces, recoveredVolume)) {
-    originalVolume = history->entries().front().state.volume();
     std::vector<std::string> labels;
     for (const BoneHistory::Entry& e : history->entries()) labels.push_back(e.label);
     session_->adoptHistory(std::move(*history));
@@ -214,6 +212,9 @@ void MainWindow::offerRecovery() {
     }
     session_->undoStack()->setIndex(int(found->historyCursor));  // undoes what had been undone before the crash
   }
+  // Both on the history's own volume origin (the copied mesh's volume may differ by rounding).
+  const double originalVolume = session_->bone()->history().entries().front().state.volume();
+  const double atCopyVolume = session_->bone()->current().volume();
   recoveredRevisions_.insert(session_->bone()->history().entries().front().revision);  // also once moved beside
   session_->moveReamer(startPoseFor(b));
   restoreBonesBeside(*found);
@@ -228,13 +229,9 @@ void MainWindow::offerRecovery() {
       // What was removed before the history's first state: all of it when that is the recovered bone, less the
       // cuts between the two when it is the bone as opened.
       const double removed = found->removedMm3.value_or(rows.empty() ? 0.0 : rows.back().cumulativeMm3);
-      session_->continueLog(std::move(rows), removed - (originalVolume - recoveredVolume));
+      session_->continueLog(std::move(rows), removed - (originalVolume - atCopyVolume));
     } catch (const std::exception& e) {
-      const QString kept = QDir(recovery_->dir()).filePath("restored");
-      QDir().mkpath(kept);
-      recoveredLogPath_ =
-          QDir(kept).filePath("cut_log_" + QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss") + ".csv");
-      QFile::copy(found->logPath, recoveredLogPath_);
+      recoveredLogPath_ = keepInRestored(found->logPath);
       showError(tr("The cut log was not restored"),
                 tr("%1 was restored, but its cut log could not be read back:\n%2\n\nThe log is kept as %3.")
                     .arg(name, QString::fromStdString(e.what()), recoveredLogPath_));
@@ -262,7 +259,7 @@ std::optional<BoneHistory> MainWindow::readRecoveredHistory(const RecoveredBone&
                                " faces, " + std::to_string(volume) + " mm³)");
     return history;
   } catch (const std::exception& e) {
-    const QString kept = keepInRestored(found.historyPath, "history_");
+    const QString kept = keepInRestored(found.historyPath);
     showError(tr("The undo history was not restored"),
               tr("The recovered bone is restored, but not its undo history (Undo cannot go back before it):\n%1\n\n"
                  "The history is kept as %2.").arg(QString::fromStdString(e.what()), kept));
@@ -272,11 +269,11 @@ std::optional<BoneHistory> MainWindow::readRecoveredHistory(const RecoveredBone&
 
 // A copy of `file` where the next save or close does not remove it (recovery/restored/), for a file that could
 // not be read back.
-QString MainWindow::keepInRestored(const QString& file, const QString& prefix) const {
+QString MainWindow::keepInRestored(const QString& file) const {
   const QString kept = QDir(recovery_->dir()).filePath("restored");
   QDir().mkpath(kept);
   const QString keptFile =
-      QDir(kept).filePath(prefix + QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss") + "_" + QFileInfo(file).fileName());
+      QDir(kept).filePath(QDateTime::currentDateTime().toString("yyyyMMdd-HHmmss") + "_" + QFileInfo(file).fileName());
   QFile::copy(file, keptFile);
   return keptFile;
 }
@@ -297,7 +294,7 @@ void MainWindow::restoreBonesBeside(const RecoveredBone& found) {
       node->swapContent(content);
       session_->document().add(std::move(node));
     } catch (const std::exception& e) {
-      failed << tr("%1 (kept as %2)").arg(QString::fromStdString(e.what()), keepInRestored(copy.path, "beside_"));
+      failed << tr("%1 (kept as %2)").arg(QString::fromStdString(e.what()), keepInRestored(copy.path));
     }
   }
   if (!failed.isEmpty()) showError(tr("A bone beside was not restored"), failed.join("\n"));

@@ -80,8 +80,9 @@ class ReamSession : public QObject {
   // BoneExchange.cpp.
   void adoptHistory(BoneHistory history);
   // Where the reamer is as far as the bone knows: the pose of the last step computed on it (not a move still
-  // waiting or running), else where it is shown. With returnReamerTo, what a bone exchange keeps for its undo.
-  Pose settledReamerPose() const;
+  // waiting or running); none when no step has been computed on it. With returnReamerTo, what a bone exchange
+  // keeps for its undo.
+  std::optional<Pose> settledReamerPose() const;
   // Puts the reamer at `pose`, without a step, as if the bone's last step had been computed there (the next
   // move sweeps from it): for undo and redo of an exchange, whose bone was last computed with the reamer there.
   void returnReamerTo(const Pose& pose);

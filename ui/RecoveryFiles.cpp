@@ -9,6 +9,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLockFile>
+#include <QRandomGenerator>
 #include <QSaveFile>
 
 namespace reamsim::ui {
@@ -24,7 +25,8 @@ QJsonObject readDescription(const QString& file) {
 
 }  // namespace
 
-RecoveryFiles::RecoveryFiles(const QString& dir) : dir_(dir) {
+RecoveryFiles::RecoveryFiles(const QString& dir)
+    : dir_(dir), token_(QString::number(QRandomGenerator::system()->generate64(), 16)) {
   QDir().mkpath(dir_);
   lock_ = std::make_unique<QLockFile>(path("lock"));
   lock_->setStaleLockTime(0);  // held as long as its process lives (a dead holder's lock is stale at once)
@@ -50,7 +52,7 @@ QString RecoveryFiles::besidePath(const QString& slot, int index) const {
 QString RecoveryFiles::nextBesidePath(int index) const { return besidePath(nextSlot(), index); }
 
 QString RecoveryFiles::historyPath(std::uint64_t firstRevision) const {
-  return path("history-" + QString::number(firstRevision) + ".rsj");
+  return path("history-" + token_ + "-" + QString::number(firstRevision) + ".rsj");
 }
 
 std::optional<RecoveredBone> RecoveryFiles::found() const {
@@ -83,14 +85,18 @@ std::optional<RecoveredBone> RecoveryFiles::found() const {
     }
     r.historyRevisions.push_back(revision);
   }
-  if (!r.historyRevisions.empty()) {
-    r.historyPath = historyPath(r.historyRevisions.front());
+  const QString journal = history.value("file").toString();  // a name in this folder, nothing else
+  if (journal.startsWith("history-") && journal.endsWith(".rsj") && !journal.contains('/') && !journal.contains('\\') &&
+      !r.historyRevisions.empty()) {
+    r.historyPath = path(journal);
     r.historyCursor = std::size_t(std::max(0, history.value("cursor").toInt()));
     if (!QFile::exists(r.historyPath) || r.historyCursor >= r.historyRevisions.size()) {
       r.historyPath.clear();
       r.historyRevisions.clear();
       r.historyCursor = 0;
     }
+  } else {
+    r.historyRevisions.clear();
   }
   return r;
 }
@@ -107,7 +113,7 @@ bool RecoveryFiles::commit(const QString& name, int cuts, double removedMm3, con
   if (!journal.isEmpty()) {
     QJsonArray revisions;
     for (std::uint64_t r : history->revisions) revisions.append(QString::number(r));
-    d.insert("history", QJsonObject{{"revisions", revisions}, {"cursor", int(history->cursor)}});
+    d.insert("history", QJsonObject{{"file", journal}, {"revisions", revisions}, {"cursor", int(history->cursor)}});
   }
   if (std::isfinite(removedMm3)) d.insert("removed_mm3", removedMm3);
   d.insert("written", QDateTime::currentDateTimeUtc().toString(Qt::ISODate));

@@ -60,8 +60,10 @@ class RecoveryFiles {
   QString nextLogPath() const;
   QString nextBesidePath(int index) const;  // "beside<index>.a.ply" or ".b.ply": a bone beside
   // The journal of the undo history whose first state has `firstRevision`: one file per bone, appended to by
-  // every copy (HistoryJournalWriter), never rewritten, so the copies' two slots do not apply to it.
-  QString historyPath(std::uint64_t firstRevision) const;  // "history-<revision>.rsj"
+  // every copy (HistoryJournalWriter), never rewritten, so the copies' two slots do not apply to it. Named
+  // with a random token of this object's as well: revisions restart in every process, and a journal left by
+  // another one (the crashed session, or an earlier crash) must never be appended to.
+  QString historyPath(std::uint64_t firstRevision) const;  // "history-<token>-<revision>.rsj"
   // False (with `error` naming the file) when the description cannot be written; the previous copy stays.
   // `besideNames`: the bones beside written to nextBesidePath(0…), in order. `history`: what of the journal
   // belongs to this copy (none: the bone alone); once the description names it, other bones' journals go.
@@ -75,6 +77,7 @@ class RecoveryFiles {
   QString currentSlot() const;  // "a", "b", or "" without a description
   QString nextSlot() const { return currentSlot() == "a" ? "b" : "a"; }
   QString dir_;
+  QString token_;  // random, for this object's journal names
   std::unique_ptr<QLockFile> lock_;
 };
 

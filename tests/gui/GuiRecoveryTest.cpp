@@ -35,6 +35,15 @@ std::optional<RecoveredBone> settledCopy(MainWindow& w) {
   return w.recovery()->found();
 }
 
+// Revisions restart in every process: a journal's name carries a token of the window that writes it, so a window
+// never appends to (or reads as its own) a journal another process left with the same first revision.
+TEST(GuiRecovery, EachWindowNamesItsJournalsApart) {
+  QTemporaryDir dir;
+  const RecoveryFiles first(dir.filePath("recovery")), second(dir.filePath("recovery"));
+  EXPECT_NE(first.historyPath(7), second.historyPath(7));
+  EXPECT_EQ(first.historyPath(7), first.historyPath(7));
+}
+
 TEST(GuiRecovery, UnsavedCutsAreCopiedASaveOrACloseRemovesTheCopy) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;
@@ -348,7 +357,7 @@ TEST(GuiRecovery, AnUndoHistoryThatCannotBeReadBackIsReportedAndKept) {
   const std::string message = w.lastError().toStdString();
   EXPECT_NE(message.find(QFileInfo(copy->historyPath).fileName().toStdString()), std::string::npos) << message;
   EXPECT_NE(message.find("is not in the journal"), std::string::npos) << message;
-  const QStringList kept = QDir(dir.filePath("recovery/restored")).entryList({"history_*"}, QDir::Files);
+  const QStringList kept = QDir(dir.filePath("recovery/restored")).entryList({"*_history-*.rsj"}, QDir::Files);
   ASSERT_EQ(kept.size(), 1);
   EXPECT_NE(message.find(kept.front().toStdString()), std::string::npos) << message;
   for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();

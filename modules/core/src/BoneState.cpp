@@ -53,7 +53,7 @@ bool onBoundary(const Vec3& p, const Bounds& b) {
 
 }  // namespace
 
-BoneState BoneState::fromMesh(const TriangleMesh& mesh, Ordering ordering) {
+BoneState BoneState::fromMesh(const TriangleMesh& mesh, Ordering ordering, const std::optional<Vec3>& volumeOrigin) {
   const std::size_t nv = mesh.vertices.size();
   if (nv >= MeshDelta::kNewVertexBit) invalid("too many vertices");
   std::vector<std::uint32_t> uses(nv, 0);
@@ -83,7 +83,8 @@ BoneState BoneState::fromMesh(const TriangleMesh& mesh, Ordering ordering) {
   }
 
   BoneState s;
-  s.volumeOrigin_ = inputBounds.empty() ? Vec3{} : inputBounds.center();
+  if (volumeOrigin && !isFinite(*volumeOrigin)) invalid("non-finite volume origin");
+  s.volumeOrigin_ = volumeOrigin ? *volumeOrigin : inputBounds.empty() ? Vec3{} : inputBounds.center();
   std::vector<std::uint32_t> slotOf(nv);
   for (std::uint32_t slot = 0; slot < nv; ++slot) {
     const std::uint32_t v = vertexOrder[slot];

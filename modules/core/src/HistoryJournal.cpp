@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
+#include <optional>
 #include <unordered_map>
 #include <unistd.h>
 
@@ -14,8 +15,9 @@ namespace reamsim {
 namespace {
 
 // File: kMagic, then records. Record: kRecordMagic (u32), payload size (u64), payload, FNV-1a 64 of the
-// payload (u64). Payload: revision, parent revision (0: the first state) (u64 each), label (u32 size, bytes),
-// removed triangle slots (u32 count, u32 each), new vertices (u32 count; u32 slot, 3 × f64 each), added
+// payload (u64). Payload: revision, parent revision (0: the first state) (u64 each), the state's live triangle
+// and vertex counts (u64 each, checked after the replay), its volume origin (3 × f64: the first state's is
+// taken, see BoneState::fromMesh), label (u32 size, bytes), removed triangle slots (u32 count, u32 each), new vertices (u32 count; u32 slot, 3 × f64 each), added
 // triangles (u32 count; u32 slot, 3 × u32 corner slots each). Little-endian, as the machine that wrote it
 // (a recovery copy is read back where it was written).
 constexpr char kMagic[8] = {'R', 'S', 'H', 'J', 'R', 'N', 'L', '1'};
@@ -72,6 +74,8 @@ class PayloadReader {
 
 struct Record {
   std::uint64_t revision = 0, parent = 0;
+  std::uint64_t liveTriangles = 0, liveVertices = 0;
+  Vec3 volumeOrigin;
   std::string label;
   std::vector<std::uint32_t> removed;
   struct NewVertex {
@@ -91,6 +95,9 @@ Record parse(const std::string& file, const std::string& payload) {
   Record r;
   r.revision = in.get<std::uint64_t>();
   r.parent = in.get<std::uint64_t>();
+  r.liveTriangles = in.get<std::uint64_t>();
+  r.liveVertices = in.get<std::uint64_t>();
+  r.volumeOrigin = {in.get<double>(), in.get<double>(), in.get<double>()};
   const std::uint32_t labelSize = in.get<std::uint32_t>();
   if (labelSize > kMaxLabel) throw InputError(file, "a record's label is longer than " + std::to_string(kMaxLabel) + " bytes");
   r.label = in.bytes(labelSize);
@@ -125,6 +132,11 @@ std::string payloadFor(const BoneHistory::Entry& entry, std::uint64_t parent, co
   std::string out;
   put(out, entry.revision);
   put(out, parent);
+  put(out, std::uint64_t(next.liveTriangleCount()));
+  put(out, std::uint64_t(next.liveVertexCount()));
+  put(out, next.volumeOrigin().x);
+  put(out, next.volumeOrigin().y);
+  put(out, next.volumeOrigin().z);
   const std::string label = entry.label.substr(0, kMaxLabel);
   put(out, std::uint32_t(label.size()));
   out += label;
@@ -227,13 +239,13 @@ class Replay {
     DeltaPlacement placement;
     try {
       if (first) {
-        // The first state as fromMesh makes it (its slots in the record's order): the same volume origin as the
-        // written one, which the volume of an open surface depends on.
+        // The first state as fromMesh makes it (its slots in the record's order), with the written one's volume
+        // origin, which the volume of an open surface depends on.
         TriangleMesh mesh;
         mesh.vertices = std::move(delta.addedVertices);
         for (const Triangle& t : delta.addedTriangles)
           mesh.triangles.push_back({MeshDelta::newVertexIndex(t[0]), MeshDelta::newVertexIndex(t[1]), MeshDelta::newVertexIndex(t[2])});
-        state_ = BoneState::fromMesh(mesh, BoneState::Ordering::Preserve);
+        state_ = BoneState::fromMesh(mesh, BoneState::Ordering::Preserve, r.volumeOrigin);
         placement.vertexSlots.resize(mesh.vertices.size());
         for (std::uint32_t j = 0; j < mesh.vertices.size(); ++j) placement.vertexSlots[j] = state_.isVertexLive(j) ? j : kBad;
         placement.triangleSlots.resize(mesh.triangles.size());
@@ -244,6 +256,11 @@ class Replay {
     } catch (const std::invalid_argument& e) {
       throw InputError(file_, where + " does not apply: " + e.what());
     }
+    if (state_.liveTriangleCount() != r.liveTriangles || state_.liveVertexCount() != r.liveVertices)
+      throw InputError(file_, where + " does not give the state that was written (" +
+                                  std::to_string(state_.liveTriangleCount()) + " triangles and " +
+                                  std::to_string(state_.liveVertexCount()) + " vertices, against " +
+                                  std::to_string(r.liveTriangles) + " and " + std::to_string(r.liveVertices) + ")");
     for (std::uint32_t s : r.removed) triangles_.erase(s);
     for (std::size_t i = 0; i < r.triangles.size(); ++i) triangles_[r.triangles[i].slot] = placement.triangleSlots[i];
     for (std::size_t j = 0; j < r.vertices.size(); ++j) {
@@ -318,7 +335,7 @@ BoneHistory readHistoryJournal(const std::string& path, const std::vector<std::u
   std::unordered_map<std::uint64_t, Indexed> byRevision;
   for (const Indexed& r : indexRecords(path, data, validBytes)) byRevision.emplace(r.revision, r);
   Replay replay(path);
-  BoneHistory history;
+  std::optional<BoneHistory> history;
   for (std::size_t k = 0; k < revisions.size(); ++k) {
     const auto it = byRevision.find(revisions[k]);
     if (it == byRevision.end())
@@ -331,12 +348,12 @@ BoneHistory readHistoryJournal(const std::string& path, const std::vector<std::u
     const Record r = parse(path, data.substr(it->second.offset, it->second.size));
     BoneState state = replay.apply(r);
     if (k == 0)
-      history = BoneHistory(std::move(state), r.label);
+      history.emplace(std::move(state), r.label);
     else
-      history.commit(std::move(state), r.label);
+      history->commit(std::move(state), r.label);
   }
-  while (history.cursor() > cursor) history.undo();
-  return history;
+  while (history->cursor() > cursor) history->undo();
+  return std::move(*history);
 }
 
 }  // namespace reamsim

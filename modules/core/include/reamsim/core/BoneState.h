@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "reamsim/core/MeshDelta.h"
@@ -42,7 +43,10 @@ class BoneState {
 
   BoneState() = default;  // empty surface
   // Throws std::invalid_argument for an out-of-range index, a non-finite coordinate or > 2^31 vertices.
-  static BoneState fromMesh(const TriangleMesh& mesh, Ordering ordering = Ordering::Spatial);
+  // `volumeOrigin`: the point the volume's tetrahedra are taken from (default: the mesh's bounds' centre). The
+  // volume of an open surface depends on it; a state read back from a history journal takes the written one's.
+  static BoneState fromMesh(const TriangleMesh& mesh, Ordering ordering = Ordering::Spatial,
+                            const std::optional<Vec3>& volumeOrigin = std::nullopt);
   // Compact mesh of the live elements, vertices and triangles in slot order.
   TriangleMesh toMesh() const;
 
@@ -86,6 +90,7 @@ class BoneState {
   }
 
   double volume() const { return volume6_ / 6.0; }  // signed, as signedVolume(toMesh())
+  const Vec3& volumeOrigin() const { return volumeOrigin_; }
   const Bounds& bounds() const { return bounds_; }    // of the live vertices
 
   // f(identity, bytes) for each heap block this state references (see PersistentArray::visitStorage).

@@ -23,8 +23,9 @@ namespace reamsim {
 class HistoryJournalWriter {
  public:
   // Opens (creating) the journal at `path`; the records already in it, up to the first incomplete one, count
-  // as written (a journal left by this writer's earlier run in the same process). Throws InputError naming
-  // the file when it cannot be opened.
+  // as written. Revisions are unique within a process only (BoneHistory), so a journal must not be reopened
+  // by another process: the recovery copy names each window's journals with a random token of its own.
+  // Throws InputError naming the file when it cannot be opened.
   explicit HistoryJournalWriter(std::string path);
 
   // Appends a record for each entry of `entries` whose revision is not written yet (entries in history order,
@@ -44,7 +45,8 @@ class HistoryJournalWriter {
 // The history whose states are the records of `revisions` (the first state's first; each record must follow
 // the one before it), with the cursor at `cursor`. Labels come from the records; revisions are new (this
 // process's counter). Throws InputError naming the file and the problem: not a journal, a revision missing or
-// following another state, a record that does not apply (a slot out of range, a vertex that is not there).
+// following another state, a record that does not apply (a slot out of range, a vertex that is not there) or
+// does not give the state's recorded triangle and vertex counts.
 BoneHistory readHistoryJournal(const std::string& path, const std::vector<std::uint64_t>& revisions, std::size_t cursor);
 
 }  // namespace reamsim
