@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <optional>
 #include <unordered_map>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "reamsim/mesh/MeshError.h"
@@ -321,6 +322,16 @@ void HistoryJournalWriter::append(const std::vector<BoneHistory::Entry>& entries
     file.close();
     [[maybe_unused]] const int ignored = ::truncate(path_.c_str(), off_t(bytes_));  // drop a partial append
     throw InputError(path_, "cannot append to the history journal (disk full?)");
+  }
+  file.close();
+  // On the disk before the description that names these records is (recovery.json, after this returns): a
+  // power cut must not leave a description naming records the disk never got.
+  const int fd = ::open(path_.c_str(), O_WRONLY);
+  const bool synced = fd >= 0 && ::fdatasync(fd) == 0;
+  if (fd >= 0) ::close(fd);
+  if (!synced) {
+    [[maybe_unused]] const int ignored = ::truncate(path_.c_str(), off_t(bytes_));
+    throw InputError(path_, "cannot write the history journal to the disk");
   }
   bytes_ += out.size();
   written_.insert(written_.end(), added.begin(), added.end());
