@@ -197,6 +197,9 @@ void MainWindow::buildMenus() {
   add(reamer, "ream_to_depth", tr("Ream to &depth below first contact…"), QKeySequence("Ctrl+D"),
       [this] { askReamToDepth(); });
   add(reamer, "feed_by", tr("&Feed along the axis by…"), QKeySequence("Ctrl+F"), [this] { askFeedBy(); });
+  add(reamer, "run_plan", tr("Run a &plan…"), QKeySequence("Ctrl+Shift+P"), [this] { runPlanFile(); });
+  reamer->addSeparator();
+  add(reamer, "choose_reamer", tr("&Choose the reamer…"), QKeySequence("Ctrl+Shift+R"), [this] { chooseReamer(); });
   add(reamer, "stop", tr("&Stop steps"), QKeySequence("Esc"), [this] { session_->cancelQueued(); });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));

@@ -95,6 +95,14 @@ class MainWindow : public QMainWindow {
   void feedBy(double mm);
   void applyMove(ReamerMove move);
   void dragReamer(double mm);
+  // The reamer (a preset of reamers.json; empty: the user picks one from the list). The reamer keeps its
+  // pose; the next cut is made, and logged, with the new one. False when nothing changed (cancelled, unknown).
+  bool chooseReamer(const QString& preset = {});
+  // Runs a plan file (docs/PLAN_FORMAT.md) on the bone as `reamsim-cli ream --plan` does: its reamer (a
+  // preset) is taken, the reamer is placed at the first pose and follows the rest as a path (sideways moves
+  // sweep). An empty path: the user picks the file. False (with a message naming the file and the problem)
+  // when the plan cannot be run.
+  bool runPlanFile(const QString& path = {});
   void showPluginsDialog();
   void showError(const QString& title, const QString& message);
   // CT import (MainWindowCtImport.cpp): the plugin's dialog for `path` (empty: the user picks one in

@@ -1,15 +1,23 @@
 // MainWindow: reamer control — the thesis keys (remappable), Ctrl-drag along the axis, feed, ream to depth.
 #include <QAction>
 #include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFileInfo>
 #include <QInputDialog>
 #include <QSettings>
 #include <QStatusBar>
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
 #include "MainWindow.h"
 #include "SettingsDialogs.h"
+#include "reamsim/core/PlanNode.h"
+#include "reamsim/mesh/MeshError.h"
 #include "reamsim/ream/Approach.h"
+#include "reamsim/ream/DefaultCase.h"
+#include "reamsim/ream/Plan.h"
+#include "reamsim/tools/ReamerPresets.h"
 
 namespace reamsim::ui {
 
@@ -37,6 +45,88 @@ void MainWindow::applyMove(ReamerMove move) {
 
 void MainWindow::dragReamer(double mm) {
   session_->moveReamer(advancedAlongAxis(session_->reamer()->pose(), mm), true);
+}
+
+bool MainWindow::chooseReamer(const QString& preset) {
+  std::vector<ReamerSpec> presets;
+  try {
+    presets = loadPresets(reamerPresetsPath());
+  } catch (const std::exception& e) {
+    showError(tr("Choose the reamer"), QString::fromStdString(e.what()));
+    return false;
+  }
+  const auto describe = [](const ReamerSpec& r) {
+    return r.isFlat() ? tr("%1 (Ø %L2 mm, flat)").arg(QString::fromStdString(r.name)).arg(r.diameterMm)
+                      : tr("%1 (Ø %L2 mm, cap sphere R %L3 mm)").arg(QString::fromStdString(r.name)).arg(r.diameterMm).arg(r.sphereRadiusMm);
+  };
+  QString name = preset;
+  if (name.isEmpty()) {
+    QStringList items;
+    int current = 0;
+    for (const ReamerSpec& r : presets) {
+      if (r.name == session_->reamer()->spec().name) current = items.size();
+      items << describe(r);
+    }
+    bool ok = false;
+    const QString picked = QInputDialog::getItem(this, tr("Choose the reamer"),
+                                                 tr("The reamer to cut with (it keeps the current pose and axis):"),
+                                                 items, current, false, &ok);
+    if (!ok) return false;
+    name = QString::fromStdString(presets[std::size_t(items.indexOf(picked))].name);
+  }
+  const auto it = std::find_if(presets.begin(), presets.end(), [&](const ReamerSpec& r) { return r.name == name.toStdString(); });
+  if (it == presets.end()) {
+    showError(tr("Choose the reamer"), tr("There is no reamer %1 in %2.").arg(name, QString::fromStdString(reamerPresetsPath())));
+    return false;
+  }
+  if (it->name == session_->reamer()->spec().name) return false;
+  session_->setReamer(*it);
+  session_->plan()->setReamerSpecName(it->name);
+  statusBar()->showMessage(tr("Reamer: %1; the next cut is made with it").arg(describe(*it)), 5000);
+  return true;
+}
+
+bool MainWindow::runPlanFile(const QString& path) {
+  QString file = path;
+  if (file.isEmpty()) file = QFileDialog::getOpenFileName(this, tr("Run a plan"), {}, tr("Plans (*.json)"));
+  if (file.isEmpty()) return false;
+  ReamPlan plan;
+  std::vector<Pose> poses;
+  try {
+    plan = loadPlan(file.toStdString());
+    poses = plan.expandedPoses();
+    if (poses.empty()) throw InputError(file.toStdString(), "the plan has no poses");
+  } catch (const std::exception& e) {
+    showError(tr("Cannot run the plan %1").arg(QFileInfo(file).fileName()), QString::fromStdString(e.what()));
+    return false;
+  }
+  if (!plan.reamer.empty()) {
+    try {
+      const ReamerSpec spec = loadPreset(plan.reamer, reamerPresetsPath());
+      if (spec.name != session_->reamer()->spec().name) session_->setReamer(spec);
+    } catch (const std::exception& e) {
+      showError(tr("Cannot run the plan %1").arg(QFileInfo(file).fileName()),
+                tr("Its reamer %1 is not a preset of the window (a reamer read from a mesh runs with reamsim-cli ream "
+                   "--plan):\n%2").arg(QString::fromStdString(plan.reamer), QString::fromStdString(e.what())));
+      return false;
+    }
+  }
+  if (!session_->canCollide()) {
+    showError(tr("Cannot run the plan %1").arg(QFileInfo(file).fileName()), session_->cuttingStatus());
+    return false;
+  }
+  {
+    Document::BatchScope batch(session_->document());
+    session_->plan()->setReamerSpecName(session_->reamer()->spec().name);
+    session_->plan()->setPoses(poses);
+    session_->plan()->setFeedDescription(plan.description.empty() ? std::nullopt : std::optional<std::string>(plan.description));
+  }
+  // As the command line's controller: the first pose is placed (nothing swept to it), the rest is a path.
+  session_->cancelQueued();
+  session_->moveReamer(poses.front(), false);
+  session_->runSteps(std::vector<Pose>(poses.begin() + 1, poses.end()));
+  statusBar()->showMessage(tr("Running %1: %Ln step(s)", "", int(poses.size())).arg(QFileInfo(file).fileName()), 5000);
+  return true;
 }
 
 void MainWindow::feedBy(double mm) {

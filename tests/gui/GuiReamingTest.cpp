@@ -4,7 +4,9 @@
 #include <QAction>
 #include <QDockWidget>
 #include <QLabel>
+#include <QInputDialog>
 #include <QLocale>
+#include <QMessageBox>
 #include <QPushButton>
 #include <algorithm>
 #include <cmath>
@@ -16,8 +18,16 @@
 #include <QtTest/QTest>
 
 #include "GuiEnvironment.h"
+#include "GuiHelpers.h"
 #include "reamsim/ream/Approach.h"
 #include "reamsim/ream/CutLogIO.h"
+#include "reamsim/ream/DefaultCase.h"
+#include "reamsim/ream/LocalCutBackend.h"
+#include "reamsim/ream/Plan.h"
+#include "reamsim/ream/ReamBackends.h"
+#include "reamsim/ream/ReamController.h"
+#include "reamsim/tools/ReamerGeometry.h"
+#include "reamsim/tools/ReamerPresets.h"
 #include "reamsim/tools/ReamedSurface.h"
 
 namespace reamsim::ui::test {
@@ -436,6 +446,97 @@ TEST(GuiReaming, ShownNumbersFollowTheUsersLocaleFilesDoNot) {
   const std::vector<CutLogEntry> back = readCutLogCsv(out.filePath("log.csv").toStdString());
   ASSERT_EQ(back.size(), s.log()->entries().size());
   EXPECT_NEAR(back.back().removedMm3, e.removedMm3, 1e-9 * e.removedMm3);
+}
+
+// Reamer → Choose the reamer…: picked from the presets in the list the window shows; the reamer keeps its pose,
+// and the next cut is made and logged with it.
+TEST(GuiReaming, ChoosingAReamerCutsAndLogsWithIt) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  ASSERT_EQ(s.reamer()->spec().name, "glenoid-36-R30");
+  const Pose before = placeAtThePlanStart(s);
+  QStringList offered;
+  ModalAnswers answers({[&offered](QWidget* modal) {
+    auto* dialog = qobject_cast<QInputDialog*>(modal);
+    ASSERT_NE(dialog, nullptr) << "expected the reamer list, got " << modal->metaObject()->className();
+    offered = dialog->comboBoxItems();
+    for (const QString& item : offered)
+      if (item.startsWith("glenoid-44-R35 ")) dialog->setTextValue(item);
+    dialog->accept();
+  }});
+  w.action("choose_reamer")->trigger();
+  EXPECT_EQ(answers.seen(), 1);
+  EXPECT_EQ(offered.size(), 13) << offered.join(", ").toStdString();  // every preset of reamers.json
+  EXPECT_TRUE(offered.contains("baseplate-27-flat (Ø 27 mm, flat)")) << offered.join(", ").toStdString();
+  ASSERT_EQ(s.reamer()->spec().name, "glenoid-44-R35");
+  EXPECT_EQ(s.reamer()->spec().diameterMm, 44.0);
+  EXPECT_TRUE(samePose(s.reamer()->pose(), before));
+  EXPECT_EQ(s.plan()->reamerSpecName(), "glenoid-44-R35");
+  cutOnce(s);
+  EXPECT_EQ(s.log()->last().reamer, "glenoid-44-R35");
+  EXPECT_EQ(s.log()->last().reamerDiameterMm, 44.0);
+  EXPECT_FALSE(w.chooseReamer("glenoid-44-R35"));  // already the reamer: nothing changes
+  EXPECT_FALSE(w.chooseReamer("no-such-reamer"));
+  EXPECT_TRUE(w.lastError().contains("There is no reamer no-such-reamer in")) << w.lastError().toStdString();
+  EXPECT_EQ(s.reamer()->spec().name, "glenoid-44-R35");
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
+}
+
+// Reamer → Run a plan…: the plan file cuts the bone as `reamsim-cli ream --plan` does (the first pose placed,
+// the rest a path, with the plan's reamer): the same cuts and the same bone as the command line's controller.
+TEST(GuiReaming, RunningAPlanFileCutsAsTheCommandLineDoes) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  const ReamPlan defaultPlan = loadPlan(defaultPlanPath());
+  ReamPlan plan;  // a shorter, wider one than the default: 8 steps of 0.4 mm with the 40 mm reamer
+  plan.reamer = "glenoid-40-R32";
+  plan.feed = defaultPlan.feed;
+  plan.feed->count = 8;
+  plan.feed->stepMm = 0.4;
+  plan.description = "test plan";
+  const QString planPath = dir.filePath("plan.json");
+  writeTextFile(planPath.toStdString(), planToJson(plan));
+
+  // The command line's way, in this process: a controller on the default bone.
+  Document doc;
+  auto& bone = doc.create<BoneNode>("Bone", BoneState::fromMesh(loadDefaultBone().mesh));
+  const ReamerSpec spec = loadPreset(plan.reamer, reamerPresetsPath());
+  auto& reamer = doc.create<ReamerNode>("Reamer", spec);
+  reamer.setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(spec)));
+  auto& log = doc.create<LogNode>("Log");
+  ReamController controller(doc, bone, reamer, log, nullptr, localCutBackendFactory(), makeBvhContactBackend());
+  for (const Pose& p : plan.expandedPoses()) controller.moveTo(p);
+
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  ASSERT_TRUE(w.runPlanFile(planPath));
+  ASSERT_TRUE(s.waitIdle(120000));
+  EXPECT_EQ(s.reamer()->spec().name, "glenoid-40-R32");
+  EXPECT_EQ(s.plan()->poses().size(), 8u);
+  EXPECT_GT(s.cutsCommitted(), 3u);
+  EXPECT_EQ(s.bone()->current().liveTriangleCount(), bone.current().liveTriangleCount());
+  EXPECT_NEAR(s.bone()->current().volume(), bone.current().volume(), 1e-9 * bone.current().volume());
+  EXPECT_LT(bone.current().volume(), s.initialVolumeMm3() - 50.0);
+  EXPECT_TRUE(samePose(s.reamer()->pose(), plan.expandedPoses().back()));
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+
+  // A plan that cannot run says why, naming the file, and leaves the bone as it was.
+  const double volume = s.bone()->current().volume();
+  const QString broken = dir.filePath("broken.json");
+  writeTextFile(broken.toStdString(), "{\"poses\": [{\"tip\": [1, 2], \"axis\": [0, 0, 1]}]}");
+  EXPECT_FALSE(w.runPlanFile(broken));
+  EXPECT_TRUE(w.lastError().contains("broken.json: poses[0].tip must be an array of 3 numbers")) << w.lastError().toStdString();
+  const QString meshReamer = dir.filePath("mesh_reamer.json");
+  writeTextFile(meshReamer.toStdString(), "{\"reamer\": \"/tmp/cutter.stl\", \"poses\": [{\"tip\": [1, 2, 3], \"axis\": [0, 0, 1]}]}");
+  EXPECT_FALSE(w.runPlanFile(meshReamer));
+  EXPECT_TRUE(w.lastError().contains("reamsim-cli ream")) << w.lastError().toStdString();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(s.bone()->current().volume(), volume);
+  EXPECT_EQ(s.reamer()->spec().name, "glenoid-40-R32");
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
 }
 
 }  // namespace
