@@ -35,6 +35,43 @@ std::optional<RecoveredBone> settledCopy(MainWindow& w) {
   return w.recovery()->found();
 }
 
+// One cut in a window that then goes away without a close (as in a crash), its copy settled; the bone's volume.
+double crashAfterOneCut(const QTemporaryDir& dir) {
+  GuiFixture crashed;
+  crashed.window->enableRecovery(dir.filePath("recovery"), 0);
+  cutOnce(crashed.session());
+  EXPECT_TRUE(settledCopy(*crashed.window));
+  return crashed.session().bone()->current().volume();
+}
+
+// Restores the copy in `w` (answering Restore) when part of it is damaged: waits for the message that says so.
+void restoreExpectingAMessage(MainWindow& w, const QTemporaryDir& dir) {
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !w.lastError().isEmpty(); }, 30000));
+  EXPECT_TRUE(w.windowTitle().contains("(recovered)"));
+}
+
+// The bone's shape 200 mm along x: a second bone that does not meet the first.
+TriangleMesh movedAside(const BoneState& bone) {
+  TriangleMesh m = bone.toMesh();
+  for (Vec3& v : m.vertices) v.x += 200;
+  return m;
+}
+
+// Restores the copy in `f`'s window (answering Restore); the one bone restored beside the restored bone, or null.
+const BoneNode* restoreWithOneBoneBeside(GuiFixture& f, const QTemporaryDir& dir) {
+  MainWindow& w = *f.window;
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  EXPECT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
+  QTest::qWait(50);
+  const std::vector<BoneNode*> bones = f.session().document().nodesOf<BoneNode>();
+  EXPECT_EQ(bones.size(), 2u);
+  if (bones.size() != 2) return nullptr;
+  return bones[0] == f.session().bone() ? bones[1] : bones[0];
+}
+
 // Revisions restart in every process: a journal's name carries a token of the window that writes it, so a window
 // never appends to (or reads as its own) a journal another process left with the same first revision.
 TEST(GuiRecovery, EachWindowNamesItsJournalsApart) {
@@ -204,8 +241,7 @@ TEST(GuiRecovery, ABoneBesideWithUnsavedCutsIsCopiedAndRestoredBesideTheBone) {
     cutOnce(s);  // the scapula's cut
     besideVolume = s.bone()->current().volume();
     // A second bone beside it (the scapula's own shape, 200 mm away), then cut that one instead.
-    TriangleMesh other = s.bone()->current().toMesh();
-    for (Vec3& v : other.vertices) v.x += 200;
+    TriangleMesh other = movedAside(s.bone()->current());
     auto node = std::make_unique<BoneNode>("second");
     BoneContent content;
     content.name = "second";
@@ -226,13 +262,8 @@ TEST(GuiRecovery, ABoneBesideWithUnsavedCutsIsCopiedAndRestoredBesideTheBone) {
   }  // gone without a close
   GuiFixture f;
   MainWindow& w = *f.window;
-  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
-  w.enableRecovery(dir.filePath("recovery"), 0);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
-  QTest::qWait(50);
-  const std::vector<BoneNode*> bones = f.session().document().nodesOf<BoneNode>();
-  ASSERT_EQ(bones.size(), 2u);
-  const BoneNode* beside = bones[0] == f.session().bone() ? bones[1] : bones[0];
+  const BoneNode* beside = restoreWithOneBoneBeside(f, dir);
+  ASSERT_NE(beside, nullptr);
   EXPECT_NEAR(beside->current().volume(), besideVolume, 1e-9 * besideVolume);
   EXPECT_TRUE(QString::fromStdString(beside->name()).contains("(recovered)"));
   EXPECT_EQ(w.bonesBesideWithUnsavedCuts().size(), 1);  // kept nowhere but in the copy: closing asks
@@ -259,8 +290,7 @@ TEST(GuiRecovery, ABoneAnImportReplacedWithUnsavedCutsIsCopiedAndRestoredBesideT
     w.enableRecovery(dir.filePath("recovery"), 0);
     cutOnce(s);  // the scapula's cut
     replacedVolume = s.bone()->current().volume();
-    TriangleMesh other = s.bone()->current().toMesh();  // the importer's place: the scapula's shape, moved
-    for (Vec3& v : other.vertices) v.x += 200;
+    TriangleMesh other = movedAside(s.bone()->current());  // the importer's place
     ImportedBone imported;
     imported.mesh = std::move(other);
     imported.cuttable = true;
@@ -276,13 +306,8 @@ TEST(GuiRecovery, ABoneAnImportReplacedWithUnsavedCutsIsCopiedAndRestoredBesideT
   }  // gone without a close
   GuiFixture f;
   MainWindow& w = *f.window;
-  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
-  w.enableRecovery(dir.filePath("recovery"), 0);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
-  QTest::qWait(50);
-  const std::vector<BoneNode*> bones = f.session().document().nodesOf<BoneNode>();
-  ASSERT_EQ(bones.size(), 2u);
-  const BoneNode* beside = bones[0] == f.session().bone() ? bones[1] : bones[0];
+  const BoneNode* beside = restoreWithOneBoneBeside(f, dir);
+  ASSERT_NE(beside, nullptr);
   EXPECT_NEAR(beside->current().volume(), replacedVolume, 1e-9 * replacedVolume);
   EXPECT_TRUE(QString::fromStdString(beside->name()).contains("replaced by a CT import")) << beside->name();
   EXPECT_EQ(w.bonesBesideWithUnsavedCuts().size(), 1);  // kept nowhere but in the copy: closing asks
@@ -293,14 +318,7 @@ TEST(GuiRecovery, ABoneAnImportReplacedWithUnsavedCutsIsCopiedAndRestoredBesideT
 TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;
-  double volume = 0;
-  {
-    GuiFixture crashed;
-    crashed.window->enableRecovery(dir.filePath("recovery"), 0);
-    cutOnce(crashed.session());
-    ASSERT_TRUE(settledCopy(*crashed.window));
-    volume = crashed.session().bone()->current().volume();
-  }
+  const double volume = crashAfterOneCut(dir);
   const std::optional<RecoveredBone> copy = RecoveryFiles(dir.filePath("recovery")).found();
   ASSERT_TRUE(copy && !copy->logPath.isEmpty());
   {
@@ -310,10 +328,7 @@ TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
   }
   GuiFixture f;
   MainWindow& w = *f.window;
-  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
-  w.enableRecovery(dir.filePath("recovery"), 0);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return !w.lastError().isEmpty(); }, 30000));
-  EXPECT_TRUE(w.windowTitle().contains("(recovered)"));
+  restoreExpectingAMessage(w, dir);
   EXPECT_NEAR(f.session().bone()->current().volume(), volume, 1e-9 * volume);  // the bone is back
   EXPECT_TRUE(f.session().log()->empty());
   const std::string message = w.lastError().toStdString();
@@ -330,14 +345,7 @@ TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
 TEST(GuiRecovery, AnUndoHistoryThatCannotBeReadBackIsReportedAndKept) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;
-  double volume = 0;
-  {
-    GuiFixture crashed;
-    crashed.window->enableRecovery(dir.filePath("recovery"), 0);
-    cutOnce(crashed.session());
-    ASSERT_TRUE(settledCopy(*crashed.window));
-    volume = crashed.session().bone()->current().volume();
-  }
+  const double volume = crashAfterOneCut(dir);
   const std::optional<RecoveredBone> copy = RecoveryFiles(dir.filePath("recovery")).found();
   ASSERT_TRUE(copy && !copy->historyPath.isEmpty());
   {
@@ -346,10 +354,7 @@ TEST(GuiRecovery, AnUndoHistoryThatCannotBeReadBackIsReportedAndKept) {
   }
   GuiFixture f;
   MainWindow& w = *f.window;
-  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
-  w.enableRecovery(dir.filePath("recovery"), 0);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return !w.lastError().isEmpty(); }, 30000));
-  EXPECT_TRUE(w.windowTitle().contains("(recovered)"));
+  restoreExpectingAMessage(w, dir);
   EXPECT_NEAR(f.session().bone()->current().volume(), volume, 1e-9 * volume);  // the bone is back
   EXPECT_EQ(f.session().bone()->history().size(), 1u);
   EXPECT_EQ(f.session().undoStack()->count(), 0);
