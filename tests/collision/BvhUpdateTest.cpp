@@ -278,4 +278,28 @@ TEST(collisionBvhBuild, NodesAreLaidOutInPairBlocks) {
   bvh.update(removed, {}, {});
   EXPECT_EQ(bvh.validate(), "");
 }
+
+// One edit can free a vertex slot, give it to a new vertex and put a triangle with the same corner slots back in
+// the slot it left (the default plan's cuts do, three times in 18). Followed by syncTo, the tree must take the
+// moved corner: until session 53 changedTriangleSlots saw the same slots as the same triangle, and the tree kept
+// the old corners.
+TEST(collisionBvhUpdate, SyncToFollowsATriangleBackInItsSlotWithAMovedCorner) {
+  TriangleMesh one;
+  one.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  one.triangles = {{0, 1, 2}};
+  const BoneState before = BoneState::fromMesh(one, BoneState::Ordering::Preserve);
+  MeshDelta d;
+  d.removedTriangles = {0};
+  d.addedVertices = {{0, 0, 1}};
+  d.addedTriangles = {{MeshDelta::newVertex(0), 1, 2}};
+  const BoneState after = before.applyDelta(d);
+  ASSERT_EQ(after.triangle(0), before.triangle(0));
+  BoneCollider collider(before);
+  collider.syncTo(after);
+  // A ray up through (0.25, 0.25): with its corner at (0, 0, 1) the triangle lies in x + y + z = 1, z = 0.5 there
+  // (the old one: z = 0).
+  const std::optional<MeshHit> hit = collider.firstHit({0.25, 0.25, -1}, {0, 0, 1});
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->point.z, 0.5, 1e-12);
+}
 }  // namespace
