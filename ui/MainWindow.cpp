@@ -200,6 +200,8 @@ void MainWindow::buildMenus() {
   add(reamer, "run_plan", tr("Run a &plan…"), QKeySequence("Ctrl+Shift+P"), [this] { runPlanFile(); });
   reamer->addSeparator();
   add(reamer, "choose_reamer", tr("&Choose the reamer…"), QKeySequence("Ctrl+Shift+R"), [this] { chooseReamer(); });
+  add(reamer, "choose_reamer_mesh", tr("Choose a reamer &mesh…"), {}, [this] { chooseReamerMesh(); })
+      ->setEnabled(plugins_.meshImport() != nullptr);
   add(reamer, "stop", tr("&Stop steps"), QKeySequence("Esc"), [this] { session_->cancelQueued(); });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));

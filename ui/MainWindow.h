@@ -98,6 +98,9 @@ class MainWindow : public QMainWindow {
   // The reamer (a preset of reamers.json; empty: the user picks one from the list). The reamer keeps its
   // pose; the next cut is made, and logged, with the new one. False when nothing changed (cancelled, unknown).
   bool chooseReamer(const QString& preset = {});
+  // A reamer read from a mesh (a closed solid, tip at the origin, feed along +Z; empty: the user picks the file),
+  // as `reamsim-cli ream --reamer FILE`. False, with a message naming the file and the problem, when it cannot be.
+  bool chooseReamerMesh(const QString& path = {});
   // Runs a plan file (docs/PLAN_FORMAT.md) on the bone as `reamsim-cli ream --plan` does: its reamer (a
   // preset) is taken, the reamer is placed at the first pose and follows the rest as a path (sideways moves
   // sweep). An empty path: the user picks the file. False (with a message naming the file and the problem)
@@ -173,6 +176,8 @@ class MainWindow : public QMainWindow {
   void editRenderSettings();
   void askReamToDepth();
   void askFeedBy();
+  bool takeReamer(const ReamerSpec& spec, const QString& description);
+  ReamerSpec planReamer(const std::string& reamer, const QString& planFile) const;
   void contactSearched(const ContactSearch& result);
   Pose targetPose() const;
   void buildVolumeImport();  // menu actions, status label, other bones (MainWindowCtImport.cpp)

@@ -2,6 +2,7 @@
 #include <QAction>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
+#include <QDir>
 #include <QFileInfo>
 #include <QInputDialog>
 #include <QSettings>
@@ -11,6 +12,7 @@
 #include <utility>
 
 #include "MainWindow.h"
+#include "PluginHost.h"
 #include "SettingsDialogs.h"
 #include "reamsim/core/PlanNode.h"
 #include "reamsim/mesh/MeshError.h"
@@ -79,11 +81,46 @@ bool MainWindow::chooseReamer(const QString& preset) {
     showError(tr("Choose the reamer"), tr("There is no reamer %1 in %2.").arg(name, QString::fromStdString(reamerPresetsPath())));
     return false;
   }
-  if (it->name == session_->reamer()->spec().name) return false;
-  session_->setReamer(*it);
-  session_->plan()->setReamerSpecName(it->name);
-  statusBar()->showMessage(tr("Reamer: %1; the next cut is made with it").arg(describe(*it)), 5000);
+  if (it->name == session_->reamer()->spec().name && it->meshFile == session_->reamer()->spec().meshFile) return false;
+  return takeReamer(*it, describe(*it));
+}
+
+bool MainWindow::chooseReamerMesh(const QString& path) {
+  QString file = path;
+  if (file.isEmpty() && plugins_.meshImport())
+    file = QFileDialog::getOpenFileName(this, tr("Choose a reamer mesh (a closed solid: tip at the origin, feed along +Z)"),
+                                        {}, plugins_.meshImport()->nameFilters().join(";;"));
+  if (file.isEmpty()) return false;
+  ReamerSpec spec;
+  spec.name = QFileInfo(file).fileName().toStdString();
+  spec.meshFile = file.toStdString();
+  return takeReamer(spec, tr("%1 (a mesh)").arg(QFileInfo(file).fileName()));
+}
+
+// The reamer keeps its pose; one that cannot be made (a mesh that is not a closed solid) leaves the reamer as it was.
+bool MainWindow::takeReamer(const ReamerSpec& spec, const QString& description) {
+  try {
+    session_->setReamer(spec);
+  } catch (const std::exception& e) {
+    showError(tr("Choose the reamer"), QString::fromStdString(e.what()));
+    return false;
+  }
+  session_->plan()->setReamerSpecName(spec.name);
+  statusBar()->showMessage(tr("Reamer: %1; the next cut is made with it").arg(description), 5000);
   return true;
+}
+
+// A plan's reamer as the command line takes it: a mesh file if there is one (beside the plan or as written),
+// otherwise a preset name.
+ReamerSpec MainWindow::planReamer(const std::string& reamer, const QString& planFile) const {
+  for (const QString& candidate : {QFileInfo(planFile).dir().filePath(QString::fromStdString(reamer)), QString::fromStdString(reamer)}) {
+    if (!QFileInfo(candidate).isFile()) continue;
+    ReamerSpec spec;
+    spec.name = QFileInfo(candidate).fileName().toStdString();
+    spec.meshFile = candidate.toStdString();
+    return spec;
+  }
+  return loadPreset(reamer, reamerPresetsPath());
 }
 
 bool MainWindow::runPlanFile(const QString& path) {
@@ -102,12 +139,12 @@ bool MainWindow::runPlanFile(const QString& path) {
   }
   if (!plan.reamer.empty()) {
     try {
-      const ReamerSpec spec = loadPreset(plan.reamer, reamerPresetsPath());
-      if (spec.name != session_->reamer()->spec().name) session_->setReamer(spec);
+      const ReamerSpec spec = planReamer(plan.reamer, file);
+      const ReamerSpec& now = session_->reamer()->spec();
+      if (spec.name != now.name || spec.meshFile != now.meshFile) session_->setReamer(spec);
     } catch (const std::exception& e) {
       showError(tr("Cannot run the plan %1").arg(QFileInfo(file).fileName()),
-                tr("Its reamer %1 is not a preset of the window (a reamer read from a mesh runs with reamsim-cli ream "
-                   "--plan):\n%2").arg(QString::fromStdString(plan.reamer), QString::fromStdString(e.what())));
+                tr("Its reamer %1 is neither a mesh file nor a preset:\n%2").arg(QString::fromStdString(plan.reamer), QString::fromStdString(e.what())));
       return false;
     }
   }

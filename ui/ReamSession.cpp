@@ -10,6 +10,7 @@
 #include "CutCommand.h"
 #include "PluginHost.h"
 #include "reamsim/ream/ReamStep.h"
+#include "reamsim/tools/ReamerFile.h"
 #include "reamsim/tools/ReamerGeometry.h"
 
 namespace reamsim::ui {
@@ -86,10 +87,13 @@ double ReamSession::removedBeforeMm3() const {
 }
 
 void ReamSession::setReamer(const ReamerSpec& spec) {
+  // Read (and checked) first: a file that cannot be a cutting solid leaves the reamer as it was.
+  auto volume = std::make_shared<const TriangleMesh>(spec.meshFile.empty() ? buildCuttingSolid(spec)
+                                                                           : loadCuttingSolidFromFile(spec.meshFile));
   cancelQueued();
   if (running_) watcher_.waitForFinished();
   reamer_->setSpec(spec);
-  reamer_->setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(spec)));
+  reamer_->setCuttingVolume(std::move(volume));
   rebuildEngine();
 }
 

@@ -86,6 +86,8 @@ class ReamSession : public QObject {
   // Puts the reamer at `pose`, without a step, as if the bone's last step had been computed there (the next
   // move sweeps from it): for undo and redo of an exchange, whose bone was last computed with the reamer there.
   void returnReamerTo(const Pose& pose);
+  // The reamer: a parametric one, or with `spec.meshFile` a closed mesh read from that file (InputError naming
+  // the file when it cannot be a cutting solid; the reamer then stays as it was).
   void setReamer(const ReamerSpec& spec);
 
   bool canCollide() const;

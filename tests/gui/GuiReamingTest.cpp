@@ -20,6 +20,7 @@
 #include "GuiEnvironment.h"
 #include "GuiHelpers.h"
 #include "reamsim/ream/Approach.h"
+#include "reamsim/mesh/MeshIO.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/LocalCutBackend.h"
@@ -484,6 +485,47 @@ TEST(GuiReaming, ChoosingAReamerCutsAndLogsWithIt) {
   for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
 }
 
+// Reamer → Choose a reamer mesh…: a closed solid read from a file, as `reamsim-cli ream --reamer FILE`; it cuts and
+// is logged under its file's name. A file that is not a closed solid is refused, naming it, and the reamer stays.
+TEST(GuiReaming, AReamerMeshFromAFileCutsAndABadOneIsRefused) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  const TriangleMesh solid = buildCuttingSolid(loadPreset("glenoid-40-R32", reamerPresetsPath()));
+  const QString good = dir.filePath("cutter40.stl");
+  writeMesh(solid, good.toStdString());
+  TriangleMesh open = solid;
+  open.triangles.pop_back();
+  const QString bad = dir.filePath("open_cutter.stl");
+  writeMesh(open, bad.toStdString());
+
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  placeAtThePlanStart(s);
+  EXPECT_FALSE(w.chooseReamerMesh(bad));
+  EXPECT_TRUE(w.lastError().contains("open_cutter.stl")) << w.lastError().toStdString();
+  EXPECT_EQ(s.reamer()->spec().name, "glenoid-36-R30");  // unchanged
+  for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
+
+  ASSERT_TRUE(w.chooseReamerMesh(good));
+  EXPECT_EQ(s.reamer()->spec().meshFile, good.toStdString());
+  EXPECT_EQ(s.reamer()->cuttingVolume()->triangles.size(), solid.triangles.size());
+  EXPECT_TRUE(s.canCut()) << s.cuttingStatus().toStdString();
+  cutOnce(s);
+  EXPECT_EQ(s.log()->last().reamer, "cutter40.stl");
+  EXPECT_GT(s.log()->last().removedMm3, 0.0);
+  // A plan naming the mesh beside it runs with it.
+  ReamPlan plan;
+  plan.reamer = "cutter40.stl";
+  plan.poses = {s.plan()->poses().front()};
+  const QString planPath = dir.filePath("with_mesh.json");
+  writeTextFile(planPath.toStdString(), planToJson(plan));
+  ASSERT_TRUE(w.chooseReamer("glenoid-36-R30"));
+  ASSERT_TRUE(w.runPlanFile(planPath));
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(s.reamer()->spec().meshFile, dir.filePath("cutter40.stl").toStdString());
+}
+
 // Reamer → Run a plan…: the plan file cuts the bone as `reamsim-cli ream --plan` does (the first pose placed,
 // the rest a path, with the plan's reamer): the same cuts and the same bone as the command line's controller.
 TEST(GuiReaming, RunningAPlanFileCutsAsTheCommandLineDoes) {
@@ -531,8 +573,8 @@ TEST(GuiReaming, RunningAPlanFileCutsAsTheCommandLineDoes) {
   EXPECT_TRUE(w.lastError().contains("broken.json: poses[0].tip must be an array of 3 numbers")) << w.lastError().toStdString();
   const QString meshReamer = dir.filePath("mesh_reamer.json");
   writeTextFile(meshReamer.toStdString(), "{\"reamer\": \"/tmp/cutter.stl\", \"poses\": [{\"tip\": [1, 2, 3], \"axis\": [0, 0, 1]}]}");
-  EXPECT_FALSE(w.runPlanFile(meshReamer));
-  EXPECT_TRUE(w.lastError().contains("reamsim-cli ream")) << w.lastError().toStdString();
+  EXPECT_FALSE(w.runPlanFile(meshReamer));  // no such file, and no such preset
+  EXPECT_TRUE(w.lastError().contains("neither a mesh file nor a preset")) << w.lastError().toStdString();
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_EQ(s.bone()->current().volume(), volume);
   EXPECT_EQ(s.reamer()->spec().name, "glenoid-40-R32");
