@@ -57,7 +57,13 @@ bool MainWindow::chooseReamer(const QString& preset) {
     showError(tr("Choose the reamer"), QString::fromStdString(e.what()));
     return false;
   }
+  if (presets.empty()) {
+    showError(tr("Choose the reamer"), tr("%1 lists no reamers.").arg(QString::fromStdString(reamerPresetsPath())));
+    return false;
+  }
   const auto describe = [](const ReamerSpec& r) {
+    if (!r.meshFile.empty())
+      return tr("%1 (a mesh: %2)").arg(QString::fromStdString(r.name), QFileInfo(QString::fromStdString(r.meshFile)).fileName());
     return r.isFlat() ? tr("%1 (Ø %L2 mm, flat)").arg(QString::fromStdString(r.name)).arg(r.diameterMm)
                       : tr("%1 (Ø %L2 mm, cap sphere R %L3 mm)").arg(QString::fromStdString(r.name)).arg(r.diameterMm).arg(r.sphereRadiusMm);
   };
@@ -73,8 +79,9 @@ bool MainWindow::chooseReamer(const QString& preset) {
     const QString picked = QInputDialog::getItem(this, tr("Choose the reamer"),
                                                  tr("The reamer to cut with (it keeps the current pose and axis):"),
                                                  items, current, false, &ok);
-    if (!ok) return false;
-    name = QString::fromStdString(presets[std::size_t(items.indexOf(picked))].name);
+    const int index = items.indexOf(picked);
+    if (!ok || index < 0) return false;
+    name = QString::fromStdString(presets[std::size_t(index)].name);
   }
   const auto it = std::find_if(presets.begin(), presets.end(), [&](const ReamerSpec& r) { return r.name == name.toStdString(); });
   if (it == presets.end()) {
@@ -137,20 +144,27 @@ bool MainWindow::runPlanFile(const QString& path) {
     showError(tr("Cannot run the plan %1").arg(QFileInfo(file).fileName()), QString::fromStdString(e.what()));
     return false;
   }
+  const QString title = tr("Cannot run the plan %1").arg(QFileInfo(file).fileName());
+  if (!session_->canCollide()) {  // before anything changes
+    showError(title, session_->cuttingStatus());
+    return false;
+  }
   if (!plan.reamer.empty()) {
+    ReamerSpec spec;
     try {
-      const ReamerSpec spec = planReamer(plan.reamer, file);
-      const ReamerSpec& now = session_->reamer()->spec();
-      if (spec.name != now.name || spec.meshFile != now.meshFile) session_->setReamer(spec);
+      spec = planReamer(plan.reamer, file);
     } catch (const std::exception& e) {
-      showError(tr("Cannot run the plan %1").arg(QFileInfo(file).fileName()),
-                tr("Its reamer %1 is neither a mesh file nor a preset:\n%2").arg(QString::fromStdString(plan.reamer), QString::fromStdString(e.what())));
+      showError(title, tr("Its reamer %1 is neither a mesh file nor a preset:\n%2")
+                           .arg(QString::fromStdString(plan.reamer), QString::fromStdString(e.what())));
       return false;
     }
-  }
-  if (!session_->canCollide()) {
-    showError(tr("Cannot run the plan %1").arg(QFileInfo(file).fileName()), session_->cuttingStatus());
-    return false;
+    const ReamerSpec& now = session_->reamer()->spec();
+    try {
+      if (spec.name != now.name || spec.meshFile != now.meshFile) session_->setReamer(spec);
+    } catch (const std::exception& e) {  // a mesh that is not a closed solid
+      showError(title, QString::fromStdString(e.what()));
+      return false;
+    }
   }
   {
     Document::BatchScope batch(session_->document());
@@ -158,10 +172,11 @@ bool MainWindow::runPlanFile(const QString& path) {
     session_->plan()->setPoses(poses);
     session_->plan()->setFeedDescription(plan.description.empty() ? std::nullopt : std::optional<std::string>(plan.description));
   }
-  // As the command line's controller: the first pose is placed (nothing swept to it), the rest is a path.
+  // As the command line's controller: the first pose is placed (nothing swept to it), the rest is a path. What was
+  // waiting goes (a queued feed, a move not yet computed, a ream to depth whose search is out).
+  pendingDepth_.reset();
   session_->cancelQueued();
-  session_->moveReamer(poses.front(), false);
-  session_->runSteps(std::vector<Pose>(poses.begin() + 1, poses.end()));
+  session_->runSteps(poses, /*placeFirst=*/true);
   statusBar()->showMessage(tr("Running %1: %Ln step(s)", "", int(poses.size())).arg(QFileInfo(file).fileName()), 5000);
   return true;
 }

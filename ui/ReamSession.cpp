@@ -90,7 +90,7 @@ void ReamSession::setReamer(const ReamerSpec& spec) {
   // Read (and checked) first: a file that cannot be a cutting solid leaves the reamer as it was.
   auto volume = std::make_shared<const TriangleMesh>(spec.meshFile.empty() ? buildCuttingSolid(spec)
                                                                            : loadCuttingSolidFromFile(spec.meshFile));
-  cancelQueued();
+  // Not stopped: the running step is computed with the engine it started on, which must outlive it.
   if (running_) watcher_.waitForFinished();
   reamer_->setSpec(spec);
   reamer_->setCuttingVolume(std::move(volume));
@@ -143,10 +143,10 @@ void ReamSession::frameShown() {
   startNext();
 }
 
-void ReamSession::runSteps(const std::vector<Pose>& poses) {
+void ReamSession::runSteps(const std::vector<Pose>& poses, bool placeFirst) {
   if (!engine_ || poses.empty()) return;
   queuePendingUserMove();  // keep the order: the pending move by hand first
-  for (const Pose& p : poses) queued_.push_back({p, std::nullopt});
+  for (const Pose& p : poses) queued_.push_back({p, std::nullopt, placeFirst && &p == &poses.front()});
   sequenceTotal_ += static_cast<int>(poses.size());
   Q_EMIT progress(sequenceDone_, sequenceTotal_);
   startNext();
@@ -226,12 +226,14 @@ void ReamSession::startNext() {
       return;
     }
     pose = next.pose;
+    moved = !next.placed;
   } else {
     pose = *latestUserPose_;
     moved = latestUserMoved_;
     latestUserPose_.reset();
   }
-  const double stepMm = lastComputedPose_ ? norm(pose.tip - lastComputedPose_->tip) : 0.0;
+  // A placed step comes from nowhere, as the command line's first pose of a plan (its broad phase looks no wider).
+  const double stepMm = moved && lastComputedPose_ ? norm(pose.tip - lastComputedPose_->tip) : 0.0;
   const std::optional<Pose> sweptFrom = moved ? lastComputedPose_ : std::nullopt;
   poseBeforeRunning_ = lastComputedPose_;
   lastComputedPose_ = pose;

@@ -88,6 +88,8 @@ class ReamSession : public QObject {
   void returnReamerTo(const Pose& pose);
   // The reamer: a parametric one, or with `spec.meshFile` a closed mesh read from that file (InputError naming
   // the file when it cannot be a cutting solid; the reamer then stays as it was).
+  // A step running when it is called finishes with the reamer it started with (and is logged with it); the
+  // steps waiting and a pending move run with the new one.
   void setReamer(const ReamerSpec& spec);
 
   bool canCollide() const;
@@ -97,7 +99,9 @@ class ReamSession : public QObject {
   // User move: coalesced; cancels a running step sequence. `moved`: the reamer travelled here from where it
   // was (keys, drag), so a sideways translation cuts the volume it swept; false: it was placed here.
   void moveReamer(const Pose& pose, bool moved = false);
-  void runSteps(const std::vector<Pose>& poses);  // every step runs (feed, ream to depth, plan)
+  // Every step runs (feed, ream to depth, plan), each a travel from the one before; with `placeFirst` the first is
+  // placed instead (nothing swept to it), as the command line's plan runner places a plan's first pose.
+  void runSteps(const std::vector<Pose>& poses, bool placeFirst = false);
   // Queues a search for the first contact of the reamer advancing from `start` along its axis (up to
   // maxMm): run on the worker after the steps queued before it, against the bone they leave, on the
   // engine's own collision structure (no tree is built for it). Answered by contactSearched.
@@ -171,6 +175,7 @@ class ReamSession : public QObject {
   struct QueuedStep {
     Pose pose;
     std::optional<double> searchMm;  // set: a contact search from `pose` along its axis, not a step
+    bool placed = false;             // placed there (nothing swept), not a travel from the step before
   };
   std::deque<QueuedStep> queued_;
   std::optional<Pose> latestUserPose_;

@@ -526,43 +526,54 @@ TEST(GuiReaming, AReamerMeshFromAFileCutsAndABadOneIsRefused) {
   EXPECT_EQ(s.reamer()->spec().meshFile, dir.filePath("cutter40.stl").toStdString());
 }
 
-// Reamer → Run a plan…: the plan file cuts the bone as `reamsim-cli ream --plan` does (the first pose placed,
-// the rest a path, with the plan's reamer): the same cuts and the same bone as the command line's controller.
+// Reamer → Run a plan…: the plan file cuts the bone as `reamsim-cli ream --plan` does: the first pose placed (nothing
+// swept to it from where the reamer was), the rest a path whose sideways moves sweep, with the plan's reamer.
+// Compared with the command line's controller on the same bone: the reamer first seated in the glenoid by one cut,
+// then the plan from a fresh controller (whose first pose is placed, as the command line's).
 TEST(GuiReaming, RunningAPlanFileCutsAsTheCommandLineDoes) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;
-  const ReamPlan defaultPlan = loadPlan(defaultPlanPath());
-  ReamPlan plan;  // a shorter, wider one than the default: 8 steps of 0.4 mm with the 40 mm reamer
-  plan.reamer = "glenoid-40-R32";
-  plan.feed = defaultPlan.feed;
-  plan.feed->count = 8;
-  plan.feed->stepMm = 0.4;
-  plan.description = "test plan";
-  const QString planPath = dir.filePath("plan.json");
-  writeTextFile(planPath.toStdString(), planToJson(plan));
-
-  // The command line's way, in this process: a controller on the default bone.
-  Document doc;
-  auto& bone = doc.create<BoneNode>("Bone", BoneState::fromMesh(loadDefaultBone().mesh));
-  const ReamerSpec spec = loadPreset(plan.reamer, reamerPresetsPath());
-  auto& reamer = doc.create<ReamerNode>("Reamer", spec);
-  reamer.setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(spec)));
-  auto& log = doc.create<LogNode>("Log");
-  ReamController controller(doc, bone, reamer, log, nullptr, localCutBackendFactory(), makeBvhContactBackend());
-  for (const Pose& p : plan.expandedPoses()) controller.moveTo(p);
-
   GuiFixture f;
   MainWindow& w = *f.window;
   ReamSession& s = f.session();
+  cutOnce(s);  // the reamer seated 0.5 mm in the glenoid
+  const Pose seated = s.reamer()->pose();
+  // Three poses with the 40 mm reamer: 3 mm across the axis (placed), 1 mm further (a swept travel), fed 0.3 mm.
+  const Vec3 across = normalized(cross(seated.axis, std::abs(seated.axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  ReamPlan plan;
+  plan.reamer = "glenoid-40-R32";
+  Pose p1 = seated;
+  p1.tip = seated.tip + 3.0 * across;
+  Pose p2 = p1;
+  p2.tip = p1.tip + 1.0 * across;
+  plan.poses = {p1, p2, advancedAlongAxis(p2, 0.3)};
+  const QString planPath = dir.filePath("plan.json");
+  writeTextFile(planPath.toStdString(), planToJson(plan));
+
+  // The command line's way, in this process.
+  Document doc;
+  auto& bone = doc.create<BoneNode>("Bone", BoneState::fromMesh(loadDefaultBone().mesh));
+  const ReamerSpec defaultSpec = loadPreset("glenoid-36-R30", reamerPresetsPath());
+  auto& reamer = doc.create<ReamerNode>("Reamer", defaultSpec);
+  reamer.setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(defaultSpec)));
+  auto& log = doc.create<LogNode>("Log");
+  ReamController(doc, bone, reamer, log, nullptr, localCutBackendFactory(), makeBvhContactBackend()).moveTo(seated);
+  ASSERT_EQ(bone.current().liveTriangleCount(), s.bone()->current().liveTriangleCount());
+  const double seatedVolume = bone.current().volume();
+  const ReamerSpec planSpec = loadPreset(plan.reamer, reamerPresetsPath());
+  reamer.setSpec(planSpec);
+  reamer.setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(planSpec)));
+  ReamController planRun(doc, bone, reamer, log, nullptr, localCutBackendFactory(), makeBvhContactBackend());
+  for (const Pose& p : plan.poses) planRun.moveTo(p);
+
   ASSERT_TRUE(w.runPlanFile(planPath));
   ASSERT_TRUE(s.waitIdle(120000));
   EXPECT_EQ(s.reamer()->spec().name, "glenoid-40-R32");
-  EXPECT_EQ(s.plan()->poses().size(), 8u);
-  EXPECT_GT(s.cutsCommitted(), 3u);
+  EXPECT_EQ(s.plan()->poses().size(), 3u);
   EXPECT_EQ(s.bone()->current().liveTriangleCount(), bone.current().liveTriangleCount());
   EXPECT_NEAR(s.bone()->current().volume(), bone.current().volume(), 1e-9 * bone.current().volume());
-  EXPECT_LT(bone.current().volume(), s.initialVolumeMm3() - 50.0);
-  EXPECT_TRUE(samePose(s.reamer()->pose(), plan.expandedPoses().back()));
+  EXPECT_LT(bone.current().volume(), seatedVolume - 20.0);  // the plan cut
+  EXPECT_TRUE(samePose(s.reamer()->pose(), plan.poses.back()));
   EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
 
   // A plan that cannot run says why, naming the file, and leaves the bone as it was.
@@ -572,7 +583,7 @@ TEST(GuiReaming, RunningAPlanFileCutsAsTheCommandLineDoes) {
   EXPECT_FALSE(w.runPlanFile(broken));
   EXPECT_TRUE(w.lastError().contains("broken.json: poses[0].tip must be an array of 3 numbers")) << w.lastError().toStdString();
   const QString meshReamer = dir.filePath("mesh_reamer.json");
-  writeTextFile(meshReamer.toStdString(), "{\"reamer\": \"/tmp/cutter.stl\", \"poses\": [{\"tip\": [1, 2, 3], \"axis\": [0, 0, 1]}]}");
+  writeTextFile(meshReamer.toStdString(), "{\"reamer\": \"no_such_cutter.stl\", \"poses\": [{\"tip\": [1, 2, 3], \"axis\": [0, 0, 1]}]}");
   EXPECT_FALSE(w.runPlanFile(meshReamer));  // no such file, and no such preset
   EXPECT_TRUE(w.lastError().contains("neither a mesh file nor a preset")) << w.lastError().toStdString();
   ASSERT_TRUE(s.waitIdle(60000));
