@@ -160,6 +160,7 @@ class MainWindow : public QMainWindow {
   // the copied bone, which the history's state at the copy must be.
   std::optional<BoneHistory> readRecoveredHistory(const RecoveredBone& copy, std::size_t faces, double volume);
   void removeRecoveryCopy();
+  void restoreRecoveredReamer(const RecoveredBone& copy);
   QString keepInRestored(const QString& file) const;  // a copy in recovery/restored/ named <time>_<name>
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
   // The bone's mesh only, on a worker with a progress dialog (Cancel); errors in a dialog; does not mark it

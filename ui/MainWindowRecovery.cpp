@@ -2,7 +2,6 @@
 // a moment after each change, removed by a save or a normal close, offered at the next start after a crash
 // (RecoveryFiles.h; docs/GUI.md "Unsaved changes").
 #include <QDateTime>
-#include <cmath>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -10,6 +9,7 @@
 #include <QPushButton>
 #include <QStatusBar>
 #include <QtConcurrent/QtConcurrentRun>
+#include <cmath>
 #include <utility>
 
 #include "BoneCommands.h"
@@ -95,18 +95,24 @@ void MainWindow::writeRecoveryCopy() {
   inCopy.cursor = history.cursor();
   std::string csv = cutLogCsv(session_->log()->entries());
   const PatientFrame frame = session_->bone()->patientFrame();
-  const QString name = boneName_;
-  const int cuts = static_cast<int>(session_->log()->entries().size());
-  const double removed = session_->initialVolumeMm3() - state.volume();  // undone cuts not counted
+  CopyDescription description;
+  description.name = boneName_;
+  description.cuts = static_cast<int>(session_->log()->entries().size());
+  description.removedMm3 = session_->initialVolumeMm3() - state.volume();  // undone cuts not counted
+  description.besideNames = besideNames;
+  const ReamerSpec& reamer = session_->reamer()->spec();
+  if (reamer.meshFile.empty())
+    description.reamerPreset = QString::fromStdString(reamer.name);
+  else
+    description.reamerMesh = QString::fromStdString(reamer.meshFile);
   const RecoveryFiles* files = recovery_.get();
   std::unique_ptr<HistoryJournalWriter>* journal = &journal_;  // the worker's alone while it runs
   recoveryWrite_.setFuture(QtConcurrent::run(
-      [writer, files, frame, name, cuts, removed, state = std::move(state), csv = std::move(csv),
-       besideCopies = std::move(besideCopies), besideNames, journal, entries = std::move(entries),
-       inCopy = std::move(inCopy)]() -> QString {
+      [writer, files, frame, state = std::move(state), csv = std::move(csv), besideCopies = std::move(besideCopies),
+       journal, entries = std::move(entries), inCopy = std::move(inCopy), description = std::move(description)]() mutable -> QString {
         // Without its history the copy still holds the bone: a journal that cannot be written is reported, not
         // a reason to keep no copy.
-        std::optional<HistoryInCopy> history = inCopy;
+        description.history = inCopy;
         QString historyError;
         try {
           const std::string path = files->historyPath(inCopy.revisions.front()).toStdString();
@@ -114,7 +120,7 @@ void MainWindow::writeRecoveryCopy() {
           (*journal)->append(entries);
         } catch (const std::exception& e) {
           journal->reset();  // commit removes its file: the next copy starts it again
-          history.reset();
+          description.history.reset();
           historyError = QString::fromStdString(e.what());
         }
         QString error;
@@ -127,7 +133,7 @@ void MainWindow::writeRecoveryCopy() {
         } catch (const std::exception& e) {
           return QString::fromStdString(e.what());
         }
-        files->commit(name, cuts, removed, besideNames, history, error);
+        files->commit(description, error);
         if (error.isEmpty() && !historyError.isEmpty())
           error = QObject::tr("the undo history is not in the copy (%1)").arg(historyError);
         return error;
@@ -194,6 +200,7 @@ void MainWindow::offerRecovery() {
   const double recoveredVolume = BoneState::fromMesh(bone.mesh).volume();
   const std::size_t recoveredFaces = bone.mesh.triangles.size();
   installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
+  restoreRecoveredReamer(*found);
   // The undo history up to the crash, from its journal, with the History dock's steps: undo and redo as before
   // the crash. One that cannot be read back (or does not end at the copied bone) is reported and kept; the
   // recovered bone is then the history's only state.
@@ -243,6 +250,30 @@ void MainWindow::offerRecovery() {
   statusBar()->showMessage(undoSteps > 0 ? tr("Restored %1, its cut log (%2) and its undo history (%3 steps)").arg(name, steps).arg(undoSteps)
                                          : tr("Restored %1 and its cut log (%2)").arg(name, steps),
                            20000);
+}
+
+// The reamer the crashed session cut with. One that cannot be had any more (a preset renamed, a mesh file gone)
+// is named in a message; the window's reamer stays.
+void MainWindow::restoreRecoveredReamer(const RecoveredBone& found) {
+  if (found.reamerPreset.isEmpty() && found.reamerMesh.isEmpty()) return;  // a copy from before session 53
+  const QString reamer = found.reamerMesh.isEmpty() ? found.reamerPreset : found.reamerMesh;
+  try {
+    ReamerSpec spec;
+    if (found.reamerMesh.isEmpty()) {
+      spec = loadPreset(found.reamerPreset.toStdString(), reamerPresetsPath());
+    } else {
+      spec.name = QFileInfo(found.reamerMesh).fileName().toStdString();
+      spec.meshFile = found.reamerMesh.toStdString();
+    }
+    const ReamerSpec& now = session_->reamer()->spec();
+    if (spec.name == now.name && spec.meshFile == now.meshFile) return;
+    session_->setReamer(spec);
+    session_->plan()->setReamerSpecName(spec.name);
+  } catch (const std::exception& e) {
+    showError(tr("The reamer was not restored"),
+              tr("The crashed session cut with %1, which cannot be used now:\n%2\n\nThe reamer stays %3.")
+                  .arg(reamer, QString::fromStdString(e.what()), QString::fromStdString(session_->reamer()->spec().name)));
+  }
 }
 
 std::optional<BoneHistory> MainWindow::readRecoveredHistory(const RecoveredBone& found, std::size_t faces, double volume) {

@@ -65,6 +65,8 @@ std::optional<RecoveredBone> RecoveryFiles::found() const {
   r.logPath = path("cut_log." + slot + ".csv");
   if (!QFile::exists(r.logPath)) r.logPath.clear();
   r.name = d.value("name").toString();
+  r.reamerPreset = d.value("reamer_preset").toString();
+  r.reamerMesh = d.value("reamer_mesh").toString();
   r.cuts = d.value("cuts").toInt();
   r.written = QDateTime::fromString(d.value("written").toString(), Qt::ISODate).toLocalTime();
   if (d.value("removed_mm3").isDouble()) r.removedMm3 = d.value("removed_mm3").toDouble();
@@ -101,21 +103,23 @@ std::optional<RecoveredBone> RecoveryFiles::found() const {
   return r;
 }
 
-bool RecoveryFiles::commit(const QString& name, int cuts, double removedMm3, const QStringList& besideNames,
-                           const std::optional<HistoryInCopy>& history, QString& error) const {
+bool RecoveryFiles::commit(const CopyDescription& copy, QString& error) const {
+  const std::optional<HistoryInCopy>& history = copy.history;
   const QString journal = history && !history->revisions.empty()
                               ? QFileInfo(historyPath(history->revisions.front())).fileName() : QString();
   QJsonObject d;
   d.insert("slot", nextSlot());
-  d.insert("name", name);
-  d.insert("cuts", cuts);
-  if (!besideNames.isEmpty()) d.insert("beside", QJsonArray::fromStringList(besideNames));
+  d.insert("name", copy.name);
+  d.insert("cuts", copy.cuts);
+  if (!copy.besideNames.isEmpty()) d.insert("beside", QJsonArray::fromStringList(copy.besideNames));
+  if (!copy.reamerPreset.isEmpty()) d.insert("reamer_preset", copy.reamerPreset);
+  if (!copy.reamerMesh.isEmpty()) d.insert("reamer_mesh", copy.reamerMesh);
   if (!journal.isEmpty()) {
     QJsonArray revisions;
     for (std::uint64_t r : history->revisions) revisions.append(QString::number(r));
     d.insert("history", QJsonObject{{"file", journal}, {"revisions", revisions}, {"cursor", int(history->cursor)}});
   }
-  if (std::isfinite(removedMm3)) d.insert("removed_mm3", removedMm3);
+  if (std::isfinite(copy.removedMm3)) d.insert("removed_mm3", copy.removedMm3);
   d.insert("written", QDateTime::currentDateTimeUtc().toString(Qt::ISODate));
   QSaveFile f(path(kDescription));
   if (!f.open(QIODevice::WriteOnly) || f.write(QJsonDocument(d).toJson()) < 0 || !f.commit()) {

@@ -36,12 +36,23 @@ struct RecoveredBone {
   QString historyPath;
   std::vector<std::uint64_t> historyRevisions;
   std::size_t historyCursor = 0;
+  QString reamerPreset, reamerMesh;  // the reamer cut with (empty in a copy written before session 53)
 };
 
 // The history a copy names: its journal is RecoveryFiles::historyPath(revisions.front()).
 struct HistoryInCopy {
   std::vector<std::uint64_t> revisions;
   std::size_t cursor = 0;
+};
+
+// What a copy's description (recovery.json) says besides its files' slot.
+struct CopyDescription {
+  QString name;  // the bone's name as the window's title shows it
+  int cuts = 0;
+  double removedMm3 = 0;
+  QStringList besideNames;               // the bones written to nextBesidePath(0…), in order
+  std::optional<HistoryInCopy> history;  // what of the journal belongs to this copy (none: the bone alone)
+  QString reamerPreset, reamerMesh;      // the reamer cut with: a preset's name, or a mesh file (session 53)
 };
 
 class RecoveryFiles {
@@ -65,10 +76,8 @@ class RecoveryFiles {
   // another one (the crashed session, or an earlier crash) must never be appended to.
   QString historyPath(std::uint64_t firstRevision) const;  // "history-<token>-<revision>.rsj"
   // False (with `error` naming the file) when the description cannot be written; the previous copy stays.
-  // `besideNames`: the bones beside written to nextBesidePath(0…), in order. `history`: what of the journal
-  // belongs to this copy (none: the bone alone); once the description names it, other bones' journals go.
-  bool commit(const QString& name, int cuts, double removedMm3, const QStringList& besideNames,
-              const std::optional<HistoryInCopy>& history, QString& error) const;
+  // Once the description names its history, other bones' journals go.
+  bool commit(const CopyDescription& copy, QString& error) const;
   void remove() const;  // the description first, so a half-removed copy is never offered
 
  private:

@@ -127,6 +127,7 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
     crashed.window->enableRecovery(dir.filePath("recovery"), 0);
     openedFaces = crashed.session().bone()->current().liveTriangleCount();
     openedVolume = crashed.session().bone()->current().volume();
+    ASSERT_TRUE(crashed.window->chooseReamer("glenoid-40-R32"));  // restored with the bone
     cutOnce(crashed.session());
     cutOnce(crashed.session(), 1.0);
     secondCutFaces = crashed.session().bone()->current().liveTriangleCount();
@@ -178,6 +179,7 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   const QString status = w.statusBar()->currentMessage();
   EXPECT_TRUE(status.contains("cut log (2 steps)")) << status.toStdString();
   EXPECT_TRUE(status.contains("undo history (2 steps)")) << status.toStdString() << w.lastError().toStdString();
+  EXPECT_EQ(f.session().reamer()->spec().name, "glenoid-40-R32");
   // The undo history is back as it was at the crash: the bone as opened, the first cut (here), the undone second.
   EXPECT_EQ(f.session().bone()->history().size(), 3u);
   EXPECT_EQ(f.session().bone()->history().cursor(), 1u);
