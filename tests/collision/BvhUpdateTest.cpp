@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "../core/MovedCornerEdit.h"
 #include "CollisionFixtures.h"
 #include "reamsim/collision/BoneCollider.h"
 #include "reamsim/collision/BruteForce.h"
@@ -284,18 +285,9 @@ TEST(collisionBvhBuild, NodesAreLaidOutInPairBlocks) {
 // moved corner: until session 53 changedTriangleSlots saw the same slots as the same triangle, and the tree kept
 // the old corners.
 TEST(collisionBvhUpdate, SyncToFollowsATriangleBackInItsSlotWithAMovedCorner) {
-  TriangleMesh one;
-  one.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-  one.triangles = {{0, 1, 2}};
-  const BoneState before = BoneState::fromMesh(one, BoneState::Ordering::Preserve);
-  MeshDelta d;
-  d.removedTriangles = {0};
-  d.addedVertices = {{0, 0, 1}};
-  d.addedTriangles = {{MeshDelta::newVertex(0), 1, 2}};
-  const BoneState after = before.applyDelta(d);
-  ASSERT_EQ(after.triangle(0), before.triangle(0));
-  BoneCollider collider(before);
-  collider.syncTo(after);
+  const test::MovedCornerEdit e = test::movedCornerEdit();
+  BoneCollider collider(e.before);
+  collider.syncTo(e.after);
   // A ray up through (0.25, 0.25): with its corner at (0, 0, 1) the triangle lies in x + y + z = 1, z = 0.5 there
   // (the old one: z = 0).
   const std::optional<MeshHit> hit = collider.firstHit({0.25, 0.25, -1}, {0, 0, 1});

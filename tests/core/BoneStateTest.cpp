@@ -5,6 +5,7 @@
 #include <numeric>
 #include <random>
 
+#include "MovedCornerEdit.h"
 #include "TestMeshes.h"
 #include "reamsim/core/BoneState.h"
 
@@ -391,20 +392,8 @@ TEST(BoneState, ChangedTriangleSlotsMatchASlotBySlotComparison) {
 // the slot it left: same slots, a moved corner. It is a changed triangle (the collider and the history journal
 // would otherwise keep its old corners).
 TEST(BoneState, ATriangleBackInItsSlotWithAMovedCornerIsChanged) {
-  TriangleMesh one;
-  one.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-  one.triangles = {{0, 1, 2}};
-  const BoneState before = BoneState::fromMesh(one, BoneState::Ordering::Preserve);
-  MeshDelta d;
-  d.removedTriangles = {0};
-  d.addedVertices = {{0, 0, 0.5}};
-  d.addedTriangles = {{MeshDelta::newVertex(0), 1, 2}};
-  DeltaPlacement placement;
-  const BoneState after = before.applyDelta(d, &placement);
-  ASSERT_EQ(placement.triangleSlots, std::vector<std::uint32_t>{0u});  // the same triangle slot
-  ASSERT_EQ(placement.vertexSlots, std::vector<std::uint32_t>{0u});    // the freed vertex slot, taken again
-  ASSERT_EQ(after.triangle(0), before.triangle(0));                    // the same corner slots
-  const SlotChanges changes = BoneState::changedTriangleSlots(before, after);
+  const test::MovedCornerEdit e = test::movedCornerEdit();
+  const SlotChanges changes = BoneState::changedTriangleSlots(e.before, e.after);
   EXPECT_EQ(changes.removed, std::vector<std::uint32_t>{0u});
   EXPECT_EQ(changes.added, std::vector<std::uint32_t>{0u});
 }

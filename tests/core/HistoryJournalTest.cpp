@@ -10,6 +10,7 @@
 #include <fstream>
 #include <random>
 
+#include "MovedCornerEdit.h"
 #include "TestMeshes.h"
 #include "reamsim/core/HistoryJournal.h"
 #include "reamsim/mesh/MeshError.h"
@@ -125,20 +126,14 @@ TEST(HistoryJournal, EveryStateReadsBackAsWrittenWithTheCursor) {
 // The edit changedTriangleSlots once missed: a triangle back in its own slot, one corner's slot given to a new
 // vertex by the same edit. Read back, the moved corner is where it was written.
 TEST(HistoryJournal, ATriangleBackInItsSlotWithAMovedCornerReadsBackMoved) {
-  TriangleMesh one;
-  one.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-  one.triangles = {{0, 1, 2}};
-  BoneHistory h(BoneState::fromMesh(one, BoneState::Ordering::Preserve), "opened");
-  MeshDelta d;
-  d.removedTriangles = {0};
-  d.addedVertices = {{0, 0, 0.5}};
-  d.addedTriangles = {{MeshDelta::newVertex(0), 1, 2}};
-  h.commit(h.current().applyDelta(d), "moved");
+  const MovedCornerEdit e = movedCornerEdit();
+  BoneHistory h(e.before, "opened");
+  h.commit(e.after, "moved");
   TempFile f("moved_corner");
   HistoryJournalWriter(f.path).append(h.entries());
   const BoneHistory read = readHistoryJournal(f.path, revisionsOf(h), 1);
   expectSameStates(read, h);
-  EXPECT_EQ(read.current().toMesh().vertices.front().z, 0.5);
+  EXPECT_EQ(read.current().toMesh().vertices.front().z, 1.0);
 }
 
 // The volume of an open surface depends on the point it is taken from: the first state's is written and taken.
