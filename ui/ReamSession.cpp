@@ -90,10 +90,19 @@ void ReamSession::setReamer(const ReamerSpec& spec) {
   // Read (and checked) first: a file that cannot be a cutting solid leaves the reamer as it was.
   auto volume = std::make_shared<const TriangleMesh>(spec.meshFile.empty() ? buildCuttingSolid(spec)
                                                                            : loadCuttingSolidFromFile(spec.meshFile));
-  // Not stopped: the running step is computed with the engine it started on, which must outlive it.
-  if (running_) watcher_.waitForFinished();
+  // Neither stopped nor waited for (a long swing takes seconds): the running step finishes with the engine it
+  // started on, and finished() takes the new reamer before the next step starts.
+  if (running_) {
+    pendingReamer_ = PendingReamer{spec, std::move(volume)};
+    return;
+  }
+  takeReamer(spec, std::move(volume));
+}
+
+void ReamSession::takeReamer(const ReamerSpec& spec, std::shared_ptr<const TriangleMesh> cuttingVolume) {
+  pendingReamer_.reset();
   reamer_->setSpec(spec);
-  reamer_->setCuttingVolume(std::move(volume));
+  reamer_->setCuttingVolume(std::move(cuttingVolume));
   rebuildEngine();
 }
 
@@ -300,6 +309,8 @@ void ReamSession::finished() {
   progressTimer_->stop();
   StepResult r = watcher_.result();
   if (r.searchMm) {
+    // A reamer chosen while the search ran takes over first: the search, made for the other one, is dropped.
+    if (pendingReamer_) takeReamer(pendingReamer_->spec, pendingReamer_->cuttingVolume);
     answerSearch(r);
     startNext();
     return;
@@ -342,6 +353,7 @@ void ReamSession::finished() {
     ++sequenceDone_;
     Q_EMIT progress(sequenceDone_, sequenceTotal_);
   }
+  if (pendingReamer_) takeReamer(pendingReamer_->spec, pendingReamer_->cuttingVolume);  // chosen while this ran
   startNext();
 }
 

@@ -89,7 +89,7 @@ class ReamSession : public QObject {
   // The reamer: a parametric one, or with `spec.meshFile` a closed mesh read from that file (InputError naming
   // the file when it cannot be a cutting solid; the reamer then stays as it was).
   // A step running when it is called finishes with the reamer it started with (and is logged with it); the
-  // steps waiting and a pending move run with the new one.
+  // reamer changes when it has, and the steps waiting and a pending move run with the new one.
   void setReamer(const ReamerSpec& spec);
 
   bool canCollide() const;
@@ -172,6 +172,12 @@ class ReamSession : public QObject {
   std::uint64_t engineGeneration_ = 0;  // counts rebuildEngine calls
   QFutureWatcher<StepResult> watcher_;
   bool running_ = false;
+  void takeReamer(const ReamerSpec& spec, std::shared_ptr<const TriangleMesh> cuttingVolume);
+  struct PendingReamer {
+    ReamerSpec spec;
+    std::shared_ptr<const TriangleMesh> cuttingVolume;
+  };
+  std::optional<PendingReamer> pendingReamer_;  // chosen while a step ran: taken when it has finished
   struct QueuedStep {
     Pose pose;
     std::optional<double> searchMm;  // set: a contact search from `pose` along its axis, not a step

@@ -485,6 +485,31 @@ TEST(GuiReaming, ChoosingAReamerCutsAndLogsWithIt) {
   for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
 }
 
+// A reamer chosen while a long swing runs neither stops the swing nor waits for it: the swing is cut and logged
+// with the reamer it started with, and the reamer changes once it has finished.
+TEST(GuiReaming, AReamerChosenDuringASwingTakesOverAfterIt) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const Pose start = placeInTheBone(s, 0.5);
+  const std::size_t logged = s.log()->size();
+  s.runSteps({turned60(start)});  // 54 Booleans: running now
+  ASSERT_TRUE(s.busy());
+  ASSERT_TRUE(w.chooseReamer("glenoid-44-R35"));
+  EXPECT_TRUE(s.busy());                                // the swing goes on
+  EXPECT_EQ(s.reamer()->spec().name, "glenoid-36-R30");  // until it has finished
+  ASSERT_TRUE(s.waitIdle(120000));
+  ASSERT_EQ(s.log()->size(), logged + 1);
+  EXPECT_EQ(s.log()->last().reamer, "glenoid-36-R30");
+  EXPECT_EQ(s.reamer()->spec().name, "glenoid-44-R35");
+  s.runSteps({advancedAlongAxis(turned60(start), 0.5)});
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.log()->size(), logged + 2);
+  EXPECT_EQ(s.log()->last().reamer, "glenoid-44-R35");
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+}
+
 // Reamer → Choose a reamer mesh…: a closed solid read from a file, as `reamsim-cli ream --reamer FILE`; it cuts and
 // is logged under its file's name. A file that is not a closed solid is refused, naming it, and the reamer stays.
 TEST(GuiReaming, AReamerMeshFromAFileCutsAndABadOneIsRefused) {
