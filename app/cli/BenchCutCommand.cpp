@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include "reamsim/core/HistoryJournal.h"
 #include "CliArgs.h"
 #include "Commands.h"
 #include "DefaultCase.h"
@@ -23,6 +24,7 @@
 #include "NodePeers.h"
 #include "ReamedSurfaceJson.h"
 #include "reamsim/core/Document.h"
+#include "reamsim/core/HistoryJournal.h"
 #include "reamsim/csg/LocalSubtractor.h"
 #include "reamsim/csg/ReferenceSubtractor.h"
 #include "reamsim/csg/SweptVolume.h"
@@ -467,6 +469,15 @@ nlohmann::json appLoop(const TriangleMesh& bone, const ReamerSpec& spec, const T
                             makeBvhContactBackend(false));
   const double setupMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::vector<double> step, contact, cut, state, commit;  // of the steps that cut
+  // The crash-recovery journal of the bone's history (HistoryJournal.h), appended after every cut as if each were
+  // a copy of its own (the window appends every few seconds), then read back whole: what recovery costs.
+  const std::string journalPath =
+      (std::filesystem::temp_directory_path() / ("reamsim_bench_journal_" + std::to_string(::getpid()) + ".rsj")).string();
+  std::filesystem::remove(journalPath);
+  HistoryJournalWriter journal(journalPath);
+  journal.append(boneNode.history().entries());
+  const std::uint64_t firstRecordBytes = journal.bytes();
+  std::vector<double> journalAppendMs, journalCutBytes;
   std::size_t failures = 0;
   for (const Pose& p : poses) {
     const auto s0 = std::chrono::steady_clock::now();
@@ -478,10 +489,24 @@ nlohmann::json appLoop(const TriangleMesh& bone, const ReamerSpec& spec, const T
       cut.push_back(o.times.cut);
       state.push_back(o.times.state);
       commit.push_back(o.commitMs);
+      const std::uint64_t before = journal.bytes();
+      const auto j0 = std::chrono::steady_clock::now();
+      journal.append(boneNode.history().entries());
+      journalAppendMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - j0).count());
+      journalCutBytes.push_back(double(journal.bytes() - before));
     } catch (const std::exception&) {
       ++failures;
     }
   }
+  std::vector<std::uint64_t> revisions;
+  for (const BoneHistory::Entry& e : boneNode.history().entries()) revisions.push_back(e.revision);
+  const auto r0 = std::chrono::steady_clock::now();
+  const BoneHistory replayed = readHistoryJournal(journalPath, revisions, revisions.size() - 1);
+  const double replayMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
+  const bool replayedSame = replayed.current().liveTriangleCount() == boneNode.current().liveTriangleCount() &&
+                            std::abs(replayed.current().volume() - boneNode.current().volume()) <=
+                                1e-9 * std::abs(boneNode.current().volume());
+  std::filesystem::remove(journalPath);
   auto stats = [](const std::vector<double>& v) {
     return nlohmann::json{{"median_ms", percentile(v, 0.5)}, {"p95_ms", percentile(v, 0.95)}, {"p99_ms", percentile(v, 0.99)}};
   };
@@ -495,7 +520,16 @@ nlohmann::json appLoop(const TriangleMesh& bone, const ReamerSpec& spec, const T
                                {"state", percentile(state, 0.5)},
                                {"commit", percentile(commit, 0.5)}}},
           {"faces_end", boneNode.current().liveTriangleCount()},
-          {"volume_end_mm3", boneNode.current().volume()}};
+          {"volume_end_mm3", boneNode.current().volume()},
+          {"recovery_journal",
+           {{"what", "the history journal appended after every cut (each with fdatasync), then replayed whole"},
+            {"first_record_bytes", firstRecordBytes},
+            {"bytes_per_cut_median", percentile(journalCutBytes, 0.5)},
+            {"append_ms_median", percentile(journalAppendMs, 0.5)},
+            {"append_ms_p99", percentile(journalAppendMs, 0.99)},
+            {"states", revisions.size()},
+            {"replay_ms", replayMs},
+            {"replayed_state_matches", replayedSame}}}};
 }
 
 }  // namespace

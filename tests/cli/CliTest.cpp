@@ -94,6 +94,17 @@ TEST(Cli, BenchCutReportsTheMachineSpeed) {
   reamsim::test::expectMachineReading(nlohmann::json::parse(r.out).at("machine"));
 }
 
+// bench cut --loop also measures the crash-recovery journal of the loop's history: appended after each cut and
+// read back to the same bone.
+TEST(Cli, BenchCutLoopMeasuresTheRecoveryJournal) {
+  const CliRun r = reamsim::test::runCommand(std::string(REAMSIM_CLI) + " bench cut --steps 12 --loop --json 2>/dev/null");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out).at("loop").at("recovery_journal");
+  EXPECT_TRUE(j.at("replayed_state_matches").get<bool>()) << j.dump();
+  EXPECT_GT(j.at("first_record_bytes").get<double>(), 14998 * 16.0);  // every triangle of the bundled bone
+  EXPECT_EQ(j.at("states").get<int>(), nlohmann::json::parse(r.out).at("loop").at("cuts").get<int>() + 1);
+}
+
 TEST(Cli, MalformedFilesExitWithCodeThreeAndNameTheFile) {
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(kData + "/malformed")) {
