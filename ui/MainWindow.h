@@ -23,6 +23,7 @@ class QLabel;
 class QMenu;
 class QProgressBar;
 class QPushButton;
+class QSettings;
 class QDockWidget;
 
 namespace reamsim {
@@ -101,6 +102,9 @@ class MainWindow : public QMainWindow {
   // A reamer read from a mesh (a closed solid, tip at the origin, feed along +Z; empty: the user picks the file),
   // as `reamsim-cli ream --reamer FILE`. False, with a message naming the file and the problem, when it cannot be.
   bool chooseReamerMesh(const QString& path = {});
+  // The reamer moves' keys stored under keys/ (a user's window reads them at start): one that a menu action has
+  // taken is not used (the move keeps its default key) and the status bar names it.
+  void applyStoredKeyBindings(const QSettings& settings);
   // Runs a plan file (docs/PLAN_FORMAT.md) on the bone as `reamsim-cli ream --plan` does: its reamer (a
   // preset) is taken, the reamer is placed at the first pose and follows the rest as a path (sideways moves
   // sweep). An empty path: the user picks the file. False (with a message naming the file and the problem)

@@ -274,12 +274,28 @@ bool MainWindow::setKeyBinding(ReamerMove move, const QKeySequence& keys) {
 }
 
 void MainWindow::loadKeyBindings() {
-  if (!persistent_) return;
-  QSettings s;
+  if (persistent_) applyStoredKeyBindings(QSettings());
+}
+
+void MainWindow::applyStoredKeyBindings(const QSettings& s) {
+  // A stored key that a menu action has taken since it was stored (a newer version's shortcut) would work for
+  // neither: the move keeps its default key, and the status bar says so.
+  QList<const QAction*> moves;
+  for (const MoveInfo& m : reamerMoves()) moves << moveAction(m.move);
+  QStringList dropped;
   for (const MoveInfo& m : reamerMoves()) {
     const QString stored = s.value(QString("keys/") + m.id).toString();
-    if (!stored.isEmpty()) moveAction(m.move)->setShortcut(QKeySequence(stored));
+    if (stored.isEmpty()) continue;
+    const QKeySequence keys(stored);
+    const QString owner = shortcutOwner(keys, moves);
+    if (!owner.isEmpty()) {
+      dropped << tr("%1 (%2, now \"%3\")").arg(tr(m.label), keys.toString(QKeySequence::NativeText), owner);
+      continue;
+    }
+    moveAction(m.move)->setShortcut(keys);
   }
+  if (!dropped.isEmpty())
+    statusBar()->showMessage(tr("Stored keys not used, their moves keep their default keys: %1").arg(dropped.join(", ")), 20000);
 }
 
 void MainWindow::editKeyBindings() {

@@ -5,6 +5,9 @@
 #include <QAction>
 #include <QDockWidget>
 #include <QMessageBox>
+#include <QSettings>
+#include <QStatusBar>
+#include <QTemporaryDir>
 #include <QTableWidget>
 #include <QUndoView>
 #include <QtTest/QTest>
@@ -29,6 +32,24 @@ void parkAwayFromBone(GuiFixture& f) {
   const Bounds b = f.session().bone()->current().bounds();
   f.session().moveReamer(Pose{{b.center().x, b.center().y, b.max.z + 40}, {0, 0, -1}, 0});
   ASSERT_TRUE(f.session().waitIdle(60000));
+}
+
+// Keys stored by an older version may since have been taken by a menu action (Ctrl+Shift+R: Choose the reamer…):
+// such a key would work for neither, so the move keeps its default key and the status bar says why.
+TEST(GuiWindow, AStoredKeyThatAMenuActionTookIsNotUsed) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  QTemporaryDir dir;
+  QSettings stored(dir.filePath("keys.ini"), QSettings::IniFormat);
+  stored.setValue("keys/move_x_plus", "Ctrl+Shift+R");
+  stored.setValue("keys/move_y_plus", "Q");
+  w.applyStoredKeyBindings(stored);
+  EXPECT_EQ(w.action("reamer_move_x_plus")->shortcut(), QKeySequence("Right"));  // the default
+  EXPECT_EQ(w.action("reamer_move_y_plus")->shortcut(), QKeySequence("Q"));
+  EXPECT_EQ(w.action("choose_reamer")->shortcut(), QKeySequence("Ctrl+Shift+R"));
+  const QString status = w.statusBar()->currentMessage();
+  EXPECT_TRUE(status.contains("Move +X") && status.contains("Choose the reamer")) << status.toStdString();
 }
 
 TEST(GuiWindow, ThesisKeysMoveAndRotateTheReamer) {
