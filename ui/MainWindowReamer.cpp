@@ -19,6 +19,7 @@
 #include "reamsim/ream/Approach.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/Plan.h"
+#include "reamsim/tools/ReamerFile.h"
 #include "reamsim/tools/ReamerPresets.h"
 
 namespace reamsim::ui {
@@ -98,10 +99,7 @@ bool MainWindow::chooseReamerMesh(const QString& path) {
     file = QFileDialog::getOpenFileName(this, tr("Choose a reamer mesh (a closed solid: tip at the origin, feed along +Z)"),
                                         {}, plugins_.meshImport()->nameFilters().join(";;"));
   if (file.isEmpty()) return false;
-  ReamerSpec spec;
-  spec.name = QFileInfo(file).fileName().toStdString();
-  spec.meshFile = file.toStdString();
-  return takeReamer(spec, tr("%1 (a mesh)").arg(QFileInfo(file).fileName()));
+  return takeReamer(meshReamerSpec(file.toStdString()), tr("%1 (a mesh)").arg(QFileInfo(file).fileName()));
 }
 
 // The reamer keeps its pose; one that cannot be made (a mesh that is not a closed solid) leaves the reamer as it was.
@@ -117,23 +115,19 @@ bool MainWindow::takeReamer(const ReamerSpec& spec, const QString& description) 
   return true;
 }
 
-// A plan's reamer as the command line takes it: a mesh file if there is one (beside the plan or as written),
-// otherwise a preset name.
+// A plan's reamer as the command line takes it (a mesh file if there is one, otherwise a preset name), a mesh
+// beside the plan first.
 ReamerSpec MainWindow::planReamer(const std::string& reamer, const QString& planFile) const {
-  for (const QString& candidate : {QFileInfo(planFile).dir().filePath(QString::fromStdString(reamer)), QString::fromStdString(reamer)}) {
-    if (!QFileInfo(candidate).isFile()) continue;
-    ReamerSpec spec;
-    spec.name = QFileInfo(candidate).fileName().toStdString();
-    spec.meshFile = candidate.toStdString();
-    return spec;
-  }
-  return loadPreset(reamer, reamerPresetsPath());
+  const QString beside = QFileInfo(planFile).dir().filePath(QString::fromStdString(reamer));
+  if (QFileInfo(beside).isFile()) return meshReamerSpec(beside.toStdString());
+  return reamerFromArgument(reamer, reamerPresetsPath());
 }
 
 bool MainWindow::runPlanFile(const QString& path) {
   QString file = path;
   if (file.isEmpty()) file = QFileDialog::getOpenFileName(this, tr("Run a plan"), {}, tr("Plans (*.json)"));
   if (file.isEmpty()) return false;
+  const QString title = tr("Cannot run the plan %1").arg(QFileInfo(file).fileName());
   ReamPlan plan;
   std::vector<Pose> poses;
   try {
@@ -141,10 +135,9 @@ bool MainWindow::runPlanFile(const QString& path) {
     poses = plan.expandedPoses();
     if (poses.empty()) throw InputError(file.toStdString(), "the plan has no poses");
   } catch (const std::exception& e) {
-    showError(tr("Cannot run the plan %1").arg(QFileInfo(file).fileName()), QString::fromStdString(e.what()));
+    showError(title, QString::fromStdString(e.what()));
     return false;
   }
-  const QString title = tr("Cannot run the plan %1").arg(QFileInfo(file).fileName());
   if (!session_->canCollide()) {  // before anything changes
     showError(title, session_->cuttingStatus());
     return false;

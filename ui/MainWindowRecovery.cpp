@@ -22,6 +22,7 @@
 #include "reamsim/core/HistoryJournal.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
+#include "reamsim/tools/ReamerFile.h"
 #include "reamsim/tools/ReamerPresets.h"
 
 namespace reamsim::ui {
@@ -258,13 +259,8 @@ void MainWindow::restoreRecoveredReamer(const RecoveredBone& found) {
   if (found.reamerPreset.isEmpty() && found.reamerMesh.isEmpty()) return;  // a copy from before session 53
   const QString reamer = found.reamerMesh.isEmpty() ? found.reamerPreset : found.reamerMesh;
   try {
-    ReamerSpec spec;
-    if (found.reamerMesh.isEmpty()) {
-      spec = loadPreset(found.reamerPreset.toStdString(), reamerPresetsPath());
-    } else {
-      spec.name = QFileInfo(found.reamerMesh).fileName().toStdString();
-      spec.meshFile = found.reamerMesh.toStdString();
-    }
+    const ReamerSpec spec = found.reamerMesh.isEmpty() ? loadPreset(found.reamerPreset.toStdString(), reamerPresetsPath())
+                                                       : meshReamerSpec(found.reamerMesh.toStdString());
     const ReamerSpec& now = session_->reamer()->spec();
     if (spec.name == now.name && spec.meshFile == now.meshFile) return;
     session_->setReamer(spec);

@@ -11,7 +11,6 @@
 #include "PluginHost.h"
 #include "reamsim/ream/ReamStep.h"
 #include "reamsim/tools/ReamerFile.h"
-#include "reamsim/tools/ReamerGeometry.h"
 
 namespace reamsim::ui {
 
@@ -88,8 +87,7 @@ double ReamSession::removedBeforeMm3() const {
 
 void ReamSession::setReamer(const ReamerSpec& spec) {
   // Read (and checked) first: a file that cannot be a cutting solid leaves the reamer as it was.
-  auto volume = std::make_shared<const TriangleMesh>(spec.meshFile.empty() ? buildCuttingSolid(spec)
-                                                                           : loadCuttingSolidFromFile(spec.meshFile));
+  auto volume = std::make_shared<const TriangleMesh>(cuttingSolidFor(spec));
   // Neither stopped nor waited for (a long swing takes seconds): the running step finishes with the engine it
   // started on, and finished() takes the new reamer before the next step starts.
   if (running_) {

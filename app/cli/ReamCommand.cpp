@@ -20,7 +20,6 @@
 #include "reamsim/ream/Plan.h"
 #include "reamsim/ream/ReamController.h"
 #include "reamsim/tools/ReamerFile.h"
-#include "reamsim/tools/ReamerGeometry.h"
 #include "reamsim/tools/ReamerPresets.h"
 
 namespace reamsim::cli {
@@ -62,15 +61,8 @@ LoadedBone loadBone(const std::string& arg, Units units) {
 
 // A reamer argument is a mesh file if such a file exists, otherwise a preset name.
 ReamerSpec resolveReamer(const std::string& arg, TriangleMesh& cuttingVolume) {
-  if (std::filesystem::is_regular_file(arg)) {
-    ReamerSpec spec;
-    spec.name = std::filesystem::path(arg).filename().string();
-    spec.meshFile = arg;
-    cuttingVolume = loadCuttingSolidFromFile(arg);
-    return spec;
-  }
-  ReamerSpec spec = loadPreset(arg, reamerPresetsPath());
-  cuttingVolume = buildCuttingSolid(spec);
+  ReamerSpec spec = reamerFromArgument(arg, reamerPresetsPath());
+  cuttingVolume = cuttingSolidFor(spec);
   return spec;
 }
 
