@@ -8,36 +8,31 @@
 #include "reamsim/core/PlanNode.h"
 
 namespace reamsim::ui {
-namespace {
 
-// The plan's poses (and feed) are the cut bone's: they leave with it and come back with it.
-void exchangePlan(PlanNode& plan, std::vector<Pose>& otherPoses, std::optional<std::string>& otherFeed) {
+void CutBoneCompanions::exchange(ReamSession& session, const std::function<void()>& exchangeBone) {
+  PlanNode& plan = *session.plan();
   std::vector<Pose> poses = plan.poses();
   std::optional<std::string> feed = plan.feedDescription();
   {
     Document::BatchScope batch(*plan.document());
-    plan.setPoses(std::move(otherPoses));
-    plan.setFeedDescription(std::move(otherFeed));
+    plan.setPoses(std::move(poses_));
+    plan.setFeedDescription(std::move(feed_));
   }
-  otherPoses = std::move(poses);
-  otherFeed = std::move(feed);
-}
-
-// The reamer's pose goes with the bone it was on, as the plan's poses do. Undo and redo put it back where it was
-// last computed on the incoming bone (often seated in that bone's own cut); a pose from the other bone could bury
-// it in this one, and the next move would cut all it overlaps. Where no step had been computed on the incoming
-// bone, the reamer goes clear of it. The first redo leaves the reamer to the caller, which puts it clear of the
-// new bone. `leaving`: the outgoing bone's settled pose, taken before exchangeBone dropped the moves not computed
-// yet.
-void exchangeReamerPose(ReamSession& session, bool first, const std::optional<Pose>& leaving, std::optional<Pose>& otherPose) {
-  if (otherPose)
-    session.returnReamerTo(*otherPose);
+  poses_ = std::move(poses);
+  feed_ = std::move(feed);
+  // The reamer's pose: undo and redo put it back where it was last computed on the incoming bone (often seated in
+  // that bone's own cut); a pose from the other bone could bury it in this one, and the next move would cut all it
+  // overlaps. Where no step had been computed on the incoming bone, the reamer goes clear of it. The outgoing
+  // bone's pose is taken before exchangeBone drops the moves not computed yet.
+  const std::optional<Pose> leaving = session.settledReamerPose();
+  exchangeBone();
+  const bool first = std::exchange(first_, false);
+  if (reamerPose_)
+    session.returnReamerTo(*reamerPose_);
   else if (!first)
     session.moveReamer(startPoseFor(session.bone()->current().bounds()));
-  otherPose = leaving;
+  reamerPose_ = leaving;
 }
-
-}  // namespace
 
 BoneContent boneContentFrom(ImportedBone bone, std::string name, std::string label) {
   BoneContent content;
@@ -57,10 +52,7 @@ ReplaceBoneCommand::ReplaceBoneCommand(ReamSession& session, BoneContent incomin
 }
 
 void ReplaceBoneCommand::exchange() {
-  exchangePlan(*session_.plan(), otherPoses_, otherFeed_);
-  const std::optional<Pose> leaving = session_.settledReamerPose();
-  session_.exchangeBone(other_);
-  exchangeReamerPose(session_, std::exchange(first_, false), leaving, otherReamerPose_);
+  others_.exchange(session_, [this] { session_.exchangeBone(other_); });
 }
 
 SwapBoneBesideCommand::SwapBoneBesideCommand(ReamSession& session, NodeId beside, const QString& text)
@@ -84,10 +76,8 @@ void SwapBoneBesideCommand::exchange() {
     BoneContent& content;
     ~PutBack() { node.swapContent(content); }
   } putBack{*beside, content};
-  exchangePlan(*session_.plan(), otherPoses_, otherFeed_);
-  const std::optional<Pose> leaving = session_.settledReamerPose();
-  session_.exchangeBone(content);  // the session's bone takes the one beside, `content` the cut bone
-  exchangeReamerPose(session_, std::exchange(first_, false), leaving, otherReamerPose_);
+  // The session's bone takes the one beside, `content` the cut bone.
+  others_.exchange(session_, [this, &content] { session_.exchangeBone(content); });
 }
 
 OtherBonesCommand::OtherBonesCommand(Document& document, std::vector<std::unique_ptr<BoneNode>> nodes,

@@ -2,6 +2,7 @@
 // Undo commands that put a whole bone into the document (CT import). Like CutCommand they copy no mesh:
 // a replaced bone's content (history included) is held by value, and its states share storage.
 #include <QUndoCommand>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +25,20 @@ class ReamSession;
 // starting from the mesh under `label`; for a node of its own or a ReplaceBoneCommand.
 BoneContent boneContentFrom(ImportedBone bone, std::string name, std::string label);
 
+// What goes with the cut bone when another bone takes its place, and comes back with it: the plan's poses and
+// feed (a plan made for one bone does not apply to another) and the reamer's pose (BoneCommands.cpp).
+class CutBoneCompanions {
+ public:
+  // Exchanges them around `exchangeBone`, which puts the other bone in the session.
+  void exchange(ReamSession& session, const std::function<void()>& exchangeBone);
+
+ private:
+  std::vector<Pose> poses_;
+  std::optional<std::string> feed_;
+  std::optional<Pose> reamerPose_;
+  bool first_ = true;  // the first exchange (the command's first redo): the caller places the reamer
+};
+
 // Replaces the session's bone (the one that is cut) and back. The plan's poses go with the bone: a plan
 // made for the previous bone does not apply to the new one, and comes back with it on undo. So does the
 // reamer's pose: undo and redo put the reamer back where it was on the bone that comes back (the first redo
@@ -40,10 +55,7 @@ class ReplaceBoneCommand : public QUndoCommand {
   void exchange();
   ReamSession& session_;
   BoneContent other_;
-  std::vector<Pose> otherPoses_;
-  std::optional<std::string> otherFeed_;
-  std::optional<Pose> otherReamerPose_;
-  bool first_ = true;  // the first redo: the caller places the reamer
+  CutBoneCompanions others_;  // the other bone's
 };
 
 // Makes a bone beside the one that is cut, and the cut bone one beside it; undo swaps them back. The two
@@ -59,10 +71,7 @@ class SwapBoneBesideCommand : public QUndoCommand {
   void exchange();
   ReamSession& session_;
   NodeId beside_;
-  std::vector<Pose> otherPoses_;
-  std::optional<std::string> otherFeed_;
-  std::optional<Pose> otherReamerPose_;
-  bool first_ = true;  // the first redo: the caller places the reamer
+  CutBoneCompanions others_;  // the other bone's
 };
 
 // Adds bones to the document beside the session's bone (shown, not cut), or removes them: `add` says
