@@ -7,7 +7,9 @@
 #include <stdexcept>
 #include <optional>
 #include <unordered_map>
+#include <cerrno>
 #include <fcntl.h>
+#include <filesystem>
 #include <unistd.h>
 
 #include "reamsim/mesh/MeshError.h"
@@ -193,8 +195,10 @@ std::vector<Indexed> indexRecords(const std::string& file, const std::string& da
   return out;
 }
 
-std::string readWhole(const std::string& path) {
+// The file's bytes; with `missingIsEmpty`, none for a file that is not there (a journal about to be started).
+std::string readWhole(const std::string& path, bool missingIsEmpty = false) {
   std::ifstream in(path, std::ios::binary);
+  if (!in && missingIsEmpty && !std::filesystem::exists(path)) return {};
   if (!in) throw InputError(path, "cannot open the history journal");
   std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError(path, "cannot read the history journal");
@@ -280,13 +284,26 @@ class Replay {
   std::unordered_map<std::uint32_t, std::uint32_t> triangles_, vertices_;
 };
 
+// Appends `data` and has it on the disk (fdatasync) before returning true: a description written after this
+// (recovery.json) must never name records the disk did not get.
+bool appendSynced(const std::string& path, const std::string& data) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND);
+  if (fd < 0) return false;
+  bool ok = true;
+  for (std::size_t done = 0; ok && done < data.size();) {
+    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    ok = n > 0;
+    if (ok) done += std::size_t(n);
+  }
+  ok = ok && ::fdatasync(fd) == 0;
+  return ::close(fd) == 0 && ok;
+}
+
 }  // namespace
 
 HistoryJournalWriter::HistoryJournalWriter(std::string path) : path_(std::move(path)) {
-  std::ifstream probe(path_, std::ios::binary);
-  std::string data;
-  if (probe) data.assign((std::istreambuf_iterator<char>(probe)), std::istreambuf_iterator<char>());
-  probe.close();
+  const std::string data = readWhole(path_, /*missingIsEmpty=*/true);
   if (data.empty()) {
     std::ofstream out(path_, std::ios::binary | std::ios::trunc);
     out.write(kMagic, sizeof kMagic);
@@ -315,23 +332,9 @@ void HistoryJournalWriter::append(const std::vector<BoneHistory::Entry>& entries
     added.push_back(entries[k].revision);
   }
   if (out.empty()) return;
-  std::ofstream file(path_, std::ios::binary | std::ios::app);
-  file.write(out.data(), std::streamsize(out.size()));
-  file.flush();
-  if (!file) {
-    file.close();
+  if (!appendSynced(path_, out)) {
     [[maybe_unused]] const int ignored = ::truncate(path_.c_str(), off_t(bytes_));  // drop a partial append
-    throw InputError(path_, "cannot append to the history journal (disk full?)");
-  }
-  file.close();
-  // On the disk before the description that names these records is (recovery.json, after this returns): a
-  // power cut must not leave a description naming records the disk never got.
-  const int fd = ::open(path_.c_str(), O_WRONLY);
-  const bool synced = fd >= 0 && ::fdatasync(fd) == 0;
-  if (fd >= 0) ::close(fd);
-  if (!synced) {
-    [[maybe_unused]] const int ignored = ::truncate(path_.c_str(), off_t(bytes_));
-    throw InputError(path_, "cannot write the history journal to the disk");
+    throw InputError(path_, "cannot append to the history journal and have it on the disk (disk full?)");
   }
   bytes_ += out.size();
   written_.insert(written_.end(), added.begin(), added.end());
