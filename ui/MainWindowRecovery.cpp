@@ -71,14 +71,14 @@ void MainWindow::writeRecoveryCopy() {
     PatientFrame frame;
   };
   std::vector<BesideCopy> besideCopies;
-  QStringList besideNames;
+  CopyDescription description;
   for (const BoneNode* b : unsavedBonesBeside()) {
     besideCopies.push_back({b->current(), b->patientFrame()});
-    besideNames << QString::fromStdString(b->name());
+    description.besideNames << QString::fromStdString(b->name());
   }
   for (const BoneContent* replaced : unsavedReplacedBones()) {
     besideCopies.push_back({replaced->history.current(), replaced->patientFrame});
-    besideNames << tr("%1 (replaced by a CT import)").arg(QString::fromStdString(replaced->name));
+    description.besideNames << tr("%1 (replaced by a CT import)").arg(QString::fromStdString(replaced->name));
   }
   if (!hasUnsavedChanges() && besideCopies.empty()) {
     removeRecoveryCopy();
@@ -91,16 +91,14 @@ void MainWindow::writeRecoveryCopy() {
   // cuts since the last one, not the whole history.
   const BoneHistory& history = session_->bone()->history();
   std::vector<BoneHistory::Entry> entries = history.entries();  // states share storage: cheap to copy
-  HistoryInCopy inCopy;
-  for (const BoneHistory::Entry& e : entries) inCopy.revisions.push_back(e.revision);
-  inCopy.cursor = history.cursor();
+  description.history.emplace();
+  for (const BoneHistory::Entry& e : entries) description.history->revisions.push_back(e.revision);
+  description.history->cursor = history.cursor();
   std::string csv = cutLogCsv(session_->log()->entries());
   const PatientFrame frame = session_->bone()->patientFrame();
-  CopyDescription description;
   description.name = boneName_;
   description.cuts = static_cast<int>(session_->log()->entries().size());
   description.removedMm3 = session_->initialVolumeMm3() - state.volume();  // undone cuts not counted
-  description.besideNames = besideNames;
   const ReamerSpec& reamer = session_->reamer()->spec();
   if (reamer.meshFile.empty())
     description.reamerPreset = QString::fromStdString(reamer.name);
@@ -110,13 +108,12 @@ void MainWindow::writeRecoveryCopy() {
   std::unique_ptr<HistoryJournalWriter>* journal = &journal_;  // the worker's alone while it runs
   recoveryWrite_.setFuture(QtConcurrent::run(
       [writer, files, frame, state = std::move(state), csv = std::move(csv), besideCopies = std::move(besideCopies),
-       journal, entries = std::move(entries), inCopy = std::move(inCopy), description = std::move(description)]() mutable -> QString {
+       journal, entries = std::move(entries), description = std::move(description)]() mutable -> QString {
         // Without its history the copy still holds the bone: a journal that cannot be written is reported, not
         // a reason to keep no copy.
-        description.history = inCopy;
         QString historyError;
         try {
-          const std::string path = files->historyPath(inCopy.revisions.front()).toStdString();
+          const std::string path = files->historyPath(description.history->revisions.front()).toStdString();
           if (!*journal || (*journal)->path() != path) *journal = std::make_unique<HistoryJournalWriter>(path);
           (*journal)->append(entries);
         } catch (const std::exception& e) {
