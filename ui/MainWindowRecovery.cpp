@@ -193,25 +193,21 @@ void MainWindow::offerRecovery() {
     recovery_.reset();
     return;
   }
-  const Bounds b = BoneState::fromMesh(bone.mesh).bounds();
+  const BoneState copied = BoneState::fromMesh(bone.mesh);
   session_->plan()->setPoses({});
-  const double recoveredVolume = BoneState::fromMesh(bone.mesh).volume();
-  const std::size_t recoveredFaces = bone.mesh.triangles.size();
   installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
   restoreRecoveredReamer(*found);
   // The undo history up to the crash, from its journal, with the History dock's steps: undo and redo as before
   // the crash. One that cannot be read back (or does not end at the copied bone) is reported and kept; the
   // recovered bone is then the history's only state.
-  if (std::optional<BoneHistory> history = readRecoveredHistory(*found, recoveredFaces, recoveredVolume)) {
-    std::vector<std::string> labels;
-    for (const BoneHistory::Entry& e : history->entries()) labels.push_back(e.label);
+  if (std::optional<BoneHistory> history = readRecoveredHistory(*found, copied.liveTriangleCount(), copied.volume())) {
     session_->adoptHistory(std::move(*history));
     const BoneHistory& adopted = session_->bone()->history();
     for (std::size_t k = 1; k < adopted.size(); ++k) {
       const BoneState& before = adopted.entries()[k - 1].state;
       const BoneState& after = adopted.entries()[k].state;
       session_->undoStack()->push(new CutCommand(*session_->bone(), tr("%1 (before the crash): %L2 mm³, %L3 faces")
-                                                                        .arg(QString::fromStdString(labels[k]))
+                                                                        .arg(QString::fromStdString(adopted.entries()[k].label))
                                                                         .arg(before.volume() - after.volume(), 0, 'f', 2)
                                                                         .arg(after.liveTriangleCount())));
     }
@@ -221,7 +217,7 @@ void MainWindow::offerRecovery() {
   const double originalVolume = session_->bone()->history().entries().front().state.volume();
   const double atCopyVolume = session_->bone()->current().volume();
   recoveredRevisions_.insert(session_->bone()->history().entries().front().revision);  // also once moved beside
-  session_->moveReamer(startPoseFor(b));
+  session_->moveReamer(startPoseFor(copied.bounds()));
   restoreBonesBeside(*found);
   session_->undoStack()->resetClean();  // saved nowhere but in the recovery copy
   // The log up to the crash goes back into the log panel. One that cannot be read is kept as a file for
