@@ -4,6 +4,7 @@
 #include "reamsim/core/AlertNode.h"
 #include "reamsim/core/BoneNode.h"
 #include "reamsim/core/Document.h"
+#include "reamsim/core/LandmarksNode.h"
 #include "reamsim/core/LogNode.h"
 #include "reamsim/core/PlanNode.h"
 #include "reamsim/core/ReamerNode.h"
@@ -87,4 +88,49 @@ TEST(Nodes, AlertsReportOnlyRealChanges) {
   alerts.clear();
   EXPECT_TRUE(alerts.alerts().empty());
   EXPECT_EQ(alerts.modifiedCount(), 2u);
+}
+
+// A placement asked for from outside the loop waits in the node until the loop takes it.
+TEST(Nodes, ReamerPlacementRequestWaitsUntilTaken) {
+  Document doc;
+  ReamerNode& r = doc.create<ReamerNode>();
+  int reports = 0;
+  Subscription s = doc.observeNode(r.id(), [&] { ++reports; });
+  EXPECT_FALSE(r.placementRequest());
+  r.requestPlacement(Pose{{1, 2, 3}, {0, 0, -1}, 0});
+  EXPECT_EQ(reports, 1);
+  EXPECT_EQ(r.pose().tip.x, 0);  // asked for, not moved
+  const std::optional<Pose> taken = r.takePlacementRequest();
+  ASSERT_TRUE(taken);
+  EXPECT_EQ(taken->tip.y, 2);
+  EXPECT_FALSE(r.placementRequest());
+  EXPECT_FALSE(r.takePlacementRequest());
+  EXPECT_EQ(reports, 1);  // taking it reports nothing
+}
+
+TEST(Nodes, LandmarksKeepPointsSideAndPickRequest) {
+  Document doc;
+  LandmarksNode& l = doc.create<LandmarksNode>();
+  EXPECT_EQ(l.id().toString(), "Landmarks1");
+  EXPECT_FALSE(l.landmarks().complete());
+  l.setPickRequest(ScapulaLandmark::InferiorAngle);
+  l.setLandmark(ScapulaLandmark::InferiorAngle, Vec3{1, 2, 3});
+  EXPECT_EQ(l.pickRequest(), ScapulaLandmark::InferiorAngle);  // the view clears it, not the setter
+  l.setPickRequest(std::nullopt);
+  l.setLandmark(ScapulaLandmark::GlenoidCentre, Vec3{4, 5, 6});
+  l.setLandmark(ScapulaLandmark::TrigonumScapulae, Vec3{7, 8, 9});
+  EXPECT_FALSE(l.landmarks().complete());  // no side yet
+  l.setSide(BodySide::Left);
+  EXPECT_TRUE(l.landmarks().complete());
+  ScapulaLandmarks copy = l.landmarks();
+  EXPECT_EQ(copy, l.landmarks());
+  copy[ScapulaLandmark::GlenoidCentre]->z = 6.5;
+  EXPECT_FALSE(copy == l.landmarks());
+  l.setPickRequest(ScapulaLandmark::GlenoidCentre);
+  l.setLandmarks(copy);
+  EXPECT_FALSE(l.pickRequest());  // a whole new set ends a pick
+  EXPECT_EQ(l.modifiedCount(), 8u);
+  EXPECT_EQ(parseBodySide("RIGHT"), BodySide::Right);
+  EXPECT_FALSE(parseBodySide("middle"));
+  EXPECT_STREQ(jsonKey(ScapulaLandmark::TrigonumScapulae), "trigonum_scapulae");
 }

@@ -4,7 +4,8 @@
 namespace reamsim {
 
 namespace {
-constexpr NodeKind kKinds[] = {NodeKind::Bone, NodeKind::Reamer, NodeKind::Plan, NodeKind::Log, NodeKind::Alert};
+constexpr NodeKind kKinds[] = {NodeKind::Bone, NodeKind::Reamer, NodeKind::Plan, NodeKind::Log, NodeKind::Alert,
+                              NodeKind::Landmarks};
 }
 
 const char* kindName(NodeKind kind) {
@@ -14,6 +15,7 @@ const char* kindName(NodeKind kind) {
     case NodeKind::Plan: return "Plan";
     case NodeKind::Log: return "Log";
     case NodeKind::Alert: return "Alert";
+    case NodeKind::Landmarks: return "Landmarks";
   }
   return "Node";
 }

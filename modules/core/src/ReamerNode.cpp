@@ -13,6 +13,11 @@ void ReamerNode::setPose(const Pose& pose) {
   markModified();
 }
 
+void ReamerNode::requestPlacement(const Pose& pose) {
+  placementRequest_ = pose;
+  markModified();
+}
+
 void ReamerNode::setCuttingVolume(std::shared_ptr<const TriangleMesh> mesh) {
   cuttingVolume_ = std::move(mesh);
   markModified();

@@ -16,6 +16,8 @@ DefaultBone loadDefaultBone() {
   return bone;
 }
 
+ScapulaLandmarks loadDefaultLandmarks() { return loadLandmarks(resourcePath(kDefaultLandmarksFile)); }
+
 std::string defaultPlanPath() { return resourcePath(kDefaultPlanFile); }
 std::string reamerPresetsPath() { return resourcePath("reamers.json"); }
 

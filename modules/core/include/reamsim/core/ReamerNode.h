@@ -3,6 +3,8 @@
 // The cutting volume is produced elsewhere (tools module) and cached here in reamer-local
 // coordinates (tip at origin, feed along +Z); changing the spec drops it because it no longer fits.
 #include <memory>
+#include <optional>
+#include <utility>
 
 #include "reamsim/core/Node.h"
 #include "reamsim/core/Pose.h"
@@ -24,6 +26,13 @@ class ReamerNode : public Node {
   void setPose(const Pose& pose);
   RigidTransform transform() const { return toTransform(pose_); }
 
+  // A pose asked for from outside the reaming loop (a planning panel, later an input device): whoever runs
+  // the loop takes it on the modification it reports and places the reamer there as its own move, so the
+  // asker needs no handle on the loop. nullopt when none waits. take...() does not report a modification.
+  const std::optional<Pose>& placementRequest() const { return placementRequest_; }
+  void requestPlacement(const Pose& pose);
+  std::optional<Pose> takePlacementRequest() { return std::exchange(placementRequest_, std::nullopt); }
+
   // Null until set; shared so the renderer and the cutting engine can hold it without copies.
   const std::shared_ptr<const TriangleMesh>& cuttingVolume() const { return cuttingVolume_; }
   void setCuttingVolume(std::shared_ptr<const TriangleMesh> mesh);
@@ -31,6 +40,7 @@ class ReamerNode : public Node {
  private:
   ReamerSpec spec_;
   Pose pose_;
+  std::optional<Pose> placementRequest_;
   std::shared_ptr<const TriangleMesh> cuttingVolume_;
 };
 

@@ -5,6 +5,7 @@
 
 #include "reamsim/mesh/TriangleMesh.h"
 #include "reamsim/ream/Glenoid.h"
+#include "reamsim/ream/ScapularFrame.h"
 
 namespace reamsim {
 
@@ -15,6 +16,10 @@ struct DefaultBone {
   GlenoidFrame glenoid;
 };
 
+// The bundled scapula's landmarks (resources/bones/scapula_R_landmarks.json; how they were placed is in
+// the file and in docs/PLANNING.md). Throws InputError when the file is missing or damaged.
+ScapulaLandmarks loadDefaultLandmarks();
+
 DefaultBone loadDefaultBone();
 std::string defaultPlanPath();
 std::string reamerPresetsPath();
@@ -23,6 +28,7 @@ std::string reamerPresetsPath();
 inline constexpr const char* kDefaultBoneFile = "bones/scapula_R_repaired.ply";
 inline constexpr const char* kDefaultOriginalFile = "bones/scapula_R_opensim.vtp";
 inline constexpr const char* kDefaultGlenoidFile = "bones/scapula_R_glenoid.json";
+inline constexpr const char* kDefaultLandmarksFile = "bones/scapula_R_landmarks.json";
 inline constexpr const char* kDefaultPlanFile = "plans/default_plan.json";
 
 }  // namespace reamsim

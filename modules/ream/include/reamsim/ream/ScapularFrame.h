@@ -1,0 +1,55 @@
+#pragma once
+// The scapular frame and the version and inclination of a reaming axis in it (docs/PLANNING.md).
+//
+// From the three landmarks (reamsim/core/LandmarksNode.h: glenoid centre GC, trigonum scapulae TS,
+// inferior angle AI) and the body side:
+//   lateral  L = unit(GC - TS): the scapular axis (Friedman's line, taken in 3D);
+//   superior S = unit(the part of TS - AI normal to L): in the scapular plane (GC, TS, AI), away from AI;
+//   anterior A = S x L for a right scapula, L x S for a left one, so that L, A and S are the patient's
+//            lateral, anterior and superior on either side.
+// For a direction o pointing out of the glenoid (towards the humeral head; the reamer feeds along -o):
+//   version     = atan2(o.A, o.L), the angle in the transverse plane (L, A): > 0 anteversion, < 0 retroversion;
+//   inclination = atan2(o.S, o.L), the angle in the scapular plane (L, S): > 0 superior tilt, < 0 inferior.
+// The inverse, o ~ L + tan(version) A + tan(inclination) S, gives back both angles exactly (up to rounding).
+#include <string>
+
+#include "reamsim/core/LandmarksNode.h"
+#include "reamsim/core/Pose.h"
+
+namespace reamsim {
+
+struct ScapularFrame {
+  Vec3 origin;  // the glenoid centre
+  Vec3 lateral, anterior, superior;  // orthonormal
+  BodySide side = BodySide::Right;
+};
+
+struct AxisAngles {
+  double versionDeg = 0;
+  double inclinationDeg = 0;
+};
+
+// Preconditions first, each a std::invalid_argument that names the landmark and the problem: every
+// landmark present and finite, the side given, the points at least 5 mm apart and not within 5 degrees of
+// one line (the plane would be undefined or swing with a millimetre of picking).
+ScapularFrame scapularFrame(const ScapulaLandmarks& landmarks);
+
+// Angles of the outward direction `outward` (any length). std::invalid_argument when it is zero or not
+// finite, or points medially (o.L <= 0: version and inclination are defined within +-90 degrees).
+AxisAngles axisAngles(const ScapularFrame& frame, const Vec3& outward);
+
+// The unit outward direction with these angles (each finite and within +-89 degrees, else
+// std::invalid_argument).
+Vec3 outwardAxisFor(const ScapularFrame& frame, const AxisAngles& angles);
+
+// The reamer aimed through the glenoid centre along these angles: its tip `clearanceMm` out along the
+// outward direction (clear of the glenoid), feeding along the inward one.
+Pose aimedReamerPose(const ScapularFrame& frame, const AxisAngles& angles, double clearanceMm);
+
+// Landmark files (JSON, docs/PLANNING.md): "side" and the three points, each optional (a half-picked set is
+// kept as picked). loadLandmarks throws InputError naming the file and the field.
+ScapulaLandmarks loadLandmarks(const std::string& path);
+ScapulaLandmarks parseLandmarksJson(const std::string& text, const std::string& source);
+std::string landmarksToJson(const ScapulaLandmarks& landmarks, const std::string& method = {});
+
+}  // namespace reamsim

@@ -1,0 +1,80 @@
+// Landmark files: {"side": "right", "glenoid_centre": [x, y, z], "trigonum_scapulae": ..., "inferior_angle": ...}
+// (docs/PLANNING.md). A point may be absent or null: a half-picked set is saved and read back as it is.
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "reamsim/mesh/MeshError.h"
+#include "reamsim/ream/ScapularFrame.h"
+
+namespace reamsim {
+namespace {
+
+using nlohmann::json;
+constexpr double kMaxCoordinateMm = 1e6;  // as plans: a kilometre is beyond any bone
+
+Vec3 readPoint(const json& j, const std::string& key, const std::string& source) {
+  if (!j.is_array() || j.size() != 3) throw InputError(source, "\"" + key + "\" must be an array of 3 numbers or null");
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    if (!j[i].is_number()) throw InputError(source, "\"" + key + "\" must be an array of 3 numbers or null");
+    v[i] = j[i].get<double>();
+    if (!std::isfinite(v[i]) || std::abs(v[i]) > kMaxCoordinateMm)
+      throw InputError(source, "\"" + key + "\" has a value that is not finite or beyond ±1e6 mm");
+  }
+  return v;
+}
+
+}  // namespace
+
+ScapulaLandmarks parseLandmarksJson(const std::string& text, const std::string& source) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw InputError(source, std::string("not valid JSON: ") + e.what());
+  }
+  if (!j.is_object()) throw InputError(source, "a landmark file must be a JSON object");
+  ScapulaLandmarks out;
+  if (j.contains("side")) {
+    if (!j["side"].is_string()) throw InputError(source, "\"side\" must be \"right\", \"left\" or \"unspecified\"");
+    const std::optional<BodySide> side = parseBodySide(j["side"].get<std::string>());
+    if (!side) throw InputError(source, "\"side\" must be \"right\", \"left\" or \"unspecified\", not \"" +
+                                            j["side"].get<std::string>() + "\"");
+    out.side = *side;
+  }
+  bool any = false;
+  for (ScapulaLandmark which : kScapulaLandmarks) {
+    const std::string key = jsonKey(which);
+    if (!j.contains(key) || j[key].is_null()) continue;
+    out[which] = readPoint(j[key], key, source);
+    any = true;
+  }
+  if (!any && out.side == BodySide::Unspecified)
+    throw InputError(source, "no landmark and no side: expected \"side\", \"glenoid_centre\", \"trigonum_scapulae\", "
+                             "\"inferior_angle\"");
+  return out;
+}
+
+ScapulaLandmarks loadLandmarks(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot open the landmark file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(path, "cannot read the landmark file");
+  return parseLandmarksJson(text.str(), path);
+}
+
+std::string landmarksToJson(const ScapulaLandmarks& landmarks, const std::string& method) {
+  json j = json::object();
+  j["side"] = toString(landmarks.side);
+  for (ScapulaLandmark which : kScapulaLandmarks) {
+    const std::optional<Vec3>& p = landmarks[which];
+    j[jsonKey(which)] = p ? json::array({p->x, p->y, p->z}) : json(nullptr);
+  }
+  if (!method.empty()) j["method"] = method;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace reamsim
