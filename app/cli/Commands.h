@@ -18,6 +18,7 @@ int runRepair(const std::vector<std::string>& args);
 int runExport(const std::vector<std::string>& args);
 int runReam(const std::vector<std::string>& args);
 int runGlenoid(const std::vector<std::string>& args);
+int runAxis(const std::vector<std::string>& args);  // AxisCommand.cpp
 int runImportCt(const std::vector<std::string>& args);
 int runBench(const std::vector<std::string>& args);     // bench KIND: dispatch (BenchCommand.cpp)
 int runBenchCut(const std::vector<std::string>& args);  // bench cut (BenchCutCommand.cpp)

@@ -41,6 +41,12 @@ const char* kUsageText =
     "\n"
     "  glenoid MESH [--units ...] [--out FILE.json]\n"
     "      find the glenoid (centre, outward axis, best-fit sphere) of a scapula in the OpenSim frame\n"
+    "  axis [--landmarks FILE|default] [--axis X,Y,Z | --plan PLAN.json|default]\n"
+    "      version and inclination of reaming axes in the scapular frame (default: the default plan's)\n"
+    "  axis [--landmarks FILE|default] --version DEG --inclination DEG [--clearance MM]\n"
+    "       [--plan-out PLAN.json [--reamer PRESET] [--step MM] [--count N]]\n"
+    "      the reamer aimed through the glenoid centre at these angles, and a feed plan along it\n"
+    "      (docs/PLANNING.md)\n"
     "  import-ct VOLUME --out MESH [--threshold HU] [--upper-threshold HU] [--target-faces N] [--smooth N] [--json]\n"
     "      CT volume (DICOM dir, .nrrd/.nhdr, .mha/.mhd, .nii/.nii.gz) to a closed bone mesh; see docs/CT_IMPORT.md\n"
     "\n"
@@ -57,7 +63,7 @@ int main(int argc, char** argv) {
     return args.empty() ? kUsage : kOk;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", runInfo}, {"repair", runRepair}, {"export", runExport}, {"ream", runReam}, {"glenoid", runGlenoid}, {"import-ct", runImportCt}, {"bench", runBench}};
+      {"info", runInfo}, {"repair", runRepair}, {"export", runExport}, {"ream", runReam}, {"glenoid", runGlenoid}, {"axis", runAxis}, {"import-ct", runImportCt}, {"bench", runBench}};
   const auto it = commands.find(args[0]);
   if (it == commands.end()) {
     std::fprintf(stderr, "reamsim-cli: unknown command '%s'\n\n%s", args[0].c_str(), kUsageText);

@@ -216,3 +216,69 @@ TEST(Cli, ReamRejectsBadInputsClearly) {
 }
 
 }  // namespace
+
+namespace {
+nlohmann::json parseJson(const CliRun& r) {
+  try {
+    return nlohmann::json::parse(r.out);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what() << "\n" << r.out;
+    return {};
+  }
+}
+}  // namespace
+
+// The planning loop on the command line: angles -> a plan -> the plan's axis measured back -> reamed along it.
+TEST(Cli, AxisAimsAPlanAtAVersionAndInclinationAndMeasuresItBack) {
+  const fs::path plan = scratch("aimed_plan.json");
+  const CliRun aimed = run("axis --version -8.5 --inclination 4 --clearance 6 --count 40 --plan-out " + plan.string());
+  ASSERT_EQ(aimed.exitCode, 0) << aimed.out;
+  ASSERT_TRUE(fs::exists(plan));
+  const nlohmann::json a = parseJson(aimed);
+  EXPECT_EQ(a["side"], "right");
+  const CliRun back = run("axis --plan " + plan.string());
+  ASSERT_EQ(back.exitCode, 0) << back.out;
+  const nlohmann::json m = parseJson(back);
+  ASSERT_EQ(m["axes"].size(), 1u);
+  EXPECT_NEAR(m["axes"][0]["version_deg"].get<double>(), -8.5, 1e-9);
+  EXPECT_NEAR(m["axes"][0]["inclination_deg"].get<double>(), 4, 1e-9);
+  // The plan reams the bundled bone: 40 steps of 0.2 mm from 6 mm out reach 2 mm past the glenoid centre.
+  const fs::path dir = scratch("aimed-ream");
+  const CliRun r = run("ream --bone default --plan " + plan.string() + " --out " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  std::ifstream js(dir / "log.json");
+  const auto log = nlohmann::json::parse(js);
+  EXPECT_GT(log["summary"]["removed_total_mm3"].get<double>(), 100.0);
+  // The same angles through --axis, and the default plan's axis measured by default.
+  const std::vector<double> axis = a["aimed"]["axis"].get<std::vector<double>>();
+  std::ostringstream arg;
+  arg.precision(17);
+  arg << axis[0] << "," << axis[1] << "," << axis[2];
+  const nlohmann::json byAxis = parseJson(run("axis --axis " + arg.str()));
+  EXPECT_NEAR(byAxis["axes"][0]["version_deg"].get<double>(), -8.5, 1e-9);
+  const nlohmann::json byDefault = parseJson(run("axis"));
+  ASSERT_EQ(byDefault["axes"].size(), 1u);
+  EXPECT_NE(byDefault["axes"][0]["source"].get<std::string>().find("default_plan.json"), std::string::npos);
+}
+
+TEST(Cli, AxisRejectsBadLandmarksAndAnglesClearly) {
+  const fs::path half = scratch("half_landmarks.json");
+  std::ofstream(half) << R"({"side": "right", "glenoid_centre": [1, 2, 3]})";
+  CliRun r = run("axis --landmarks " + half.string());
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_NE(r.out.find(half.string() + ": the trigonum scapulae is not placed"), std::string::npos) << r.out;
+  const fs::path broken = scratch("broken_landmarks.json");
+  std::ofstream(broken) << R"({"side": "sideways"})";
+  r = run("axis --landmarks " + broken.string());
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_NE(r.out.find("\"side\" must be"), std::string::npos) << r.out;
+  r = run("axis --version 90 --inclination 0");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.out.find("within ±89 degrees"), std::string::npos) << r.out;
+  r = run("axis --axis 1,0,0");  // the bundled scapula's posterior-medial: not a reaming direction
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_NE(r.out.find("points medially"), std::string::npos) << r.out;
+  EXPECT_EQ(run("axis --axis 0,0,0").exitCode, 2);
+  EXPECT_EQ(run("axis --version 5 --axis 0,0,-1").exitCode, 2);
+  EXPECT_EQ(run("axis --plan-out x.json").exitCode, 2);
+}
