@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "BoneSurface.h"
 #include "RenderSettings.h"
@@ -25,6 +26,7 @@ class vtkScalarBarActor;
 namespace reamsim::ui {
 
 class CachedBoneLayer;
+class LandmarksLayer;
 class ReamSession;
 class ThesisInteractorStyle;
 
@@ -53,7 +55,11 @@ class BoneView : public QVTKOpenGLNativeWidget {
   // Frames where only the reamer moved reuse the bone's picture (see CachedBoneLayer.h); off: full frames.
   void setBoneCacheEnabled(bool on);
   const CachedBoneLayer& boneCache() const;
-  double lastRenderMs() const { return lastRenderMs_; }  // VTK's part of the last render() (benchmark)
+  double lastRenderMs() const { return lastRenderMs_; }
+  // The first point of the bone's surface under display point (x, y) (pixels, origin bottom left, as VTK
+  // counts them), along the view direction; nullopt when the bone is not there.
+  std::optional<Vec3> boneSurfaceAt(double x, double y) const;
+  const LandmarksLayer& landmarksLayer() const { return *landmarksLayer_; }  // VTK's part of the last render() (benchmark)
 
  Q_SIGNALS:
   void reamerDragged(double mm);  // Ctrl + left drag, along the reamer axis
@@ -73,6 +79,8 @@ class BoneView : public QVTKOpenGLNativeWidget {
   void onBoneReplaced();
   void prepareFrame();
   void updateClippingRange();
+  bool placeRequestedLandmark(int x, int y);
+  void showLandmarks();
 
   ReamSession& session_;
   Subscription subscription_;
@@ -80,6 +88,8 @@ class BoneView : public QVTKOpenGLNativeWidget {
   BoneSurfaceBuilder surfaces_;
   vtkSmartPointer<vtkRenderer> renderer_, reamerRenderer_;
   std::unique_ptr<CachedBoneLayer> boneCache_;
+  std::unique_ptr<LandmarksLayer> landmarksLayer_;
+  std::uint64_t shownLandmarksChange_ = UINT64_MAX;
   vtkSmartPointer<vtkCallbackCommand> beforeFrame_;
   double clipBox_[6] = {0, -1, 0, -1, 0, -1}, clipBone_[6] = {0, 0, 0, 0, 0, 0};
   unsigned long clipCameraTime_ = 0;

@@ -57,6 +57,11 @@ bool MainWindow::loadDefaultCase() {
     session_->plan()->setPoses(poses);
     session_->plan()->setFeedDescription(plan.description);
     installBone(std::move(bone), tr("default scapula"), {});
+    try {  // the case runs without them: version and inclination wait for landmarks placed by hand
+      session_->landmarks()->setLandmarks(loadDefaultLandmarks());
+    } catch (const std::exception& e) {
+      statusBar()->showMessage(tr("The default scapula's landmarks could not be read: %1").arg(e.what()), 15000);
+    }
     session_->moveReamer(start);  // the user's path: the first collision query runs at the start pose
     view_->setStandardView(BoneView::StandardView::Anterior);
     return true;

@@ -21,7 +21,7 @@ struct PluginRecord {
 class PluginHost {
  public:
   // The plugins the application is built with; a missing one is listed as "not found".
-  static QStringList expectedPlugins() { return {"meshimport", "collision", "csg", "logpanel", "ctimport"}; }
+  static QStringList expectedPlugins() { return {"meshimport", "collision", "csg", "logpanel", "ctimport", "planning"}; }
   // $REAMSIM_PLUGIN_DIR, then <exe>/plugins (build tree), then <exe>/../lib/reamsim/plugins (installed).
   static QString defaultPluginDir();
 

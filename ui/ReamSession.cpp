@@ -20,6 +20,11 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
   plan_ = &document_.create<PlanNode>("Plan");
   log_ = &document_.create<LogNode>("Log");
   alerts_ = &document_.create<AlertNode>("Alerts");
+  landmarks_ = &document_.create<LandmarksNode>("Landmarks");
+  landmarks_->setBoneId(bone_->id());
+  placementRequests_ = document_.observeNode(reamer_->id(), [this] {
+    if (const std::optional<Pose> pose = reamer_->takePlacementRequest()) moveReamer(*pose, false);
+  });
   undo_.setUndoLimit(0);  // unlimited: the states share storage (see CutCommand)
   // Undo or redo (menu, keys, history view) stops a queued sequence: its remaining steps were planned on
   // the bone being left, and the step in flight is dropped (computed against the old bone).
@@ -57,6 +62,7 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
     document_.remove(log_->id());  // the log is append-only: a new bone gets a new one
     log_ = &document_.create<LogNode>("Log");
     alerts_->clear();
+    landmarks_->setLandmarks({});  // another bone: the points were on the one before
     reamer_->setPose(start);
   }
   undo_.clear();

@@ -21,6 +21,7 @@
 #include "reamsim/core/AlertNode.h"
 #include "reamsim/core/BoneNode.h"
 #include "reamsim/core/Document.h"
+#include "reamsim/core/LandmarksNode.h"
 #include "reamsim/core/LogNode.h"
 #include "reamsim/core/PlanNode.h"
 #include "reamsim/core/ReamerNode.h"
@@ -67,6 +68,8 @@ class ReamSession : public QObject {
   LogNode* log() const { return log_; }
   AlertNode* alerts() const { return alerts_; }
   PlanNode* plan() const { return plan_; }
+  // The scapular landmarks of the bone (cleared by loadBone, exchanged with the bone by exchangeBone).
+  LandmarksNode* landmarks() const { return landmarks_; }
   QUndoStack* undoStack() { return &undo_; }
 
   // Replaces the bone (and starts a new log and undo history). `start` is where the reamer goes.
@@ -164,6 +167,8 @@ class ReamSession : public QObject {
   LogNode* log_ = nullptr;
   AlertNode* alerts_ = nullptr;
   PlanNode* plan_ = nullptr;
+  LandmarksNode* landmarks_ = nullptr;
+  Subscription placementRequests_;  // a panel or device asking for the reamer somewhere: placed there
   QUndoStack undo_;
   bool pushingCut_ = false;
   double initialVolume_ = 0;

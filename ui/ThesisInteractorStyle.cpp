@@ -12,6 +12,7 @@ namespace reamsim::ui {
 vtkStandardNewMacro(ThesisInteractorStyle);
 
 void ThesisInteractorStyle::OnLeftButtonDown() {
+  if (pickAt && pickAt(Interactor->GetEventPosition()[0], Interactor->GetEventPosition()[1])) return;
   Vec3 tip, axis;
   if (Interactor->GetControlKey() && reamerAxis && dragAlongAxis && reamerAxis(tip, axis)) {
     FindPokedRenderer(Interactor->GetEventPosition()[0], Interactor->GetEventPosition()[1]);

@@ -19,6 +19,9 @@ class ThesisInteractorStyle : public vtkInteractorStyleTrackballCamera {
   // the axis, positive = feed).
   std::function<bool(Vec3& tip, Vec3& axis)> reamerAxis;
   std::function<void(double mm)> dragAlongAxis;
+  // A left click at display point (x, y) (pixels, origin bottom left) offered first to a pick (a landmark
+  // being placed): true when it took the click, which then neither rotates nor drags.
+  std::function<bool(int x, int y)> pickAt;
 
   void OnLeftButtonDown() override;
   void OnLeftButtonUp() override;

@@ -34,7 +34,7 @@ TEST(GuiPlugins, AllPluginsLoadFromTheBuildTree) {
   EXPECT_NE(host.meshImport(), nullptr);
   EXPECT_NE(host.collision(), nullptr);
   EXPECT_NE(host.csg(), nullptr);
-  EXPECT_EQ(host.panels().size(), 1u);
+  EXPECT_EQ(host.panels().size(), 2u);  // the log and the planning docks
 }
 
 // Opening without repair still validates the mesh (a self-intersection count, seconds on a large scan):

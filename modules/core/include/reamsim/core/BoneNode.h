@@ -6,6 +6,7 @@
 #include <string>
 
 #include "reamsim/core/BoneHistory.h"
+#include "reamsim/core/LandmarksNode.h"
 #include "reamsim/core/Node.h"
 #include "reamsim/core/PatientFrame.h"
 #include "reamsim/mesh/TriangleMesh.h"
@@ -23,6 +24,9 @@ struct BoneContent {
   PatientFrame patientFrame = PatientFrame::Unspecified;
   std::string source;
   bool cuttable = false;  // a clean closed solid the engine may cut (else shown, with collision alerts only)
+  // Kept in the document's LandmarksNode, not in the BoneNode: carried here so that an exchange of bones
+  // (ReamSession::exchangeBone) takes the points with the bone they were placed on. swapContent leaves it.
+  ScapulaLandmarks landmarks;
 };
 
 class BoneNode : public Node {

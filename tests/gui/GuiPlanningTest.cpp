@@ -1,0 +1,172 @@
+// The planning dock through the real window: the reamer's version and inclination read in the scapular
+// frame of the bundled landmarks, the reamer aimed at asked-for angles, a landmark placed by a click on the
+// bone, landmark files.
+#include <QDockWidget>
+#include <QDoubleSpinBox>
+#include <QLabel>
+#include <QLocale>
+#include <QPushButton>
+#include <QTemporaryDir>
+#include <QtTest/QTest>
+#include <vtkCamera.h>
+#include <vtkRenderer.h>
+
+#include <fstream>
+
+#include "BoneView.h"
+#include "GuiEnvironment.h"
+#include "LandmarksLayer.h"
+#include "MainWindow.h"
+#include "reamsim/ream/DefaultCase.h"
+#include "reamsim/ream/ScapularFrame.h"
+
+namespace reamsim::ui::test {
+namespace {
+
+QDockWidget* planningDock(MainWindow& w) {
+  auto* dock = w.findChild<QDockWidget*>("PlanningPanel");
+  EXPECT_NE(dock, nullptr) << "the planning plugin's dock is missing";
+  return dock;
+}
+
+template <class T>
+T* part(QDockWidget* dock, const char* name) {
+  T* widget = dock->findChild<T*>(name);
+  EXPECT_NE(widget, nullptr) << name;
+  return widget;
+}
+
+AxisAngles reamerAngles(ReamSession& s) {
+  return axisAngles(scapularFrame(s.landmarks()->landmarks()), s.reamer()->pose().axis * -1.0);
+}
+
+// Where a world point is drawn in the view, in the widget's own (Qt) coordinates.
+QPoint widgetPointOf(BoneView& view, const Vec3& p) {
+  vtkRenderer* r = view.renderer();
+  r->SetWorldPoint(p.x, p.y, p.z, 1);
+  r->WorldToDisplay();
+  const double* d = r->GetDisplayPoint();
+  const double ratio = view.devicePixelRatioF();
+  return QPoint(int(std::lround(d[0] / ratio)), int(std::lround((view.height() * ratio - d[1]) / ratio)));
+}
+
+TEST(GuiPlanning, TheDockReadsTheReamerAxisAndAimsTheReamer) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  QDockWidget* dock = planningDock(w);
+  ASSERT_NE(dock, nullptr);
+  ASSERT_TRUE(s.landmarks()->landmarks().complete()) << "the default case brings the bundled landmarks";
+  auto* report = part<QLabel>(dock, "AxisAngles");
+  ASSERT_NE(report, nullptr);
+  const AxisAngles start = reamerAngles(s);
+  EXPECT_TRUE(report->text().contains(QLocale().toString(start.versionDeg, 'f', 1) + "°")) << report->text().toStdString();
+  EXPECT_TRUE(report->text().contains(QLocale().toString(start.inclinationDeg, 'f', 1) + "°")) << report->text().toStdString();
+
+  auto* version = part<QDoubleSpinBox>(dock, "AimVersion");
+  auto* inclination = part<QDoubleSpinBox>(dock, "AimInclination");
+  auto* aim = part<QPushButton>(dock, "AimReamer");
+  ASSERT_TRUE(version && inclination && aim);
+  const std::size_t cutsBefore = s.cutsCommitted();
+  const std::uint64_t revisionBefore = s.bone()->currentRevision();
+  version->setValue(-10);
+  inclination->setValue(5);
+  QTest::mouseClick(aim, Qt::LeftButton);
+  ASSERT_TRUE(s.waitIdle(60000));
+  const AxisAngles aimed = reamerAngles(s);
+  EXPECT_NEAR(aimed.versionDeg, -10, 1e-9);
+  EXPECT_NEAR(aimed.inclinationDeg, 5, 1e-9);
+  const Vec3 centre = *s.landmarks()->landmarks()[ScapulaLandmark::GlenoidCentre];
+  EXPECT_NEAR(norm(s.reamer()->pose().tip - centre), 10, 1e-9);
+  // Placed clear of the bone: nothing cut, the next move starts there.
+  EXPECT_EQ(s.cutsCommitted(), cutsBefore);
+  EXPECT_EQ(s.bone()->currentRevision(), revisionBefore);
+  EXPECT_TRUE(report->text().contains(QLocale().toString(-10.0, 'f', 1) + "°")) << report->text().toStdString();
+  EXPECT_TRUE(report->text().contains("retroversion")) << report->text().toStdString();
+
+  // "Take the reamer's" reads the angles back into the fields.
+  version->setValue(0);
+  inclination->setValue(0);
+  QTest::mouseClick(part<QPushButton>(dock, "TakeReamerAngles"), Qt::LeftButton);
+  EXPECT_NEAR(version->value(), -10, 0.05);
+  EXPECT_NEAR(inclination->value(), 5, 0.05);
+}
+
+TEST(GuiPlanning, AClickOnTheBonePlacesTheLandmarkAskedFor) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  BoneView& view = *w.view();
+  QDockWidget* dock = planningDock(w);
+  ASSERT_NE(dock, nullptr);
+  const ScapulaLandmarks bundled = s.landmarks()->landmarks();
+  const Vec3 centre = *bundled[ScapulaLandmark::GlenoidCentre];
+  s.landmarks()->setLandmarks({});
+  QCoreApplication::processEvents();
+  EXPECT_FALSE(view.landmarksLayer().shown(ScapulaLandmark::GlenoidCentre));
+  EXPECT_TRUE(part<QLabel>(dock, "AxisAngles")->text().contains("need the landmarks"));
+  auto* place = part<QPushButton>(dock, "PlaceLandmark_glenoid_centre");
+  ASSERT_NE(place, nullptr);
+  QTest::mouseClick(place, Qt::LeftButton);
+  EXPECT_EQ(s.landmarks()->pickRequest(), ScapulaLandmark::GlenoidCentre);
+  EXPECT_TRUE(place->isChecked());
+
+  // A click beside the bone places nothing and does not turn the view: the request waits.
+  vtkCamera* camera = view.renderer()->GetActiveCamera();
+  double before[3], after[3];
+  camera->GetDirectionOfProjection(before);
+  QTest::mouseClick(&view, Qt::LeftButton, {}, QPoint(3, view.height() - 3));
+  camera->GetDirectionOfProjection(after);
+  EXPECT_FALSE(s.landmarks()->landmarks()[ScapulaLandmark::GlenoidCentre]);
+  EXPECT_EQ(s.landmarks()->pickRequest(), ScapulaLandmark::GlenoidCentre);
+  EXPECT_EQ(before[0], after[0]);
+  EXPECT_EQ(before[1], after[1]);
+
+  // A click where the glenoid centre is drawn places it there, on the bone's surface.
+  const QPoint at = widgetPointOf(view, centre);
+  ASSERT_TRUE(view.rect().contains(at));
+  QTest::mouseClick(&view, Qt::LeftButton, {}, at);
+  const std::optional<Vec3> placed = s.landmarks()->landmarks()[ScapulaLandmark::GlenoidCentre];
+  ASSERT_TRUE(placed);
+  EXPECT_LT(norm(*placed - centre), 1.0);  // within the pixel's footprint of the bundled point
+  EXPECT_FALSE(s.landmarks()->pickRequest());
+  EXPECT_FALSE(place->isChecked());
+  EXPECT_TRUE(view.landmarksLayer().shown(ScapulaLandmark::GlenoidCentre));
+  EXPECT_TRUE(part<QLabel>(dock, "LandmarkPoint_glenoid_centre")->text().contains(QLocale().toString(placed->x, 'f', 1)));
+}
+
+TEST(GuiPlanning, LandmarkFilesRoundTripAndADamagedOneIsNamed) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  ReamSession& s = f.session();
+  QDockWidget* dock = planningDock(*f.window);
+  ASSERT_NE(dock, nullptr);
+  QTemporaryDir dir;
+  const QString path = dir.filePath("marks.json");
+  ScapulaLandmarks marks = s.landmarks()->landmarks();
+  ASSERT_TRUE(QMetaObject::invokeMethod(dock, "saveLandmarksTo", Q_ARG(QString, path)));
+  s.landmarks()->setLandmarks({});
+  QString error;
+  ASSERT_TRUE(QMetaObject::invokeMethod(dock, "loadLandmarksFrom", Q_RETURN_ARG(QString, error), Q_ARG(QString, path)));
+  EXPECT_TRUE(error.isEmpty()) << error.toStdString();
+  EXPECT_EQ(s.landmarks()->landmarks(), marks);
+
+  const QString bad = dir.filePath("bad.json");
+  std::ofstream(bad.toStdString()) << R"({"side": "right", "inferior_angle": [1, 2]})";
+  ASSERT_TRUE(QMetaObject::invokeMethod(dock, "loadLandmarksFrom", Q_RETURN_ARG(QString, error), Q_ARG(QString, bad)));
+  EXPECT_TRUE(error.contains(bad)) << error.toStdString();
+  EXPECT_TRUE(error.contains("inferior_angle")) << error.toStdString();
+  EXPECT_EQ(s.landmarks()->landmarks(), marks);  // a file that cannot be read changes nothing
+
+  // Another bone: the points were placed on this one and go.
+  ImportedBone box;
+  box.mesh = loadDefaultBone().mesh;
+  box.cuttable = true;
+  s.loadBone(std::move(box), "again", s.reamer()->pose());
+  EXPECT_FALSE(s.landmarks()->landmarks()[ScapulaLandmark::GlenoidCentre]);
+}
+
+}  // namespace
+}  // namespace reamsim::ui::test

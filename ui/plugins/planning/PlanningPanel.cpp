@@ -1,0 +1,259 @@
+#include "PlanningPanel.h"
+
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLocale>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QVBoxLayout>
+
+#include "reamsim/mesh/MeshError.h"
+#include "reamsim/ream/CutLogIO.h"
+#include "reamsim/ream/ScapularFrame.h"
+
+namespace reamsim::ui {
+namespace {
+
+constexpr double kDefaultClearanceMm = 10;  // clear of the glenoid rim for tilts up to ~25 degrees
+
+QString pointText(const Vec3& p) {
+  QLocale shown;
+  shown.setNumberOptions(QLocale::OmitGroupSeparator);
+  const QString sep = shown.decimalPoint() == QChar(',') ? QStringLiteral("; ") : QStringLiteral(", ");
+  return shown.toString(p.x, 'f', 1) + sep + shown.toString(p.y, 'f', 1) + sep + shown.toString(p.z, 'f', 1);
+}
+
+QString degreesText(double deg) { return QLocale().toString(deg, 'f', 1) + QStringLiteral("°"); }
+
+QString capitalised(const char* text) {
+  QString s = QString::fromUtf8(text);
+  if (!s.isEmpty()) s[0] = s[0].toUpper();
+  return s;
+}
+
+QDoubleSpinBox* angleBox(const QString& name, QWidget* parent) {
+  auto* box = new QDoubleSpinBox(parent);
+  box->setObjectName(name);
+  box->setRange(-60, 60);
+  box->setDecimals(1);
+  box->setSingleStep(0.5);
+  box->setSuffix(QStringLiteral("°"));
+  return box;
+}
+
+}  // namespace
+
+PlanningPanel::PlanningPanel(Document& document, QWidget* parent)
+    : QDockWidget(tr("Planning"), parent), document_(document) {
+  setObjectName("PlanningPanel");
+  auto* body = new QWidget(this);
+  auto* layout = new QVBoxLayout(body);
+
+  auto* marksBox = new QGroupBox(tr("Scapular landmarks"), body);
+  auto* grid = new QGridLayout(marksBox);
+  buildLandmarkRows(grid);
+  layout->addWidget(marksBox);
+
+  report_ = new QLabel(body);
+  report_->setObjectName("AxisAngles");
+  report_->setWordWrap(true);
+  report_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  layout->addWidget(report_);
+
+  auto* aimBox = new QGroupBox(tr("Aim the reamer through the glenoid centre"), body);
+  auto* form = new QFormLayout(aimBox);
+  version_ = angleBox("AimVersion", aimBox);
+  version_->setToolTip(tr("Positive: anteversion; negative: retroversion"));
+  inclination_ = angleBox("AimInclination", aimBox);
+  inclination_->setToolTip(tr("Positive: superior tilt; negative: inferior tilt"));
+  clearance_ = new QDoubleSpinBox(aimBox);
+  clearance_->setObjectName("AimClearance");
+  clearance_->setRange(0, 100);
+  clearance_->setDecimals(1);
+  clearance_->setValue(kDefaultClearanceMm);
+  clearance_->setSuffix(tr(" mm"));
+  clearance_->setToolTip(tr("How far out from the glenoid centre the reamer's tip is placed; then ream to depth"));
+  form->addRow(tr("Version"), version_);
+  form->addRow(tr("Inclination"), inclination_);
+  form->addRow(tr("Tip out from the centre"), clearance_);
+  auto* aimButtons = new QHBoxLayout;
+  take_ = new QPushButton(tr("Take the reamer's"), aimBox);
+  take_->setObjectName("TakeReamerAngles");
+  take_->setToolTip(tr("Fill in the version and inclination the reamer has now"));
+  aim_ = new QPushButton(tr("Aim"), aimBox);
+  aim_->setObjectName("AimReamer");
+  aim_->setToolTip(tr("Place the reamer on this axis through the glenoid centre, clear of the bone"));
+  aimButtons->addWidget(take_);
+  aimButtons->addWidget(aim_);
+  form->addRow(aimButtons);
+  layout->addWidget(aimBox);
+  layout->addStretch(1);
+  setWidget(body);
+
+  connect(take_, &QPushButton::clicked, this, &PlanningPanel::takeReamerAngles);
+  connect(aim_, &QPushButton::clicked, this, [this] {
+    const QString why = aimReamer();
+    if (!why.isEmpty()) QMessageBox::warning(this, tr("Aim the reamer"), why);
+  });
+  subscription_ = document_.subscribe([this](const DocumentEvent& e) {
+    if (e.id.kind() == NodeKind::Landmarks || e.id.kind() == NodeKind::Reamer || e.id.kind() == NodeKind::Bone) sync();
+  });
+  sync();
+}
+
+void PlanningPanel::buildLandmarkRows(QGridLayout* grid) {
+  QWidget* box = grid->parentWidget();
+  grid->addWidget(new QLabel(tr("Side"), box), 0, 0);
+  side_ = new QComboBox(box);
+  side_->setObjectName("LandmarkSide");
+  side_->addItem(tr("not given"), int(BodySide::Unspecified));
+  side_->addItem(tr("right scapula"), int(BodySide::Right));
+  side_->addItem(tr("left scapula"), int(BodySide::Left));
+  grid->addWidget(side_, 0, 1, 1, 2);
+  connect(side_, qOverload<int>(&QComboBox::activated), this, [this](int index) {
+    if (LandmarksNode* l = landmarks()) l->setSide(BodySide(side_->itemData(index).toInt()));
+  });
+  for (ScapulaLandmark which : kScapulaLandmarks) {
+    const int row = 1 + int(which);
+    const QString key = QString::fromUtf8(jsonKey(which));
+    grid->addWidget(new QLabel(capitalised(displayName(which)), box), row, 0);
+    QLabel*& point = pointLabels_[std::size_t(which)];
+    point = new QLabel(box);
+    point->setObjectName("LandmarkPoint_" + key);
+    point->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    grid->addWidget(point, row, 1);
+    QPushButton*& place = placeButtons_[std::size_t(which)];
+    place = new QPushButton(tr("Place"), box);
+    place->setObjectName("PlaceLandmark_" + key);
+    place->setCheckable(true);
+    place->setToolTip(tr("Then click on the bone where the %1 is").arg(QString::fromUtf8(displayName(which))));
+    grid->addWidget(place, row, 2);
+    connect(place, &QPushButton::clicked, this, [this, which](bool on) {
+      if (LandmarksNode* l = landmarks()) l->setPickRequest(on ? std::optional<ScapulaLandmark>(which) : std::nullopt);
+    });
+  }
+  auto* files = new QHBoxLayout;
+  auto* load = new QPushButton(tr("Open…"), box);
+  load->setObjectName("LoadLandmarks");
+  auto* save = new QPushButton(tr("Save…"), box);
+  save->setObjectName("SaveLandmarks");
+  files->addStretch(1);
+  files->addWidget(load);
+  files->addWidget(save);
+  grid->addLayout(files, 4, 0, 1, 3);
+  const QString filter = tr("Landmarks (*.json)");
+  connect(load, &QPushButton::clicked, this, [this, filter] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open landmarks"), {}, filter);
+    if (path.isEmpty()) return;
+    const QString error = loadLandmarksFrom(path);
+    if (!error.isEmpty()) QMessageBox::warning(this, tr("Open landmarks"), error);
+  });
+  connect(save, &QPushButton::clicked, this, [this, filter] {
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save landmarks"), QStringLiteral("landmarks.json"), filter);
+    if (path.isEmpty()) return;
+    const QString error = saveLandmarksTo(path);
+    if (!error.isEmpty()) QMessageBox::warning(this, tr("Save landmarks"), error);
+  });
+}
+
+LandmarksNode* PlanningPanel::landmarks() const { return document_.firstOf<LandmarksNode>(); }
+ReamerNode* PlanningPanel::reamer() const { return document_.firstOf<ReamerNode>(); }
+
+QString PlanningPanel::axisReport() const { return report_->text(); }
+
+void PlanningPanel::sync() {
+  const LandmarksNode* node = landmarks();
+  const ScapulaLandmarks marks = node ? node->landmarks() : ScapulaLandmarks{};
+  std::optional<ScapulaLandmark> asked;
+  if (node) asked = node->pickRequest();
+  {
+    const QSignalBlocker block(side_);
+    side_->setCurrentIndex(side_->findData(int(marks.side)));
+  }
+  for (ScapulaLandmark which : kScapulaLandmarks) {
+    const std::size_t i = std::size_t(which);
+    const std::optional<Vec3>& p = marks[which];
+    const bool asking = asked.has_value() && *asked == which;
+    pointLabels_[i]->setText(p ? pointText(*p) : tr("not placed"));
+    placeButtons_[i]->setChecked(asking);
+    placeButtons_[i]->setText(asking ? tr("Click on the bone…") : (p ? tr("Place again") : tr("Place")));
+    placeButtons_[i]->setEnabled(node != nullptr);
+  }
+  side_->setEnabled(node != nullptr);
+
+  QString text;
+  bool framed = false;
+  try {
+    const ScapularFrame frame = scapularFrame(marks);
+    framed = true;
+    const ReamerNode* r = reamer();
+    if (!r || !r->cuttingVolume()) {
+      text = tr("No reamer to measure.");
+    } else {
+      const AxisAngles a = axisAngles(frame, r->pose().axis * -1.0);
+      text = tr("Reamer axis: version %1 (%2), inclination %3 (%4)")
+                 .arg(degreesText(a.versionDeg),
+                      a.versionDeg < 0 ? tr("retroversion") : (a.versionDeg > 0 ? tr("anteversion") : tr("neutral")),
+                      degreesText(a.inclinationDeg),
+                      a.inclinationDeg < 0 ? tr("inferior") : (a.inclinationDeg > 0 ? tr("superior") : tr("neutral")));
+    }
+  } catch (const std::invalid_argument& e) {
+    text = framed ? tr("Reamer axis: %1.").arg(QString::fromStdString(e.what()))
+                  : tr("Version and inclination need the landmarks: %1.").arg(QString::fromStdString(e.what()));
+  }
+  report_->setText(text);
+  aim_->setEnabled(framed && reamer());
+  take_->setEnabled(framed && reamer());
+}
+
+QString PlanningPanel::aimReamer() {
+  ReamerNode* r = reamer();
+  if (!r || !landmarks()) return tr("There is no reamer or no landmarks in the document.");
+  try {
+    const ScapularFrame frame = scapularFrame(landmarks()->landmarks());
+    r->requestPlacement(aimedReamerPose(frame, {version_->value(), inclination_->value()}, clearance_->value()));
+    return {};
+  } catch (const std::invalid_argument& e) {
+    return tr("The reamer cannot be aimed: %1.").arg(QString::fromStdString(e.what()));
+  }
+}
+
+void PlanningPanel::takeReamerAngles() {
+  if (!reamer() || !landmarks()) return;
+  try {
+    const AxisAngles a = axisAngles(scapularFrame(landmarks()->landmarks()), reamer()->pose().axis * -1.0);
+    version_->setValue(a.versionDeg);
+    inclination_->setValue(a.inclinationDeg);
+  } catch (const std::invalid_argument&) {  // the report above says why
+  }
+}
+
+QString PlanningPanel::loadLandmarksFrom(const QString& path) {
+  LandmarksNode* node = landmarks();
+  if (!node) return tr("There is no bone to place landmarks on.");
+  try {
+    node->setLandmarks(loadLandmarks(path.toStdString()));
+    return {};
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+}
+
+QString PlanningPanel::saveLandmarksTo(const QString& path) {
+  const LandmarksNode* node = landmarks();
+  if (!node) return tr("There are no landmarks to save.");
+  try {
+    writeTextFile(path.toStdString(), landmarksToJson(node->landmarks(), "placed in ReamSim"));
+    return {};
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+}
+
+}  // namespace reamsim::ui

@@ -1,0 +1,60 @@
+#pragma once
+// The planning dock (docs/PLANNING.md): the scapular landmarks of the bone (placed by clicking on the bone,
+// or read from a file), the version and inclination of the reamer's axis in the scapular frame as the
+// reamer moves, and the reamer aimed through the glenoid centre at the version and inclination asked for.
+//
+// It works on the document alone: a landmark is placed by asking for it (LandmarksNode::setPickRequest; the
+// view places it at the next click on the bone) and the reamer is aimed by asking for a placement
+// (ReamerNode::requestPlacement; the reaming loop places it), so the dock needs no handle on the view or
+// the loop.
+#include <QDockWidget>
+#include <array>
+
+#include "reamsim/core/Document.h"
+#include "reamsim/core/LandmarksNode.h"
+#include "reamsim/core/ReamerNode.h"
+
+class QComboBox;
+class QDoubleSpinBox;
+class QGridLayout;
+class QLabel;
+class QPushButton;
+
+namespace reamsim::ui {
+
+class PlanningPanel : public QDockWidget {
+  Q_OBJECT
+ public:
+  PlanningPanel(Document& document, QWidget* parent);
+
+  QString axisReport() const;  // what the dock says of the reamer's axis now
+
+ public Q_SLOTS:
+  // Ask for the reamer at the dock's version, inclination and clearance; returns why not, empty when asked.
+  QString aimReamer();
+  // The reamer's present angles into the aim fields (so that a small change starts from where it is).
+  void takeReamerAngles();
+  // Landmark files (docs/PLANNING.md); each returns an error message naming the file, empty on success.
+  QString loadLandmarksFrom(const QString& path);
+  QString saveLandmarksTo(const QString& path);
+
+ private:
+  void buildLandmarkRows(QGridLayout* grid);
+  void sync();
+  LandmarksNode* landmarks() const;
+  ReamerNode* reamer() const;
+
+  Document& document_;
+  Subscription subscription_;
+  QComboBox* side_ = nullptr;
+  std::array<QLabel*, 3> pointLabels_{};
+  std::array<QPushButton*, 3> placeButtons_{};
+  QLabel* report_ = nullptr;
+  QDoubleSpinBox* version_ = nullptr;
+  QDoubleSpinBox* inclination_ = nullptr;
+  QDoubleSpinBox* clearance_ = nullptr;
+  QPushButton* aim_ = nullptr;
+  QPushButton* take_ = nullptr;
+};
+
+}  // namespace reamsim::ui
