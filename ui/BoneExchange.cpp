@@ -11,9 +11,7 @@ void ReamSession::exchangeBone(BoneContent& other) {
     Document::BatchScope batch(document_);
     bone_->swapContent(other);
     alerts_->clear();
-    const ScapulaLandmarks mine = landmarks_->landmarks();  // the points go with the bone they were placed on
-    landmarks_->setLandmarks(other.landmarks);
-    other.landmarks = mine;
+    interaction_->setPlaceRequest(std::nullopt);  // asked for on the bone that leaves
   }
   // As loadBone: the log's cumulative volume is measured against the bone as it was imported.
   initialVolume_ = bone_->history().entries().front().state.volume();

@@ -224,8 +224,8 @@ void BoneView::onDocumentEvent() {
       changed = true;
     }
   }
-  if (session_.landmarks()->modifiedCount() != shownLandmarksChange_) {
-    shownLandmarksChange_ = session_.landmarks()->modifiedCount();
+  if (!(bone->landmarks() == shownLandmarks_)) {
+    shownLandmarks_ = bone->landmarks();
     showLandmarks();
     changed = true;
   }
@@ -236,7 +236,7 @@ void BoneView::onDocumentEvent() {
 void BoneView::showLandmarks() {
   const Bounds b = session_.bone()->current().bounds();
   const double diagonal = b.empty() ? 100.0 : norm(b.max - b.min);
-  landmarksLayer_->show(session_.landmarks()->landmarks(), std::clamp(0.008 * diagonal, 0.8, 4.0));
+  landmarksLayer_->show(shownLandmarks_, std::clamp(0.008 * diagonal, 0.8, 4.0));
   boneCache_->invalidate();
 }
 
@@ -264,13 +264,14 @@ std::optional<Vec3> BoneView::boneSurfaceAt(double x, double y) const {
 // A click while a landmark is asked for places it where the click meets the bone, and ends the request; a
 // click beside the bone does nothing (the request waits for the next click).
 bool BoneView::placeRequestedLandmark(int x, int y) {
-  LandmarksNode* marks = session_.landmarks();
-  if (!marks->pickRequest()) return false;
+  InteractionNode* interaction = session_.interaction();
+  if (!interaction->placeRequest()) return false;
   const std::optional<Vec3> point = boneSurfaceAt(x, y);
   if (!point) return true;
+  const ScapulaLandmark which = *interaction->placeRequest();
   Document::BatchScope batch(session_.document());
-  marks->setLandmark(*marks->pickRequest(), *point);
-  marks->setPickRequest(std::nullopt);
+  session_.bone()->setLandmark(which, *point);
+  interaction->setPlaceRequest(std::nullopt);
   return true;
 }
 

@@ -13,6 +13,7 @@
 #include "BoneSurface.h"
 #include "RenderSettings.h"
 #include "reamsim/core/Pose.h"
+#include "reamsim/core/ScapulaLandmarks.h"
 #include "reamsim/core/Signal.h"
 
 class vtkActor;
@@ -89,7 +90,7 @@ class BoneView : public QVTKOpenGLNativeWidget {
   vtkSmartPointer<vtkRenderer> renderer_, reamerRenderer_;
   std::unique_ptr<CachedBoneLayer> boneCache_;
   std::unique_ptr<LandmarksLayer> landmarksLayer_;
-  std::uint64_t shownLandmarksChange_ = UINT64_MAX;
+  ScapulaLandmarks shownLandmarks_;
   vtkSmartPointer<vtkCallbackCommand> beforeFrame_;
   double clipBox_[6] = {0, -1, 0, -1, 0, -1}, clipBone_[6] = {0, 0, 0, 0, 0, 0};
   unsigned long clipCameraTime_ = 0;

@@ -6,7 +6,7 @@
 
 #include <array>
 
-#include "reamsim/core/LandmarksNode.h"
+#include "reamsim/core/ScapulaLandmarks.h"
 
 class vtkActor;
 class vtkRenderer;

@@ -165,6 +165,7 @@ class MainWindow : public QMainWindow {
   std::optional<BoneHistory> readRecoveredHistory(const RecoveredBone& copy, std::size_t faces, double volume);
   void removeRecoveryCopy();
   void restoreRecoveredReamer(const RecoveredBone& copy);
+  void restoreRecoveredLandmarks(const RecoveredBone& copy);
   QString keepInRestored(const QString& file) const;  // a copy in recovery/restored/ named <time>_<name>
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
   // The bone's mesh only, on a worker with a progress dialog (Cancel); errors in a dialog; does not mark it
@@ -242,6 +243,8 @@ class MainWindow : public QMainWindow {
   // Crash recovery (MainWindowRecovery.cpp)
   std::unique_ptr<RecoveryFiles> recovery_;
   std::unique_ptr<HistoryJournalWriter> journal_;  // the cut bone's undo history in the copy (the writer's alone)
+  Subscription landmarksSubscription_;  // a change of the bone's landmarks schedules a copy
+  ScapulaLandmarks copiedLandmarks_;    // the landmarks in the last copy written
   QTimer recoveryTimer_;
   QFutureWatcher<QString> recoveryWrite_;  // the error, empty when the copy was written
   bool recoveryOfferPending_ = false;      // a found copy not yet answered: nothing is written or removed

@@ -58,7 +58,7 @@ bool MainWindow::loadDefaultCase() {
     session_->plan()->setFeedDescription(plan.description);
     installBone(std::move(bone), tr("default scapula"), {});
     try {  // the case runs without them: version and inclination wait for landmarks placed by hand
-      session_->landmarks()->setLandmarks(loadDefaultLandmarks());
+      session_->bone()->setLandmarks(loadDefaultLandmarks());
     } catch (const std::exception& e) {
       statusBar()->showMessage(tr("The default scapula's landmarks could not be read: %1").arg(e.what()), 15000);
     }

@@ -22,6 +22,7 @@
 #include "reamsim/core/HistoryJournal.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
+#include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/tools/ReamerFile.h"
 #include "reamsim/tools/ReamerPresets.h"
 
@@ -44,6 +45,10 @@ void MainWindow::enableRecovery(const QString& dir, int delayMs) {
   };
   connect(session_->undoStack(), &QUndoStack::indexChanged, this, schedule);
   connect(session_->undoStack(), &QUndoStack::cleanChanged, this, schedule);
+  // Landmarks placed on a bone with unsaved cuts are the user's work too: the copy follows them.
+  landmarksSubscription_ = session_->document().observeNode(session_->bone()->id(), [this, schedule] {
+    if (!(session_->bone()->landmarks() == copiedLandmarks_)) schedule();
+  });
   connect(&recoveryWrite_, &QFutureWatcher<QString>::finished, this, [this] {
     const QString error = recoveryWrite_.result();
     if (!error.isEmpty()) statusBar()->showMessage(tr("No crash-recovery copy: %1").arg(error), 10000);
@@ -97,6 +102,9 @@ void MainWindow::writeRecoveryCopy() {
   std::string csv = cutLogCsv(session_->log()->entries());
   const PatientFrame frame = session_->bone()->patientFrame();
   description.name = boneName_;
+  copiedLandmarks_ = session_->bone()->landmarks();
+  if (!(copiedLandmarks_ == ScapulaLandmarks{}))
+    description.landmarksJson = QString::fromStdString(landmarksToJson(copiedLandmarks_, "crash-recovery copy"));
   description.cuts = static_cast<int>(session_->log()->entries().size());
   description.removedMm3 = session_->initialVolumeMm3() - state.volume();  // undone cuts not counted
   const ReamerSpec& reamer = session_->reamer()->spec();
@@ -197,6 +205,7 @@ void MainWindow::offerRecovery() {
   session_->plan()->setPoses({});
   installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
   restoreRecoveredReamer(*found);
+  restoreRecoveredLandmarks(*found);
   // The undo history up to the crash, from its journal, with the History dock's steps: undo and redo as before
   // the crash. One that cannot be read back (or does not end at the copied bone) is reported and kept; the
   // recovered bone is then the history's only state.
@@ -248,6 +257,17 @@ void MainWindow::offerRecovery() {
 
 // The reamer the crashed session cut with. One that cannot be had any more (a preset renamed, a mesh file gone)
 // is named in a message; the window's reamer stays.
+// Landmarks that cannot be read back are named in the status bar: the bone is what matters here.
+void MainWindow::restoreRecoveredLandmarks(const RecoveredBone& found) {
+  if (found.landmarksJson.isEmpty()) return;  // none placed, or a copy from before session 54
+  try {
+    session_->bone()->setLandmarks(
+        parseLandmarksJson(found.landmarksJson.toStdString(), recovery_->dir().toStdString() + "/recovery.json"));
+  } catch (const std::exception& e) {
+    statusBar()->showMessage(tr("The landmarks of the copy could not be read: %1").arg(e.what()), 15000);
+  }
+}
+
 void MainWindow::restoreRecoveredReamer(const RecoveredBone& found) {
   if (found.reamerPreset.isEmpty() && found.reamerMesh.isEmpty()) return;  // a copy from before session 53
   const QString reamer = found.reamerMesh.isEmpty() ? found.reamerPreset : found.reamerMesh;

@@ -20,8 +20,7 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
   plan_ = &document_.create<PlanNode>("Plan");
   log_ = &document_.create<LogNode>("Log");
   alerts_ = &document_.create<AlertNode>("Alerts");
-  landmarks_ = &document_.create<LandmarksNode>("Landmarks");
-  landmarks_->setBoneId(bone_->id());
+  interaction_ = &document_.create<InteractionNode>("Interaction");
   placementRequests_ = document_.observeNode(reamer_->id(), [this] {
     if (const std::optional<Pose> pose = reamer_->takePlacementRequest()) moveReamer(*pose, false);
   });
@@ -62,7 +61,8 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
     document_.remove(log_->id());  // the log is append-only: a new bone gets a new one
     log_ = &document_.create<LogNode>("Log");
     alerts_->clear();
-    landmarks_->setLandmarks({});  // another bone: the points were on the one before
+    bone_->setLandmarks({});  // another bone: the points were on the one before
+    interaction_->setPlaceRequest(std::nullopt);
     reamer_->setPose(start);
   }
   undo_.clear();

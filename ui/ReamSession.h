@@ -21,7 +21,7 @@
 #include "reamsim/core/AlertNode.h"
 #include "reamsim/core/BoneNode.h"
 #include "reamsim/core/Document.h"
-#include "reamsim/core/LandmarksNode.h"
+#include "reamsim/core/InteractionNode.h"
 #include "reamsim/core/LogNode.h"
 #include "reamsim/core/PlanNode.h"
 #include "reamsim/core/ReamerNode.h"
@@ -68,8 +68,8 @@ class ReamSession : public QObject {
   LogNode* log() const { return log_; }
   AlertNode* alerts() const { return alerts_; }
   PlanNode* plan() const { return plan_; }
-  // The scapular landmarks of the bone (cleared by loadBone, exchanged with the bone by exchangeBone).
-  LandmarksNode* landmarks() const { return landmarks_; }
+  // What the next click on the bone in the view does (a landmark being placed).
+  InteractionNode* interaction() const { return interaction_; }
   QUndoStack* undoStack() { return &undo_; }
 
   // Replaces the bone (and starts a new log and undo history). `start` is where the reamer goes.
@@ -167,7 +167,7 @@ class ReamSession : public QObject {
   LogNode* log_ = nullptr;
   AlertNode* alerts_ = nullptr;
   PlanNode* plan_ = nullptr;
-  LandmarksNode* landmarks_ = nullptr;
+  InteractionNode* interaction_ = nullptr;
   Subscription placementRequests_;  // a panel or device asking for the reamer somewhere: placed there
   QUndoStack undo_;
   bool pushingCut_ = false;

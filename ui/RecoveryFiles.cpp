@@ -68,6 +68,8 @@ std::optional<RecoveredBone> RecoveryFiles::found() const {
   r.reamerPreset = d.value("reamer_preset").toString();
   r.reamerMesh = d.value("reamer_mesh").toString();
   r.cuts = d.value("cuts").toInt();
+  if (d.value("landmarks").isObject())
+    r.landmarksJson = QString::fromUtf8(QJsonDocument(d.value("landmarks").toObject()).toJson());
   r.written = QDateTime::fromString(d.value("written").toString(), Qt::ISODate).toLocalTime();
   if (d.value("removed_mm3").isDouble()) r.removedMm3 = d.value("removed_mm3").toDouble();
   const QJsonArray beside = d.value("beside").toArray();
@@ -114,6 +116,7 @@ bool RecoveryFiles::commit(const CopyDescription& copy, QString& error) const {
   if (!copy.besideNames.isEmpty()) d.insert("beside", QJsonArray::fromStringList(copy.besideNames));
   if (!copy.reamerPreset.isEmpty()) d.insert("reamer_preset", copy.reamerPreset);
   if (!copy.reamerMesh.isEmpty()) d.insert("reamer_mesh", copy.reamerMesh);
+  if (!copy.landmarksJson.isEmpty()) d.insert("landmarks", QJsonDocument::fromJson(copy.landmarksJson.toUtf8()).object());
   if (!journal.isEmpty()) {
     QJsonArray revisions;
     for (std::uint64_t r : history->revisions) revisions.append(QString::number(r));

@@ -37,6 +37,7 @@ struct RecoveredBone {
   std::vector<std::uint64_t> historyRevisions;
   std::size_t historyCursor = 0;
   QString reamerPreset, reamerMesh;  // the reamer cut with (empty in a copy written before session 53)
+  QString landmarksJson;  // the bone's scapular landmarks as a landmark file's text (empty: none placed)
 };
 
 // The history a copy names: its journal is RecoveryFiles::historyPath(revisions.front()).
@@ -53,6 +54,7 @@ struct CopyDescription {
   QStringList besideNames;               // the bones written to nextBesidePath(0…), in order
   std::optional<HistoryInCopy> history;  // what of the journal belongs to this copy (none: the bone alone)
   QString reamerPreset, reamerMesh;      // the reamer cut with: a preset's name, or a mesh file (session 53)
+  QString landmarksJson;                 // the bone's landmarks (a landmark file's text; empty: none placed)
 };
 
 class RecoveryFiles {

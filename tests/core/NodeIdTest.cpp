@@ -17,7 +17,7 @@ TEST(NodeId, PrintsKindAndSerial) {
 }
 
 TEST(NodeId, ParseRoundTripsAndRejectsNonCanonical) {
-  for (NodeKind k : {NodeKind::Bone, NodeKind::Reamer, NodeKind::Plan, NodeKind::Log, NodeKind::Alert, NodeKind::Landmarks}) {
+  for (NodeKind k : {NodeKind::Bone, NodeKind::Reamer, NodeKind::Plan, NodeKind::Log, NodeKind::Alert, NodeKind::Interaction}) {
     const NodeId id = NodeId::make(k, 42);
     EXPECT_EQ(NodeId::parse(id.toString()), id);
   }

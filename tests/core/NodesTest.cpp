@@ -4,7 +4,7 @@
 #include "reamsim/core/AlertNode.h"
 #include "reamsim/core/BoneNode.h"
 #include "reamsim/core/Document.h"
-#include "reamsim/core/LandmarksNode.h"
+#include "reamsim/core/InteractionNode.h"
 #include "reamsim/core/LogNode.h"
 #include "reamsim/core/PlanNode.h"
 #include "reamsim/core/ReamerNode.h"
@@ -108,29 +108,47 @@ TEST(Nodes, ReamerPlacementRequestWaitsUntilTaken) {
   EXPECT_EQ(reports, 1);  // taking it reports nothing
 }
 
-TEST(Nodes, LandmarksKeepPointsSideAndPickRequest) {
+TEST(Nodes, ABoneKeepsItsLandmarksAndTheyGoWithItsContent) {
   Document doc;
-  LandmarksNode& l = doc.create<LandmarksNode>();
-  EXPECT_EQ(l.id().toString(), "Landmarks1");
-  EXPECT_FALSE(l.landmarks().complete());
-  l.setPickRequest(ScapulaLandmark::InferiorAngle);
-  l.setLandmark(ScapulaLandmark::InferiorAngle, Vec3{1, 2, 3});
-  EXPECT_EQ(l.pickRequest(), ScapulaLandmark::InferiorAngle);  // the view clears it, not the setter
-  l.setPickRequest(std::nullopt);
-  l.setLandmark(ScapulaLandmark::GlenoidCentre, Vec3{4, 5, 6});
-  l.setLandmark(ScapulaLandmark::TrigonumScapulae, Vec3{7, 8, 9});
-  EXPECT_FALSE(l.landmarks().complete());  // no side yet
-  l.setSide(BodySide::Left);
-  EXPECT_TRUE(l.landmarks().complete());
-  ScapulaLandmarks copy = l.landmarks();
-  EXPECT_EQ(copy, l.landmarks());
-  copy[ScapulaLandmark::GlenoidCentre]->z = 6.5;
-  EXPECT_FALSE(copy == l.landmarks());
-  l.setPickRequest(ScapulaLandmark::GlenoidCentre);
-  l.setLandmarks(copy);
-  EXPECT_FALSE(l.pickRequest());  // a whole new set ends a pick
-  EXPECT_EQ(l.modifiedCount(), 8u);
+  BoneNode& bone = doc.create<BoneNode>("scapula", BoneState::fromMesh(test::box(2, 2, 2)));
+  int reports = 0;
+  Subscription s = doc.observeNode(bone.id(), [&] { ++reports; });
+  EXPECT_FALSE(bone.landmarks().complete());
+  bone.setLandmark(ScapulaLandmark::InferiorAngle, Vec3{1, 2, 3});
+  bone.setLandmark(ScapulaLandmark::GlenoidCentre, Vec3{4, 5, 6});
+  bone.setLandmark(ScapulaLandmark::TrigonumScapulae, Vec3{7, 8, 9});
+  EXPECT_FALSE(bone.landmarks().complete());  // no side yet
+  bone.setLandmarkSide(BodySide::Left);
+  EXPECT_TRUE(bone.landmarks().complete());
+  EXPECT_EQ(reports, 4);
+  bone.setLandmarkSide(BodySide::Left);  // no change, no report
+  EXPECT_EQ(reports, 4);
+  const ScapulaLandmarks placed = bone.landmarks();
+  ScapulaLandmarks moved = placed;
+  moved[ScapulaLandmark::GlenoidCentre]->z = 6.5;
+  EXPECT_FALSE(moved == placed);
+  // An exchange of content (an undoable bone replacement) takes the points with the bone they were placed on.
+  BoneContent other;
+  other.history = BoneHistory(BoneState::fromMesh(test::box(1, 1, 1)));
+  other.landmarks = moved;
+  bone.swapContent(other);
+  EXPECT_EQ(bone.landmarks(), moved);
+  EXPECT_EQ(other.landmarks, placed);
+  bone.swapContent(other);
+  EXPECT_EQ(bone.landmarks(), placed);
   EXPECT_EQ(parseBodySide("RIGHT"), BodySide::Right);
   EXPECT_FALSE(parseBodySide("middle"));
   EXPECT_STREQ(jsonKey(ScapulaLandmark::TrigonumScapulae), "trigonum_scapulae");
+}
+
+TEST(Nodes, InteractionHoldsTheLandmarkTheNextClickPlaces) {
+  Document doc;
+  InteractionNode& i = doc.create<InteractionNode>();
+  EXPECT_EQ(i.id().toString(), "Interaction1");
+  EXPECT_FALSE(i.placeRequest());
+  i.setPlaceRequest(ScapulaLandmark::InferiorAngle);
+  EXPECT_EQ(i.placeRequest(), ScapulaLandmark::InferiorAngle);
+  i.setPlaceRequest(std::nullopt);
+  EXPECT_FALSE(i.placeRequest());
+  EXPECT_EQ(i.modifiedCount(), 2u);
 }

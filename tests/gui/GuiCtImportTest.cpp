@@ -155,6 +155,8 @@ TEST(GuiCtImport, SlicesFollowTheThresholdAndImportReplacesTheBoneWithUndo) {
   const std::string nameBefore = s.bone()->name();
   const std::string sourceBefore = s.bone()->source();
   const QString titleBefore = w.windowTitle();
+  const ScapulaLandmarks landmarksBefore = s.bone()->landmarks();
+  ASSERT_TRUE(landmarksBefore.complete());  // the default case's
   EXPECT_EQ(s.bone()->patientFrame(), PatientFrame::Unspecified);
   EXPECT_TRUE(w.boneFrameText().contains("unspecified")) << w.boneFrameText().toStdString();
   ASSERT_TRUE(w.action("import_ct")->isEnabled());
@@ -202,6 +204,7 @@ TEST(GuiCtImport, SlicesFollowTheThresholdAndImportReplacesTheBoneWithUndo) {
   ASSERT_TRUE(s.waitIdle(kWaitMs));
   const BoneNode& bone = *s.bone();
   EXPECT_EQ(bone.patientFrame(), PatientFrame::LPS);
+  EXPECT_FALSE(bone.landmarks()[ScapulaLandmark::GlenoidCentre]);  // placed on the scapula, not on this bone
   EXPECT_EQ(bone.source(), "CT volume " + QDir::cleanPath(QString::fromStdString(ph.path)).toStdString());
   EXPECT_NEAR(bone.current().volume(), ph.shape.mainVolume(), 0.01 * ph.shape.mainVolume());
   const ValidationReport v = validateMesh(bone.current().toMesh());
@@ -223,6 +226,7 @@ TEST(GuiCtImport, SlicesFollowTheThresholdAndImportReplacesTheBoneWithUndo) {
   EXPECT_EQ(s.bone()->name(), nameBefore);
   EXPECT_EQ(s.bone()->source(), sourceBefore);
   EXPECT_EQ(s.bone()->patientFrame(), PatientFrame::Unspecified);
+  EXPECT_EQ(s.bone()->landmarks(), landmarksBefore);  // they come back with their bone
   EXPECT_EQ(w.windowTitle(), titleBefore);
   EXPECT_TRUE(s.canCut());
   EXPECT_EQ(w.view()->displayedTriangleCount(), meshBefore.triangles.size());
@@ -323,6 +327,8 @@ TEST(GuiCtImport, ABoneBesideCanBeCutInsteadAndUndoSwapsThemBack) {
   EXPECT_EQ(besideBone()->currentRevision(), scapulaRevision);
   EXPECT_EQ(besideBone()->history().size(), scapulaStates);
   EXPECT_EQ(besideBone()->current().volume(), scapulaVolume);
+  EXPECT_TRUE(besideBone()->landmarks().complete());  // the scapula's landmarks went beside with it
+  EXPECT_FALSE(s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre]);
   EXPECT_TRUE(besideBone()->cuttable());
   EXPECT_EQ(w.otherBones()->shownTriangles(), besideBone()->current().liveTriangleCount());
   EXPECT_TRUE(w.boneFrameText().contains("LPS")) << w.boneFrameText().toStdString();
@@ -343,6 +349,7 @@ TEST(GuiCtImport, ABoneBesideCanBeCutInsteadAndUndoSwapsThemBack) {
   EXPECT_EQ(s.bone()->currentRevision(), scapulaRevision);
   EXPECT_EQ(s.bone()->history().size(), scapulaStates);
   EXPECT_EQ(s.plan()->poses().size(), scapulaPlan.size());
+  EXPECT_TRUE(s.bone()->landmarks().complete());
   EXPECT_EQ(besideBone()->currentRevision(), phantomRevision);
   EXPECT_EQ(w.otherBones()->shownTriangles(), besideBone()->current().liveTriangleCount());
   // The reamer's pose went with each bone: back in the scapula's cut, not where it was over the phantom (from

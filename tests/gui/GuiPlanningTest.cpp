@@ -37,7 +37,7 @@ T* part(QDockWidget* dock, const char* name) {
 }
 
 AxisAngles reamerAngles(ReamSession& s) {
-  return axisAngles(scapularFrame(s.landmarks()->landmarks()), s.reamer()->pose().axis * -1.0);
+  return axisAngles(scapularFrame(s.bone()->landmarks()), s.reamer()->pose().axis * -1.0);
 }
 
 // Where a world point is drawn in the view, in the widget's own (Qt) coordinates.
@@ -57,7 +57,7 @@ TEST(GuiPlanning, TheDockReadsTheReamerAxisAndAimsTheReamer) {
   ReamSession& s = f.session();
   QDockWidget* dock = planningDock(w);
   ASSERT_NE(dock, nullptr);
-  ASSERT_TRUE(s.landmarks()->landmarks().complete()) << "the default case brings the bundled landmarks";
+  ASSERT_TRUE(s.bone()->landmarks().complete()) << "the default case brings the bundled landmarks";
   auto* report = part<QLabel>(dock, "AxisAngles");
   ASSERT_NE(report, nullptr);
   const AxisAngles start = reamerAngles(s);
@@ -77,7 +77,7 @@ TEST(GuiPlanning, TheDockReadsTheReamerAxisAndAimsTheReamer) {
   const AxisAngles aimed = reamerAngles(s);
   EXPECT_NEAR(aimed.versionDeg, -10, 1e-9);
   EXPECT_NEAR(aimed.inclinationDeg, 5, 1e-9);
-  const Vec3 centre = *s.landmarks()->landmarks()[ScapulaLandmark::GlenoidCentre];
+  const Vec3 centre = *s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre];
   EXPECT_NEAR(norm(s.reamer()->pose().tip - centre), 10, 1e-9);
   // Placed clear of the bone: nothing cut, the next move starts there.
   EXPECT_EQ(s.cutsCommitted(), cutsBefore);
@@ -101,16 +101,16 @@ TEST(GuiPlanning, AClickOnTheBonePlacesTheLandmarkAskedFor) {
   BoneView& view = *w.view();
   QDockWidget* dock = planningDock(w);
   ASSERT_NE(dock, nullptr);
-  const ScapulaLandmarks bundled = s.landmarks()->landmarks();
+  const ScapulaLandmarks bundled = s.bone()->landmarks();
   const Vec3 centre = *bundled[ScapulaLandmark::GlenoidCentre];
-  s.landmarks()->setLandmarks({});
+  s.bone()->setLandmarks({});
   QCoreApplication::processEvents();
   EXPECT_FALSE(view.landmarksLayer().shown(ScapulaLandmark::GlenoidCentre));
   EXPECT_TRUE(part<QLabel>(dock, "AxisAngles")->text().contains("need the landmarks"));
   auto* place = part<QPushButton>(dock, "PlaceLandmark_glenoid_centre");
   ASSERT_NE(place, nullptr);
   QTest::mouseClick(place, Qt::LeftButton);
-  EXPECT_EQ(s.landmarks()->pickRequest(), ScapulaLandmark::GlenoidCentre);
+  EXPECT_EQ(s.interaction()->placeRequest(), ScapulaLandmark::GlenoidCentre);
   EXPECT_TRUE(place->isChecked());
 
   // A click beside the bone places nothing and does not turn the view: the request waits.
@@ -119,8 +119,8 @@ TEST(GuiPlanning, AClickOnTheBonePlacesTheLandmarkAskedFor) {
   camera->GetDirectionOfProjection(before);
   QTest::mouseClick(&view, Qt::LeftButton, {}, QPoint(3, view.height() - 3));
   camera->GetDirectionOfProjection(after);
-  EXPECT_FALSE(s.landmarks()->landmarks()[ScapulaLandmark::GlenoidCentre]);
-  EXPECT_EQ(s.landmarks()->pickRequest(), ScapulaLandmark::GlenoidCentre);
+  EXPECT_FALSE(s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre]);
+  EXPECT_EQ(s.interaction()->placeRequest(), ScapulaLandmark::GlenoidCentre);
   EXPECT_EQ(before[0], after[0]);
   EXPECT_EQ(before[1], after[1]);
 
@@ -128,10 +128,10 @@ TEST(GuiPlanning, AClickOnTheBonePlacesTheLandmarkAskedFor) {
   const QPoint at = widgetPointOf(view, centre);
   ASSERT_TRUE(view.rect().contains(at));
   QTest::mouseClick(&view, Qt::LeftButton, {}, at);
-  const std::optional<Vec3> placed = s.landmarks()->landmarks()[ScapulaLandmark::GlenoidCentre];
+  const std::optional<Vec3> placed = s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre];
   ASSERT_TRUE(placed);
   EXPECT_LT(norm(*placed - centre), 1.0);  // within the pixel's footprint of the bundled point
-  EXPECT_FALSE(s.landmarks()->pickRequest());
+  EXPECT_FALSE(s.interaction()->placeRequest());
   EXPECT_FALSE(place->isChecked());
   EXPECT_TRUE(view.landmarksLayer().shown(ScapulaLandmark::GlenoidCentre));
   EXPECT_TRUE(part<QLabel>(dock, "LandmarkPoint_glenoid_centre")->text().contains(QLocale().toString(placed->x, 'f', 1)));
@@ -145,27 +145,27 @@ TEST(GuiPlanning, LandmarkFilesRoundTripAndADamagedOneIsNamed) {
   ASSERT_NE(dock, nullptr);
   QTemporaryDir dir;
   const QString path = dir.filePath("marks.json");
-  ScapulaLandmarks marks = s.landmarks()->landmarks();
+  ScapulaLandmarks marks = s.bone()->landmarks();
   ASSERT_TRUE(QMetaObject::invokeMethod(dock, "saveLandmarksTo", Q_ARG(QString, path)));
-  s.landmarks()->setLandmarks({});
+  s.bone()->setLandmarks({});
   QString error;
   ASSERT_TRUE(QMetaObject::invokeMethod(dock, "loadLandmarksFrom", Q_RETURN_ARG(QString, error), Q_ARG(QString, path)));
   EXPECT_TRUE(error.isEmpty()) << error.toStdString();
-  EXPECT_EQ(s.landmarks()->landmarks(), marks);
+  EXPECT_EQ(s.bone()->landmarks(), marks);
 
   const QString bad = dir.filePath("bad.json");
   std::ofstream(bad.toStdString()) << R"({"side": "right", "inferior_angle": [1, 2]})";
   ASSERT_TRUE(QMetaObject::invokeMethod(dock, "loadLandmarksFrom", Q_RETURN_ARG(QString, error), Q_ARG(QString, bad)));
   EXPECT_TRUE(error.contains(bad)) << error.toStdString();
   EXPECT_TRUE(error.contains("inferior_angle")) << error.toStdString();
-  EXPECT_EQ(s.landmarks()->landmarks(), marks);  // a file that cannot be read changes nothing
+  EXPECT_EQ(s.bone()->landmarks(), marks);  // a file that cannot be read changes nothing
 
   // Another bone: the points were placed on this one and go.
   ImportedBone box;
   box.mesh = loadDefaultBone().mesh;
   box.cuttable = true;
   s.loadBone(std::move(box), "again", s.reamer()->pose());
-  EXPECT_FALSE(s.landmarks()->landmarks()[ScapulaLandmark::GlenoidCentre]);
+  EXPECT_FALSE(s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre]);
 }
 
 }  // namespace

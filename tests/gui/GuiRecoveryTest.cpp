@@ -122,6 +122,7 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   QString undoText;
   std::vector<CutLogEntry> logged;
   std::vector<Pose> plan;
+  ScapulaLandmarks landmarks;
   {
     GuiFixture crashed;
     crashed.window->enableRecovery(dir.filePath("recovery"), 0);
@@ -134,8 +135,15 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
     secondCutVolume = crashed.session().bone()->current().volume();
     crashed.window->action("undo")->trigger();  // the log keeps both rows; the bone is back after the first
     ASSERT_TRUE(crashed.session().waitIdle(60000));
+    ASSERT_TRUE(settledCopy(*crashed.window));
+    // A landmark placed again after the last cut: the copy follows it (the user's work, as the cuts are).
+    Vec3 centre = *crashed.session().bone()->landmarks()[ScapulaLandmark::GlenoidCentre];
+    centre.x += 0.75;
+    crashed.session().bone()->setLandmark(ScapulaLandmark::GlenoidCentre, centre);
+    landmarks = crashed.session().bone()->landmarks();
     const std::optional<RecoveredBone> copy = settledCopy(*crashed.window);
     ASSERT_TRUE(copy);
+    EXPECT_FALSE(copy->landmarksJson.isEmpty());
     EXPECT_FALSE(copy->historyPath.isEmpty());  // the undo history: three states, at the second
     EXPECT_EQ(copy->historyRevisions.size(), 3u);
     EXPECT_EQ(copy->historyCursor, 1u);
@@ -180,6 +188,7 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   EXPECT_TRUE(status.contains("cut log (2 steps)")) << status.toStdString();
   EXPECT_TRUE(status.contains("undo history (2 steps)")) << status.toStdString() << w.lastError().toStdString();
   EXPECT_EQ(f.session().reamer()->spec().name, "glenoid-40-R32");
+  EXPECT_EQ(f.session().bone()->landmarks(), landmarks);  // to the bit: the copy keeps every digit
   // The undo history is back as it was at the crash: the bone as opened, the first cut (here), the undone second.
   EXPECT_EQ(f.session().bone()->history().size(), 3u);
   EXPECT_EQ(f.session().bone()->history().cursor(), 1u);

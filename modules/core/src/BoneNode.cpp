@@ -35,6 +35,24 @@ void BoneNode::setImportReport(std::string text) {
   markModified();
 }
 
+void BoneNode::setLandmarks(const ScapulaLandmarks& landmarks) {
+  if (landmarks == landmarks_) return;
+  landmarks_ = landmarks;
+  markModified();
+}
+
+void BoneNode::setLandmark(ScapulaLandmark which, const std::optional<Vec3>& point) {
+  ScapulaLandmarks next = landmarks_;
+  next[which] = point;
+  setLandmarks(next);
+}
+
+void BoneNode::setLandmarkSide(BodySide side) {
+  ScapulaLandmarks next = landmarks_;
+  next.side = side;
+  setLandmarks(next);
+}
+
 void BoneNode::setPatientFrame(PatientFrame frame) {
   if (frame == patientFrame_) return;
   patientFrame_ = frame;
@@ -60,6 +78,7 @@ void BoneNode::swapContent(BoneContent& other) {
   std::swap(importReport_, other.importReport);
   std::swap(patientFrame_, other.patientFrame);
   std::swap(source_, other.source);
+  std::swap(landmarks_, other.landmarks);
   std::swap(cuttable_, other.cuttable);
   setName(std::move(other.name));  // marks the node modified (batched with the rest by the caller)
   other.name = std::move(name);

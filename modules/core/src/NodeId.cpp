@@ -5,7 +5,7 @@ namespace reamsim {
 
 namespace {
 constexpr NodeKind kKinds[] = {NodeKind::Bone, NodeKind::Reamer, NodeKind::Plan, NodeKind::Log, NodeKind::Alert,
-                              NodeKind::Landmarks};
+                              NodeKind::Interaction};
 }
 
 const char* kindName(NodeKind kind) {
@@ -15,7 +15,7 @@ const char* kindName(NodeKind kind) {
     case NodeKind::Plan: return "Plan";
     case NodeKind::Log: return "Log";
     case NodeKind::Alert: return "Alert";
-    case NodeKind::Landmarks: return "Landmarks";
+    case NodeKind::Interaction: return "Interaction";
   }
   return "Node";
 }

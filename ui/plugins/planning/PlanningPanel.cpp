@@ -102,7 +102,7 @@ PlanningPanel::PlanningPanel(Document& document, QWidget* parent)
     if (!why.isEmpty()) QMessageBox::warning(this, tr("Aim the reamer"), why);
   });
   subscription_ = document_.subscribe([this](const DocumentEvent& e) {
-    if (e.id.kind() == NodeKind::Landmarks || e.id.kind() == NodeKind::Reamer || e.id.kind() == NodeKind::Bone) sync();
+    if (e.id.kind() == NodeKind::Interaction || e.id.kind() == NodeKind::Reamer || e.id.kind() == NodeKind::Bone) sync();
   });
   sync();
 }
@@ -117,7 +117,7 @@ void PlanningPanel::buildLandmarkRows(QGridLayout* grid) {
   side_->addItem(tr("left scapula"), int(BodySide::Left));
   grid->addWidget(side_, 0, 1, 1, 2);
   connect(side_, qOverload<int>(&QComboBox::activated), this, [this](int index) {
-    if (LandmarksNode* l = landmarks()) l->setSide(BodySide(side_->itemData(index).toInt()));
+    if (BoneNode* b = bone()) b->setLandmarkSide(BodySide(side_->itemData(index).toInt()));
   });
   for (ScapulaLandmark which : kScapulaLandmarks) {
     const int row = 1 + int(which);
@@ -135,7 +135,7 @@ void PlanningPanel::buildLandmarkRows(QGridLayout* grid) {
     place->setToolTip(tr("Then click on the bone where the %1 is").arg(QString::fromUtf8(displayName(which))));
     grid->addWidget(place, row, 2);
     connect(place, &QPushButton::clicked, this, [this, which](bool on) {
-      if (LandmarksNode* l = landmarks()) l->setPickRequest(on ? std::optional<ScapulaLandmark>(which) : std::nullopt);
+      if (InteractionNode* i = interaction()) i->setPlaceRequest(on ? std::optional<ScapulaLandmark>(which) : std::nullopt);
     });
   }
   auto* files = new QHBoxLayout;
@@ -162,16 +162,17 @@ void PlanningPanel::buildLandmarkRows(QGridLayout* grid) {
   });
 }
 
-LandmarksNode* PlanningPanel::landmarks() const { return document_.firstOf<LandmarksNode>(); }
+BoneNode* PlanningPanel::bone() const { return document_.firstOf<BoneNode>(); }
+InteractionNode* PlanningPanel::interaction() const { return document_.firstOf<InteractionNode>(); }
 ReamerNode* PlanningPanel::reamer() const { return document_.firstOf<ReamerNode>(); }
 
 QString PlanningPanel::axisReport() const { return report_->text(); }
 
 void PlanningPanel::sync() {
-  const LandmarksNode* node = landmarks();
+  const BoneNode* node = bone();
   const ScapulaLandmarks marks = node ? node->landmarks() : ScapulaLandmarks{};
   std::optional<ScapulaLandmark> asked;
-  if (node) asked = node->pickRequest();
+  if (interaction()) asked = interaction()->placeRequest();
   {
     const QSignalBlocker block(side_);
     side_->setCurrentIndex(side_->findData(int(marks.side)));
@@ -183,7 +184,7 @@ void PlanningPanel::sync() {
     pointLabels_[i]->setText(p ? pointText(*p) : tr("not placed"));
     placeButtons_[i]->setChecked(asking);
     placeButtons_[i]->setText(asking ? tr("Click on the bone…") : (p ? tr("Place again") : tr("Place")));
-    placeButtons_[i]->setEnabled(node != nullptr);
+    placeButtons_[i]->setEnabled(node != nullptr && interaction() != nullptr);
   }
   side_->setEnabled(node != nullptr);
 
@@ -214,9 +215,9 @@ void PlanningPanel::sync() {
 
 QString PlanningPanel::aimReamer() {
   ReamerNode* r = reamer();
-  if (!r || !landmarks()) return tr("There is no reamer or no landmarks in the document.");
+  if (!r || !bone()) return tr("There is no reamer or no bone in the document.");
   try {
-    const ScapularFrame frame = scapularFrame(landmarks()->landmarks());
+    const ScapularFrame frame = scapularFrame(bone()->landmarks());
     r->requestPlacement(aimedReamerPose(frame, {version_->value(), inclination_->value()}, clearance_->value()));
     return {};
   } catch (const std::invalid_argument& e) {
@@ -225,9 +226,9 @@ QString PlanningPanel::aimReamer() {
 }
 
 void PlanningPanel::takeReamerAngles() {
-  if (!reamer() || !landmarks()) return;
+  if (!reamer() || !bone()) return;
   try {
-    const AxisAngles a = axisAngles(scapularFrame(landmarks()->landmarks()), reamer()->pose().axis * -1.0);
+    const AxisAngles a = axisAngles(scapularFrame(bone()->landmarks()), reamer()->pose().axis * -1.0);
     version_->setValue(a.versionDeg);
     inclination_->setValue(a.inclinationDeg);
   } catch (const std::invalid_argument&) {  // the report above says why
@@ -235,7 +236,7 @@ void PlanningPanel::takeReamerAngles() {
 }
 
 QString PlanningPanel::loadLandmarksFrom(const QString& path) {
-  LandmarksNode* node = landmarks();
+  BoneNode* node = bone();
   if (!node) return tr("There is no bone to place landmarks on.");
   try {
     node->setLandmarks(loadLandmarks(path.toStdString()));
@@ -246,7 +247,7 @@ QString PlanningPanel::loadLandmarksFrom(const QString& path) {
 }
 
 QString PlanningPanel::saveLandmarksTo(const QString& path) {
-  const LandmarksNode* node = landmarks();
+  const BoneNode* node = bone();
   if (!node) return tr("There are no landmarks to save.");
   try {
     writeTextFile(path.toStdString(), landmarksToJson(node->landmarks(), "placed in ReamSim"));

@@ -3,15 +3,16 @@
 // or read from a file), the version and inclination of the reamer's axis in the scapular frame as the
 // reamer moves, and the reamer aimed through the glenoid centre at the version and inclination asked for.
 //
-// It works on the document alone: a landmark is placed by asking for it (LandmarksNode::setPickRequest; the
-// view places it at the next click on the bone) and the reamer is aimed by asking for a placement
+// It works on the document alone: a landmark is placed by asking for it (InteractionNode::setPlaceRequest;
+// the view places it on the cut bone, the document's first BoneNode, at the next click on it) and the reamer is aimed by asking for a placement
 // (ReamerNode::requestPlacement; the reaming loop places it), so the dock needs no handle on the view or
 // the loop.
 #include <QDockWidget>
 #include <array>
 
 #include "reamsim/core/Document.h"
-#include "reamsim/core/LandmarksNode.h"
+#include "reamsim/core/BoneNode.h"
+#include "reamsim/core/InteractionNode.h"
 #include "reamsim/core/ReamerNode.h"
 
 class QComboBox;
@@ -41,7 +42,8 @@ class PlanningPanel : public QDockWidget {
  private:
   void buildLandmarkRows(QGridLayout* grid);
   void sync();
-  LandmarksNode* landmarks() const;
+  BoneNode* bone() const;  // the cut bone: the document's first
+  InteractionNode* interaction() const;
   ReamerNode* reamer() const;
 
   Document& document_;

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "reamsim/core/BoneHistory.h"
-#include "reamsim/core/LandmarksNode.h"
+#include "reamsim/core/ScapulaLandmarks.h"
 #include "reamsim/core/Node.h"
 #include "reamsim/core/PatientFrame.h"
 #include "reamsim/mesh/TriangleMesh.h"
@@ -24,9 +24,7 @@ struct BoneContent {
   PatientFrame patientFrame = PatientFrame::Unspecified;
   std::string source;
   bool cuttable = false;  // a clean closed solid the engine may cut (else shown, with collision alerts only)
-  // Kept in the document's LandmarksNode, not in the BoneNode: carried here so that an exchange of bones
-  // (ReamSession::exchangeBone) takes the points with the bone they were placed on. swapContent leaves it.
-  ScapulaLandmarks landmarks;
+  ScapulaLandmarks landmarks;  // placed on this bone, in its coordinates (docs/PLANNING.md)
 };
 
 class BoneNode : public Node {
@@ -56,12 +54,17 @@ class BoneNode : public Node {
   // Where the bone came from, in words: "CT volume /data/head.nrrd", a mesh file path, "bundled default scapula".
   const std::string& source() const { return source_; }
   void setSource(std::string text);
+  // The scapular landmarks placed on this bone (none placed: all unset, side unspecified).
+  const ScapulaLandmarks& landmarks() const { return landmarks_; }
+  void setLandmarks(const ScapulaLandmarks& landmarks);
+  void setLandmark(ScapulaLandmark which, const std::optional<Vec3>& point);
+  void setLandmarkSide(BodySide side);
   // Whether the engine may cut it: set by whoever imported it, from the import's validation (closed,
   // outward, free of self-intersections and degenerate faces). A bone that is not is shown, not cut.
   bool cuttable() const { return cuttable_; }
   void setCuttable(bool cuttable);
 
-  // Exchanges name, history, original mesh, report, frame, source and cuttability with `other` (reported
+  // Exchanges name, history, original mesh, report, frame, source, landmarks and cuttability with `other` (reported
   // as modified; wrap in a Document::BatchScope for a single notification).
   void swapContent(BoneContent& other);
 
@@ -71,6 +74,7 @@ class BoneNode : public Node {
   std::string importReport_;
   PatientFrame patientFrame_ = PatientFrame::Unspecified;
   std::string source_;
+  ScapulaLandmarks landmarks_;
   bool cuttable_ = false;
 };
 

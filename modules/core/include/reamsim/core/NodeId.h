@@ -10,9 +10,9 @@
 
 namespace reamsim {
 
-enum class NodeKind : std::uint8_t { Bone = 1, Reamer = 2, Plan = 3, Log = 4, Alert = 5, Landmarks = 6 };
+enum class NodeKind : std::uint8_t { Bone = 1, Reamer = 2, Plan = 3, Log = 4, Alert = 5, Interaction = 6 };
 
-// "Bone", "Reamer", "Plan", "Log", "Alert", "Landmarks".
+// "Bone", "Reamer", "Plan", "Log", "Alert", "Interaction".
 const char* kindName(NodeKind kind);
 
 class NodeId {

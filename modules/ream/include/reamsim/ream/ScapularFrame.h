@@ -1,7 +1,7 @@
 #pragma once
 // The scapular frame and the version and inclination of a reaming axis in it (docs/PLANNING.md).
 //
-// From the three landmarks (reamsim/core/LandmarksNode.h: glenoid centre GC, trigonum scapulae TS,
+// From the three landmarks (reamsim/core/ScapulaLandmarks.h: glenoid centre GC, trigonum scapulae TS,
 // inferior angle AI) and the body side:
 //   lateral  L = unit(GC - TS): the scapular axis (Friedman's line, taken in 3D);
 //   superior S = unit(the part of TS - AI normal to L): in the scapular plane (GC, TS, AI), away from AI;
@@ -13,7 +13,7 @@
 // The inverse, o ~ L + tan(version) A + tan(inclination) S, gives back both angles exactly (up to rounding).
 #include <string>
 
-#include "reamsim/core/LandmarksNode.h"
+#include "reamsim/core/ScapulaLandmarks.h"
 #include "reamsim/core/Pose.h"
 
 namespace reamsim {

@@ -1,4 +1,4 @@
-#include "reamsim/core/LandmarksNode.h"
+#include "reamsim/core/ScapulaLandmarks.h"
 
 #include <cctype>
 #include <string>
@@ -47,32 +47,6 @@ bool operator==(const ScapulaLandmarks& a, const ScapulaLandmarks& b) {
     if (a.points[i] && !(*a.points[i] == *b.points[i])) return false;
   }
   return true;
-}
-
-void LandmarksNode::setBoneId(NodeId id) {
-  boneId_ = id;
-  markModified();
-}
-
-void LandmarksNode::setLandmarks(const ScapulaLandmarks& landmarks) {
-  landmarks_ = landmarks;
-  pickRequest_.reset();
-  markModified();
-}
-
-void LandmarksNode::setLandmark(ScapulaLandmark which, const std::optional<Vec3>& point) {
-  landmarks_[which] = point;
-  markModified();
-}
-
-void LandmarksNode::setSide(BodySide side) {
-  landmarks_.side = side;
-  markModified();
-}
-
-void LandmarksNode::setPickRequest(std::optional<ScapulaLandmark> which) {
-  pickRequest_ = which;
-  markModified();
 }
 
 }  // namespace reamsim

@@ -1,0 +1,10 @@
+#include "reamsim/core/InteractionNode.h"
+
+namespace reamsim {
+
+void InteractionNode::setPlaceRequest(std::optional<ScapulaLandmark> which) {
+  placeRequest_ = which;
+  markModified();
+}
+
+}  // namespace reamsim
