@@ -6,6 +6,7 @@
 #include <QLabel>
 #include <QLocale>
 #include <QPushButton>
+#include <QTableWidget>
 #include <QTemporaryDir>
 #include <QtTest/QTest>
 #include <vtkCamera.h>
@@ -15,6 +16,7 @@
 
 #include "BoneView.h"
 #include "GuiEnvironment.h"
+#include "GuiHelpers.h"
 #include "LandmarksLayer.h"
 #include "MainWindow.h"
 #include "reamsim/ream/DefaultCase.h"
@@ -166,6 +168,29 @@ TEST(GuiPlanning, LandmarkFilesRoundTripAndADamagedOneIsNamed) {
   box.cuttable = true;
   s.loadBone(std::move(box), "again", s.reamer()->pose());
   EXPECT_FALSE(s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre]);
+}
+
+// The cut log shows each cut's version and inclination in the frame of the bone's landmarks, and follows them
+// when they change.
+TEST(GuiPlanning, TheCutLogShowsEachCutsVersionAndInclination) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  auto* table = f.window->findChild<QTableWidget*>("LogTable");
+  ASSERT_NE(table, nullptr);
+  ASSERT_EQ(table->rowCount(), 1);
+  const int column = table->columnCount() - 1;
+  EXPECT_EQ(table->horizontalHeaderItem(column)->text(), "version / inclination");
+  const AxisAngles a = axisAngles(scapularFrame(s.bone()->landmarks()), s.log()->entries().front().pose.axis * -1.0);
+  const QString expected = QLocale().toString(a.versionDeg, 'f', 1) + "° / " + QLocale().toString(a.inclinationDeg, 'f', 1) + "°";
+  ASSERT_NE(table->item(0, column), nullptr);
+  EXPECT_EQ(table->item(0, column)->text(), expected);
+  const ScapulaLandmarks placed = s.bone()->landmarks();
+  s.bone()->setLandmark(ScapulaLandmark::InferiorAngle, std::nullopt);
+  EXPECT_EQ(table->item(0, column)->text(), "–");
+  s.bone()->setLandmarks(placed);
+  EXPECT_EQ(table->item(0, column)->text(), expected);
 }
 
 }  // namespace

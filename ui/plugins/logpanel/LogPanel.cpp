@@ -18,6 +18,7 @@
 #include "reamsim/core/ReamerNode.h"
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/ream/CutLogIO.h"
+#include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/tools/ReamedSurface.h"
 
 namespace reamsim::ui {
@@ -38,10 +39,14 @@ LogPanel::LogPanel(Document& document, QWidget* parent) : QDockWidget(tr("Cut lo
   auto* body = new QWidget(this);
   auto* layout = new QVBoxLayout(body);
   auto* splitter = new QSplitter(Qt::Vertical, body);
-  table_ = new QTableWidget(0, 8, splitter);
+  table_ = new QTableWidget(0, 9, splitter);
   table_->setObjectName("LogTable");
   table_->setHorizontalHeaderLabels({tr("time"), tr("removed mm³"), tr("cumulative mm³"), tr("cut ms"), tr("faces"),
-                                     tr("contact point (mm)"), tr("step"), tr("reamer")});
+                                     tr("contact point (mm)"), tr("step"), tr("reamer"),
+                                     tr("version / inclination")});
+  table_->horizontalHeaderItem(kAnglesColumn)
+      ->setToolTip(tr("The reamer axis's version and inclination in the scapular frame of the bone's landmarks "
+                      "(Planning dock; docs/PLANNING.md): – where the landmarks are not all placed"));
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   table_->setFocusPolicy(Qt::NoFocus);  // the reamer keys stay with the main window
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
@@ -70,7 +75,7 @@ LogPanel::LogPanel(Document& document, QWidget* parent) : QDockWidget(tr("Cut lo
   connect(exportButton_, &QPushButton::clicked, this, &LogPanel::exportCsvInteractive);
   connect(seatButton_, &QPushButton::clicked, this, [this] { measureSeat(); });
   subscription_ = document_.subscribe([this](const DocumentEvent& e) {
-    if (e.id.kind() == NodeKind::Log) sync();
+    if (e.id.kind() == NodeKind::Log || e.id.kind() == NodeKind::Bone) sync();
   });
   sync();
 }
@@ -89,6 +94,11 @@ void LogPanel::sync() {
     return;
   }
   const auto& entries = log->entries();
+  const BoneNode* bone = document_.firstOf<BoneNode>();
+  const ScapulaLandmarks landmarks = bone ? bone->landmarks() : ScapulaLandmarks{};
+  const bool otherLandmarks = !(landmarks == anglesFrom_);
+  anglesFrom_ = landmarks;
+  if (otherLandmarks) showAngles(0);  // every row again, in the new frame
   if (entries.size() == shown_) return;
   seatLabel_->clear();  // measured on an earlier bone state
   for (std::size_t i = shown_; i < entries.size(); ++i) {
@@ -118,7 +128,9 @@ void LogPanel::sync() {
                                            ? tr("Ø %L1 mm, cap sphere R %L2 mm").arg(e.reamerDiameterMm).arg(*e.reamerSphereRadiusMm)
                                            : tr("Ø %L1 mm, flat").arg(e.reamerDiameterMm));
   }
+  const std::size_t firstNew = shown_;
   shown_ = entries.size();
+  showAngles(firstNew);
   table_->scrollToBottom();
   std::vector<double> cumulative, ms;
   for (const CutLogEntry& e : entries) {
@@ -126,6 +138,29 @@ void LogPanel::sync() {
     ms.push_back(e.cutMs);
   }
   plot_->setData(std::move(cumulative), std::move(ms));
+}
+
+// The rows from `first` on: the axis's version and inclination in the frame of the landmarks shown.
+void LogPanel::showAngles(std::size_t first) {
+  const LogNode* log = document_.firstOf<LogNode>();
+  if (!log) return;
+  std::optional<ScapularFrame> frame;
+  try {
+    frame = scapularFrame(anglesFrom_);
+  } catch (const std::invalid_argument&) {  // not all placed: the header's tooltip says so
+  }
+  QLocale shown;
+  const auto& entries = log->entries();
+  for (std::size_t i = first; i < shown_ && i < entries.size(); ++i) {
+    QString text = QStringLiteral("–");
+    if (frame) try {
+        const AxisAngles a = axisAngles(*frame, entries[i].pose.axis * -1.0);
+        text = shown.toString(a.versionDeg, 'f', 1) + QStringLiteral("° / ") + shown.toString(a.inclinationDeg, 'f', 1) +
+               QStringLiteral("°");
+      } catch (const std::invalid_argument&) {  // pointing medially
+      }
+    table_->setItem(int(i), kAnglesColumn, new QTableWidgetItem(text));
+  }
 }
 
 QString LogPanel::exportCsv(const QString& path, bool interactive) {

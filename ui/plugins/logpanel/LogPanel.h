@@ -1,5 +1,6 @@
 #pragma once
-// The cut log dock: one row per cut (time, removed and cumulative mm³, cut ms, faces, contact point),
+// The cut log dock: one row per cut (time, removed and cumulative mm³, cut ms, faces, contact point, step,
+// reamer, and the axis's version and inclination when the bone's landmarks are placed),
 // live plots of cumulative removed volume and cut time per step, CSV export, and on request the reamed
 // surface at the reamer's pose (how much of the cutting face is seated on bone, how far the bone stands off
 // the face's ideal sphere: modules/tools ReamedSurface.h). Follows the document's first LogNode, whichever
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "reamsim/core/Document.h"
+#include "reamsim/core/ScapulaLandmarks.h"
 
 class QLabel;
 class QTableWidget;
@@ -36,10 +38,13 @@ class LogPanel : public QDockWidget {
 
  private:
   void sync();
+  void showAngles(std::size_t firstRow);
+  static constexpr int kAnglesColumn = 8;
 
   Document& document_;
   Subscription subscription_;
   NodeId logId_;
+  ScapulaLandmarks anglesFrom_;  // the landmarks the angles column was computed with
   std::size_t shown_ = 0;
   QTableWidget* table_ = nullptr;
   CutPlot* plot_ = nullptr;
