@@ -105,10 +105,14 @@ class MainWindow : public QMainWindow {
   // The reamer moves' keys stored under keys/ (a user's window reads them at start): one that a menu action has
   // taken is not used (the move keeps its default key) and the status bar names it.
   void applyStoredKeyBindings(const QSettings& settings);
+  // The reamer's path on this bone (ReamSession::path) as a plan file that replays it (docs/PLAN_FORMAT.md,
+  // "placed"): an error message naming the file or the problem, empty when written.
+  QString exportPath(const QString& file);
+  void exportPathInteractive();
   // Runs a plan file (docs/PLAN_FORMAT.md) on the bone as `reamsim-cli ream --plan` does: its reamer (a
-  // preset) is taken, the reamer is placed at the first pose and follows the rest as a path (sideways moves
-  // sweep). An empty path: the user picks the file. False (with a message naming the file and the problem)
-  // when the plan cannot be run.
+  // preset) is taken, the reamer is placed at the first pose (and at every pose marked "placed") and follows
+  // the rest as a path (sideways moves sweep). An empty path: the user picks the file. False (with a message
+  // naming the file and the problem) when the plan cannot be run.
   bool runPlanFile(const QString& path = {});
   void showPluginsDialog();
   void showError(const QString& title, const QString& message);

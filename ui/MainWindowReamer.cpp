@@ -17,6 +17,7 @@
 #include "reamsim/core/PlanNode.h"
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/ream/Approach.h"
+#include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/tools/ReamerFile.h"
@@ -169,9 +170,55 @@ bool MainWindow::runPlanFile(const QString& path) {
   // waiting goes (a queued feed, a move not yet computed, a ream to depth whose search is out).
   pendingDepth_.reset();
   session_->cancelQueued();
-  session_->runSteps(poses, /*placeFirst=*/true);
+  std::vector<bool> placed = plan.expandedPlacements();
+  placed.front() = true;  // as the command line's runner
+  session_->runSteps(poses, placed);
   statusBar()->showMessage(tr("Running %1: %Ln step(s)", "", int(poses.size())).arg(QFileInfo(file).fileName()), 5000);
   return true;
+}
+
+QString MainWindow::exportPath(const QString& file) {
+  const std::vector<ReamSession::PathStep>& path = session_->path();
+  if (path.empty()) return tr("The reamer has made no step on this bone yet: there is no path to export.");
+  const ReamerSpec& reamer = path.front().reamer;
+  for (std::size_t i = 1; i < path.size(); ++i)
+    if (path[i].reamer.name != reamer.name || path[i].reamer.meshFile != reamer.meshFile)
+      return tr("The reamer changed at step %1 (%2 to %3): a plan has one reamer, so this path cannot be one plan.")
+          .arg(i + 1)
+          .arg(QString::fromStdString(reamer.name), QString::fromStdString(path[i].reamer.name));
+  ReamPlan plan;
+  plan.reamer = reamer.meshFile.empty() ? reamer.name : reamer.meshFile;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    plan.poses.push_back(path[i].pose);
+    if (path[i].placed) plan.placedPoses.push_back(i);
+  }
+  plan.description = tr("The reamer's path in ReamSim on %1: %2 steps, each a move from the one before or, where "
+                        "marked placed, a placement. Run on the bone as it was opened, it makes the same cuts.%3")
+                         .arg(boneName_)
+                         .arg(path.size())
+                         .arg(session_->pathInterrupted()
+                                  ? tr(" Steps were undone or the bone was exchanged during the session: the replay "
+                                       "runs every step on one bone and ends elsewhere.")
+                                  : QString())
+                         .toStdString();
+  try {
+    writeTextFile(file.toStdString(), planToJson(plan));
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+  return {};
+}
+
+void MainWindow::exportPathInteractive() {
+  const QString file =
+      QFileDialog::getSaveFileName(this, tr("Export the reamer's path as a plan"), "path_plan.json", tr("Plans (*.json)"));
+  if (file.isEmpty()) return;
+  const QString error = exportPath(file);
+  if (!error.isEmpty()) return showError(tr("Export the reamer's path"), error);
+  statusBar()->showMessage(session_->pathInterrupted()
+                               ? tr("Path written to %1 (steps were undone: its replay differs, see its description)").arg(file)
+                               : tr("Path written to %1").arg(file),
+                           8000);
 }
 
 void MainWindow::feedBy(double mm) {

@@ -28,7 +28,9 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
   // Undo or redo (menu, keys, history view) stops a queued sequence: its remaining steps were planned on
   // the bone being left, and the step in flight is dropped (computed against the old bone).
   connect(&undo_, &QUndoStack::indexChanged, this, [this] {
-    if (!pushingCut_ && (!queued_.empty() || running_)) cancelQueued();
+    if (pushingCut_) return;
+    pathInterrupted_ = pathInterrupted_ || !path_.empty();  // the path goes on from a bone its steps did not leave
+    if (!queued_.empty() || running_) cancelQueued();
   });
   connect(&watcher_, &QFutureWatcher<StepResult>::finished, this, &ReamSession::finished);
   progressTimer_ = new QTimer(this);
@@ -66,6 +68,8 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
     reamer_->setPose(start);
   }
   undo_.clear();
+  path_.clear();
+  pathInterrupted_ = false;
   initialVolume_ = bone_->current().volume();
   cuts_ = steps_ = 0;
   removedBefore_.clear();
@@ -157,9 +161,15 @@ void ReamSession::frameShown() {
 }
 
 void ReamSession::runSteps(const std::vector<Pose>& poses, bool placeFirst) {
+  std::vector<bool> placed(poses.size(), false);
+  if (placeFirst && !placed.empty()) placed.front() = true;
+  runSteps(poses, placed);
+}
+
+void ReamSession::runSteps(const std::vector<Pose>& poses, const std::vector<bool>& placed) {
   if (!engine_ || poses.empty()) return;
   queuePendingUserMove();  // keep the order: the pending move by hand first
-  for (const Pose& p : poses) queued_.push_back({p, std::nullopt, placeFirst && &p == &poses.front()});
+  for (std::size_t i = 0; i < poses.size(); ++i) queued_.push_back({poses[i], std::nullopt, i < placed.size() && placed[i]});
   sequenceTotal_ += static_cast<int>(poses.size());
   Q_EMIT progress(sequenceDone_, sequenceTotal_);
   startNext();
@@ -250,6 +260,7 @@ void ReamSession::startNext() {
   const std::optional<Pose> sweptFrom = moved ? lastComputedPose_ : std::nullopt;
   poseBeforeRunning_ = lastComputedPose_;
   lastComputedPose_ = pose;
+  runningStep_ = PathStep{pose, !sweptFrom, reamer_->spec()};
   control_ = std::make_shared<StepControl>();
   progressTimer_->start();
   runOnWorker([pose, stepMm, sweptFrom, control = control_](ReamEngine& engine, const BoneState& state,
@@ -340,6 +351,7 @@ void ReamSession::finished() {
     options.logEveryStep = false;  // the GUI's log lists cuts
     options.initialVolumeMm3 = initialVolumeMm3();
     const CutLogEntry e = commitReamStep(document_, *bone_, *reamer_, *log_, alerts_, r.computation, steps_++, options);
+    if (runningStep_) path_.push_back(*std::exchange(runningStep_, std::nullopt));
     if (e.boneStateId != 0) {
       engine_->adopt(e.boneStateId);
       ++cuts_;

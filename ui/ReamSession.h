@@ -105,6 +105,8 @@ class ReamSession : public QObject {
   // Every step runs (feed, ream to depth, plan), each a travel from the one before; with `placeFirst` the first is
   // placed instead (nothing swept to it), as the command line's plan runner places a plan's first pose.
   void runSteps(const std::vector<Pose>& poses, bool placeFirst = false);
+  // The same with each step's placement given (`placed[i]`: nothing swept to poses[i]; a plan's `placed` poses).
+  void runSteps(const std::vector<Pose>& poses, const std::vector<bool>& placed);
   // Queues a search for the first contact of the reamer advancing from `start` along its axis (up to
   // maxMm): run on the worker after the steps queued before it, against the bone they leave, on the
   // engine's own collision structure (no tree is built for it). Answered by contactSearched.
@@ -123,6 +125,19 @@ class ReamSession : public QObject {
   Pose targetPose() const;  // where the reamer is once every requested step has run
   // Processes events until no step is running or queued; false on timeout (tests, demo, benchmark).
   bool waitIdle(int timeoutMs);
+
+  // The reamer's path on this bone: every step committed since the bone was opened (a cut or not), in order,
+  // each a move from the one before or a placement. Replayed on the bone as opened (a plan with these poses
+  // and placements, MainWindow::exportPath) it makes the same cuts, unless steps were undone in between
+  // or the bone was exchanged in between (pathInterrupted) or the reamer changed (each step names its own).
+  struct PathStep {
+    Pose pose;
+    bool placed = false;
+    ReamerSpec reamer;
+  };
+  const std::vector<PathStep>& path() const { return path_; }
+  // The bone changed under the path other than by its own steps: an undo, a redo, a bone exchanged.
+  bool pathInterrupted() const { return pathInterrupted_; }
 
   std::size_t cutsCommitted() const { return cuts_; }
   double lastMinDistanceMm() const { return lastMinDistance_; }
@@ -189,6 +204,9 @@ class ReamSession : public QObject {
     bool placed = false;             // placed there (nothing swept), not a travel from the step before
   };
   std::deque<QueuedStep> queued_;
+  std::vector<PathStep> path_;
+  std::optional<PathStep> runningStep_;  // what the running step adds to the path once committed
+  bool pathInterrupted_ = false;
   std::optional<Pose> latestUserPose_;
   bool latestUserMoved_ = false;
   bool lastStepSwept_ = false;

@@ -128,8 +128,10 @@ int runReam(const std::vector<std::string>& args) {
   bool invariantsHeld = true;
   std::size_t roundedSelfIntersectingSteps = 0;
   std::vector<double> cutTimes;
-  for (const Pose& pose : planNode.poses()) {
-    const ReamStepOutcome step = controller.moveTo(pose);
+  const std::vector<bool> placements = plan.expandedPlacements();
+  for (std::size_t i = 0; i < planNode.poses().size(); ++i) {
+    const Pose& pose = planNode.poses()[i];
+    const ReamStepOutcome step = controller.moveTo(pose, placements[i]);
     worstBookkeeping = std::max(worstBookkeeping, step.volumeBookkeepingError / std::max(1.0, step.cut.removedMm3));
     if (step.cut.changed) cutTimes.push_back(step.entry.cutMs);
     if (a.has("check") && step.cut.changed) {

@@ -617,5 +617,86 @@ TEST(GuiReaming, RunningAPlanFileCutsAsTheCommandLineDoes) {
   for (QMessageBox* box : w.findChildren<QMessageBox*>("ErrorDialog")) box->close();
 }
 
+// File → Export the reamer's path as a plan: every step on the bone since it was opened — placements, swept
+// moves, a feed — replays through the command line's controller to the same bone, to the last face.
+TEST(GuiReaming, TheReamersPathExportsAsAPlanThatReplaysTheSession) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  GuiFixture f;  // its first step: the reamer placed at the plan's start
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);  // a placement 0.5 mm into the glenoid
+  const Pose seated = s.reamer()->pose();
+  const Vec3 across = normalized(cross(seated.axis, std::abs(seated.axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  Pose aside = seated;
+  aside.tip = seated.tip + 0.6 * across;
+  s.moveReamer(aside, true);  // a move by hand: swept
+  ASSERT_TRUE(s.waitIdle(60000));
+  Pose elsewhere = seated;
+  elsewhere.tip = seated.tip - 1.5 * across;
+  s.moveReamer(elsewhere, false);  // placed: nothing swept from `aside`
+  ASSERT_TRUE(s.waitIdle(60000));
+  s.runSteps({advancedAlongAxis(elsewhere, 0.2), advancedAlongAxis(elsewhere, 0.4)});  // a feed
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.path().size(), 6u);
+  EXPECT_FALSE(s.pathInterrupted());
+
+  const QString file = dir.filePath("path.json");
+  const QString error = w.exportPath(file);
+  ASSERT_TRUE(error.isEmpty()) << error.toStdString();
+  const ReamPlan plan = loadPlan(file.toStdString());
+  ASSERT_EQ(plan.poses.size(), 6u);
+  EXPECT_EQ(plan.reamer, s.reamer()->spec().name);
+  EXPECT_EQ(plan.placedPoses, (std::vector<std::size_t>{0, 1, 3}));  // the start, the seat, `elsewhere`
+
+  Document doc;
+  auto& bone = doc.create<BoneNode>("Bone", BoneState::fromMesh(loadDefaultBone().mesh));
+  const ReamerSpec spec = loadPreset(plan.reamer, reamerPresetsPath());
+  auto& reamer = doc.create<ReamerNode>("Reamer", spec);
+  reamer.setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(spec)));
+  auto& log = doc.create<LogNode>("Log");
+  ReamController replay(doc, bone, reamer, log, nullptr, localCutBackendFactory(), makeBvhContactBackend());
+  const std::vector<bool> placed = plan.expandedPlacements();
+  std::vector<bool> swept;
+  for (std::size_t i = 0; i < plan.poses.size(); ++i) swept.push_back(replay.moveTo(plan.poses[i], placed[i]).swept);
+  EXPECT_FALSE(swept[3]);  // placed: nothing swept from `aside`
+  EXPECT_TRUE(swept[2]);   // the move by hand
+  EXPECT_EQ(bone.current().liveTriangleCount(), s.bone()->current().liveTriangleCount());
+  EXPECT_NEAR(bone.current().volume(), s.bone()->current().volume(), 1e-9 * bone.current().volume());
+  // Replayed with every step a move, the step to `elsewhere` sweeps from `aside`: the flags matter.
+  {
+    Document doc2;
+    auto& bone2 = doc2.create<BoneNode>("Bone", BoneState::fromMesh(loadDefaultBone().mesh));
+    auto& reamer2 = doc2.create<ReamerNode>("Reamer", spec);
+    reamer2.setCuttingVolume(reamer.cuttingVolume());
+    auto& log2 = doc2.create<LogNode>("Log");
+    ReamController moves(doc2, bone2, reamer2, log2, nullptr, localCutBackendFactory(), makeBvhContactBackend());
+    std::vector<bool> movesSwept;
+    for (const Pose& p : plan.poses) movesSwept.push_back(moves.moveTo(p).swept);
+    EXPECT_TRUE(movesSwept[3]);
+    EXPECT_LE(bone2.current().volume(), bone.current().volume() + 1e-9 * bone.current().volume());
+  }
+
+  // After an undo the path no longer leads to the bone shown: the file says so.
+  w.action("undo")->trigger();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_TRUE(s.pathInterrupted());
+  ASSERT_TRUE(w.exportPath(file).isEmpty());
+  EXPECT_NE(loadPlan(file.toStdString()).description.find("undone"), std::string::npos);
+  // Another reamer part way: one plan cannot hold the path.
+  ASSERT_TRUE(w.chooseReamer("glenoid-40-R32"));
+  s.moveReamer(advancedAlongAxis(s.reamer()->pose(), -0.2), true);
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_TRUE(w.exportPath(file).contains("reamer changed at step 7")) << w.exportPath(file).toStdString();
+  // A new bone starts a new path.
+  ImportedBone again;
+  again.mesh = loadDefaultBone().mesh;
+  again.cuttable = true;
+  s.loadBone(std::move(again), "again", seated);
+  EXPECT_TRUE(s.path().empty());
+  EXPECT_FALSE(s.pathInterrupted());
+  EXPECT_TRUE(w.exportPath(file).contains("no step")) << w.exportPath(file).toStdString();
+}
+
 }  // namespace
 }  // namespace reamsim::ui::test

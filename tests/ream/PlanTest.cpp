@@ -59,5 +59,22 @@ TEST(Plan, BadPlansAreRejectedClearly) {
   EXPECT_THROW(loadPlan("/nonexistent/plan.json"), InputError);
 }
 
+// "placed": a recorded session's placements (nothing swept to the pose), kept through a round trip and
+// counted after the feed's steps, which are never placed.
+TEST(Plan, PlacedPosesRoundTripAndFollowTheFeed) {
+  const ReamPlan p = parsePlan(
+      R"({"feed": {"start": {"tip": [0, 0, 5], "axis": [0, 0, -1]}, "step_mm": 0.5, "count": 2},
+          "poses": [{"tip": [0, 0, 0], "axis": [1, 0, 0], "placed": true}, {"tip": [0, 0, 1], "axis": [1, 0, 0]},
+                    {"tip": [0, 0, 2], "axis": [1, 0, 0], "placed": false}, {"tip": [0, 0, 3], "axis": [1, 0, 0], "placed": true}]})",
+      "plan.json");
+  EXPECT_EQ(p.placedPoses, (std::vector<std::size_t>{0, 3}));
+  EXPECT_EQ(p.expandedPlacements(), (std::vector<bool>{false, false, true, false, false, true}));
+  const ReamPlan q = parsePlan(planToJson(p), "again.json");
+  EXPECT_EQ(q.placedPoses, p.placedPoses);
+  expectRejected(R"({"poses": [{"tip": [0, 0, 0], "axis": [1, 0, 0], "placed": 1}]})", "poses[0].placed must be true or false");
+  expectRejected(R"({"feed": {"start": {"tip": [0, 0, 0], "axis": [1, 0, 0], "placed": true}, "step_mm": 1, "count": 1}})",
+                 "feed.start.placed is for the poses");
+}
+
 }  // namespace
 }  // namespace reamsim

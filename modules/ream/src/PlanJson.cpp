@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -26,7 +27,7 @@ Vec3 readVec3(const json& j, const std::string& where, const std::string& source
   return v;
 }
 
-Pose readPose(const json& j, const std::string& where, const std::string& source) {
+Pose readPose(const json& j, const std::string& where, const std::string& source, bool* placed = nullptr) {
   if (!j.is_object()) throw InputError(source, where + " must be an object with \"tip\" and \"axis\"");
   for (const char* key : {"tip", "axis"})
     if (!j.contains(key)) throw InputError(source, where + " lacks \"" + key + "\"");
@@ -40,11 +41,18 @@ Pose readPose(const json& j, const std::string& where, const std::string& source
     p.rollDeg = j["roll_deg"].get<double>();
     if (!std::isfinite(p.rollDeg)) throw InputError(source, where + ".roll_deg must be finite");
   }
+  if (j.contains("placed")) {
+    if (!placed) throw InputError(source, where + ".placed is for the poses of \"poses\"");
+    if (!j["placed"].is_boolean()) throw InputError(source, where + ".placed must be true or false");
+    *placed = j["placed"].get<bool>();
+  }
   return p;
 }
 
-json poseJson(const Pose& p) {
-  return {{"tip", {p.tip.x, p.tip.y, p.tip.z}}, {"axis", {p.axis.x, p.axis.y, p.axis.z}}, {"roll_deg", p.rollDeg}};
+json poseJson(const Pose& p, bool placed = false) {
+  json j = {{"tip", {p.tip.x, p.tip.y, p.tip.z}}, {"axis", {p.axis.x, p.axis.y, p.axis.z}}, {"roll_deg", p.rollDeg}};
+  if (placed) j["placed"] = true;
+  return j;
 }
 }  // namespace
 
@@ -53,6 +61,15 @@ std::vector<Pose> ReamPlan::expandedPoses() const {
   if (feed)
     for (int i = 1; i <= feed->count; ++i) out.push_back(advancedAlongAxis(feed->start, i * feed->stepMm));
   out.insert(out.end(), poses.begin(), poses.end());
+  return out;
+}
+
+std::vector<bool> ReamPlan::expandedPlacements() const {
+  std::vector<bool> out(feed ? std::size_t(feed->count) : 0, false);
+  const std::size_t first = out.size();
+  out.resize(first + poses.size(), false);
+  for (std::size_t i : placedPoses)
+    if (i < poses.size()) out[first + i] = true;
   return out;
 }
 
@@ -100,8 +117,11 @@ ReamPlan parsePlan(const std::string& text, const std::string& source) {
   }
   if (j.contains("poses")) {
     if (!j["poses"].is_array()) throw InputError(source, "\"poses\" must be an array");
-    for (std::size_t i = 0; i < j["poses"].size(); ++i)
-      plan.poses.push_back(readPose(j["poses"][i], "poses[" + std::to_string(i) + "]", source));
+    for (std::size_t i = 0; i < j["poses"].size(); ++i) {
+      bool placed = false;
+      plan.poses.push_back(readPose(j["poses"][i], "poses[" + std::to_string(i) + "]", source, &placed));
+      if (placed) plan.placedPoses.push_back(i);
+    }
   }
   if (!plan.feed && plan.poses.empty()) throw InputError(source, "the plan has neither \"feed\" nor \"poses\"");
   return plan;
@@ -123,7 +143,8 @@ std::string planToJson(const ReamPlan& plan) {
     j["feed"] = {{"start", poseJson(plan.feed->start)}, {"step_mm", plan.feed->stepMm}, {"count", plan.feed->count}};
   if (!plan.poses.empty()) {
     j["poses"] = json::array();
-    for (const Pose& p : plan.poses) j["poses"].push_back(poseJson(p));
+    for (std::size_t i = 0; i < plan.poses.size(); ++i)
+      j["poses"].push_back(poseJson(plan.poses[i], std::binary_search(plan.placedPoses.begin(), plan.placedPoses.end(), i)));
   }
   return j.dump(2);
 }

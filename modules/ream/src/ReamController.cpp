@@ -18,8 +18,9 @@ ReamController::ReamController(Document& document, BoneNode& bone, ReamerNode& r
 
 ReamController::~ReamController() = default;
 
-ReamStepOutcome ReamController::moveTo(const Pose& pose) {
+ReamStepOutcome ReamController::moveTo(const Pose& pose, bool placed) {
   // A plan is a path: each step moves from the previous pose, and a sideways move cuts what it sweeps.
+  if (placed) previous_.reset();
   const double stepMm = previous_ ? norm(pose.tip - previous_->tip) : 0.0;
   ReamComputation c =
       engine_.compute(bone_.current(), bone_.currentRevision(), pose, stepMm, previous_ ? &*previous_ : nullptr);

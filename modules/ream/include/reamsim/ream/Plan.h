@@ -19,9 +19,14 @@ struct ReamPlan {
   std::string reamer;                 // preset name or mesh path; empty = chosen on the command line
   std::optional<FeedSpec> feed;       // either a feed...
   std::vector<Pose> poses;            // ...or an explicit list (both: the feed's steps come first)
+  // Indices into `poses` where the reamer is placed, not moved: nothing is swept to it from the pose before
+  // (a recorded session's placements, docs/PLAN_FORMAT.md). Ascending. A runner places the first pose anyway.
+  std::vector<std::size_t> placedPoses;
   std::string description;
 
   std::vector<Pose> expandedPoses() const;  // feed steps (start excluded), then the explicit poses
+  // Beside expandedPoses(): true where that pose is placed (from placedPoses; the feed's steps never are).
+  std::vector<bool> expandedPlacements() const;
   double maxStepMm() const;                 // largest tip displacement between consecutive poses
 };
 

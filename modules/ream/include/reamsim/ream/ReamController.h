@@ -35,7 +35,9 @@ class ReamController {
                  std::unique_ptr<ContactBackend> contact = makeBvhContactBackend());
   ~ReamController();
 
-  ReamStepOutcome moveTo(const Pose& pose);
+  // A step to `pose`: a move from the previous step's pose (what it sweeps is cut), or with `placed` a
+  // placement (nothing swept to it, as the first step always is).
+  ReamStepOutcome moveTo(const Pose& pose, bool placed = false);
 
   // Invariants of the current bone as the engine holds it (exact and rounded coordinates); costly.
   BoneInvariants checkBone() const;
