@@ -1,0 +1,38 @@
+#pragma once
+// A reaming report for review (clinicians, educators): one self-contained HTML file with the bone, the
+// reamer, the scapular landmarks and the reamer axis's version and inclination, the removed volume, one row
+// per cut, and optionally a picture of the view. Written by the window (File → Export a report…) and by
+// `reamsim-cli ream --report`. docs/FORMATS.md "Reaming report".
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "reamsim/core/CutLogEntry.h"
+#include "reamsim/core/PatientFrame.h"
+#include "reamsim/core/Pose.h"
+#include "reamsim/core/ReamerSpec.h"
+#include "reamsim/core/ScapulaLandmarks.h"
+
+namespace reamsim {
+
+struct ReamReportInput {
+  std::string title = "ReamSim reaming report";
+  std::string boneName, boneSource;
+  PatientFrame patientFrame = PatientFrame::Unspecified;
+  double volumeAtStartMm3 = 0;  // the bone as opened (the log's cumulative volume is measured from it)
+  double volumeNowMm3 = 0;
+  std::size_t facesAtStart = 0, facesNow = 0;
+  ReamerSpec reamer;                // the reamer now
+  std::optional<Pose> reamerPose;   // where it is now
+  ScapulaLandmarks landmarks;       // the bone's (any not placed: no frame, no angles)
+  std::vector<CutLogEntry> cuts;    // the log's rows, in order
+  std::string pngBase64;            // a picture of the view (PNG, base64); empty: none
+  std::int64_t writtenUnixMs = 0;   // when (0: not said)
+  std::string writtenBy = "ReamSim";
+};
+
+// The whole HTML document. Every text from the input is escaped; numbers are written in the C locale.
+std::string reamReportHtml(const ReamReportInput& input);
+
+}  // namespace reamsim
