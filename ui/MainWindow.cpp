@@ -159,6 +159,7 @@ void MainWindow::buildMenus() {
   add(file, "save", tr("Save bone &as…"), QKeySequence::SaveAs, [this] {
     saveBoneAndCutLogInteractive();
   })->setEnabled(plugins_.meshImport() != nullptr);
+  add(file, "export_report", tr("Export a &report…"), {}, [this] { exportReportInteractive(); });
   add(file, "export_path", tr("Export the reamer's &path as a plan…"), {}, [this] { exportPathInteractive(); });
   file->addSeparator();
   add(file, "quit", tr("&Quit"), QKeySequence::Quit, [this] { close(); });

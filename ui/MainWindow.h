@@ -109,6 +109,11 @@ class MainWindow : public QMainWindow {
   // "placed"): an error message naming the file or the problem, empty when written.
   QString exportPath(const QString& file);
   void exportPathInteractive();
+  // A reaming report for review (reamsim/ream/ReamReport.h: one HTML file with the bone, the reamer, the landmarks
+  // and the axis's version and inclination, the cuts, and a picture of the view): an error message naming the
+  // file, empty when written.
+  QString exportReport(const QString& file);
+  void exportReportInteractive();
   // Runs a plan file (docs/PLAN_FORMAT.md) on the bone as `reamsim-cli ream --plan` does: its reamer (a
   // preset) is taken, the reamer is placed at the first pose (and at every pose marked "placed") and follows
   // the rest as a path (sideways moves sweep). An empty path: the user picks the file. False (with a message

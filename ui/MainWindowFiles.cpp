@@ -1,6 +1,8 @@
 // MainWindow: bones in and out — default case, open (off the UI thread), save, recent files, drag and drop,
 // and the question before unsaved changes would be lost.
+#include <QBuffer>
 #include <QCoreApplication>
+#include <QDateTime>
 #include <QCloseEvent>
 #include <QDragEnterEvent>
 #include <QDir>
@@ -29,6 +31,7 @@
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/Plan.h"
+#include "reamsim/ream/ReamReport.h"
 #include "reamsim/tools/ReamerPresets.h"
 #include "reamsim/mesh/FileReplace.h"
 #include "reamsim/ui/ProgressRelay.h"
@@ -394,6 +397,43 @@ void MainWindow::dropEvent(QDropEvent* e) {
   if (urls.isEmpty() || !urls.front().isLocalFile()) return;
   e->acceptProposedAction();
   if (confirmDiscardChanges(tr("open another bone"))) openFile(urls.front().toLocalFile(), true);
+}
+
+QString MainWindow::exportReport(const QString& file) {
+  const BoneNode& bone = *session_->bone();
+  ReamReportInput in;
+  in.boneName = boneName_.toStdString();
+  in.boneSource = bone.source();
+  in.patientFrame = bone.patientFrame();
+  in.volumeAtStartMm3 = session_->initialVolumeMm3();
+  in.volumeNowMm3 = bone.current().volume();
+  in.facesAtStart = bone.history().entries().front().state.liveTriangleCount();
+  in.facesNow = bone.current().liveTriangleCount();
+  in.reamer = session_->reamer()->spec();
+  if (session_->reamer()->cuttingVolume()) in.reamerPose = session_->reamer()->pose();
+  in.landmarks = bone.landmarks();
+  in.cuts = session_->log()->entries();
+  in.writtenUnixMs = QDateTime::currentMSecsSinceEpoch();
+  in.writtenBy = "ReamSim (File → Export a report)";
+  // The view as it is drawn now: the bone, its removed depth or fresh cuts, the reamer, the landmarks.
+  QByteArray png;
+  QBuffer buffer(&png);
+  buffer.open(QIODevice::WriteOnly);
+  if (view_->grabFramebuffer().save(&buffer, "PNG")) in.pngBase64 = png.toBase64().toStdString();
+  try {
+    writeTextFile(file.toStdString(), reamReportHtml(in));
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+  return {};
+}
+
+void MainWindow::exportReportInteractive() {
+  const QString file = QFileDialog::getSaveFileName(this, tr("Export a report"), "reaming_report.html", tr("HTML (*.html)"));
+  if (file.isEmpty()) return;
+  const QString error = exportReport(file);
+  if (!error.isEmpty()) return showError(tr("Export a report"), error);
+  statusBar()->showMessage(tr("Report written to %1").arg(file), 8000);
 }
 
 }  // namespace reamsim::ui

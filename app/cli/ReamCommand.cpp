@@ -1,5 +1,7 @@
 // ream: run a plan against a bone through the document and the reaming controller.
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -19,6 +21,8 @@
 #include "reamsim/ream/LocalCutBackend.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/ream/ReamController.h"
+#include "reamsim/ream/ReamReport.h"
+#include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/tools/ReamerFile.h"
 #include "reamsim/tools/ReamerPresets.h"
 
@@ -82,13 +86,19 @@ void printRow(const CutLogEntry& e) {
 }  // namespace
 
 int runReam(const std::vector<std::string>& args) {
-  CliArgs a(args, {"bone", "reamer", "plan", "out", "units", "engine", "collision"}, {"json", "check", "no-cleanup"});
+  CliArgs a(args, {"bone", "reamer", "plan", "out", "units", "engine", "collision", "landmarks"},
+            {"json", "check", "no-cleanup"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string outDir = a.required("out");
   const std::string planArg = a.value("plan", "default");
   const ReamPlan plan = loadPlan(planArg == "default" ? defaultPlanPath() : planArg);
   const std::string reamerArg = a.value("reamer", plan.reamer.empty() ? kDefaultReamer : plan.reamer);
   LoadedBone bone = loadBone(a.value("bone", "default"), parseUnits(a.value("units", "auto")));
+  // The scapular landmarks for the report's version and inclination: the bundled bone's by default.
+  const std::string landmarksArg = a.value("landmarks", a.value("bone", "default") == "default" ? "default" : "none");
+  const ScapulaLandmarks landmarks = landmarksArg == "none"      ? ScapulaLandmarks{}
+                                     : landmarksArg == "default" ? loadDefaultLandmarks()
+                                                                 : loadLandmarks(landmarksArg);
 
   TriangleMesh cuttingVolume;
   const ReamerSpec spec = resolveReamer(reamerArg, cuttingVolume);
@@ -178,12 +188,36 @@ int runReam(const std::vector<std::string>& args) {
     reamedLine = reamedSurfaceLine(rs);
   }
 
+  ReamReportInput report;
+  report.boneName = a.value("bone", "default") == "default" ? "bundled default scapula" : a.value("bone");
+  report.boneSource = bone.importReport;
+  report.volumeAtStartMm3 = startVolume;
+  report.volumeNowMm3 = boneNode.current().volume();
+  report.facesAtStart = bone.mesh.triangles.size();
+  report.facesNow = finalMesh.triangles.size();
+  report.reamer = spec;
+  if (!planNode.poses().empty()) report.reamerPose = planNode.poses().back();
+  report.landmarks = landmarks;
+  for (const CutLogEntry& e : log.entries())
+    if (e.removedMm3 > 0) report.cuts.push_back(e);
+  report.writtenUnixMs = std::chrono::duration_cast<std::chrono::milliseconds>(
+                             std::chrono::system_clock::now().time_since_epoch()).count();
+  report.writtenBy = "reamsim-cli ream --plan " + planArg;
+  if (report.reamerPose && landmarks.complete()) try {
+      const AxisAngles last = axisAngles(scapularFrame(landmarks), report.reamerPose->axis * -1.0);
+      summary["last_pose_version_deg"] = last.versionDeg;
+      summary["last_pose_inclination_deg"] = last.inclinationDeg;
+    } catch (const std::invalid_argument& e) {
+      std::fprintf(stderr, "note: no version and inclination: %s\n", e.what());
+    }
+
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);
   try {
     writeTextFile(outDir + "/log.csv", cutLogCsv(log.entries()));
     writeTextFile(outDir + "/log.json", cutLogJson(log.entries(), summary.dump()));
     writeMesh(finalMesh, outDir + "/bone_final.ply");
+    writeTextFile(outDir + "/report.html", reamReportHtml(report));
   } catch (const InputError& e) {
     std::fprintf(stderr, "reamsim-cli ream: error: %s\n", e.what());
     return kWriteFailed;
@@ -196,7 +230,8 @@ int runReam(const std::vector<std::string>& args) {
                 summary["removed_total_mm3"].get<double>(), log.size(), medianMs, bone.mesh.triangles.size(),
                 finalMesh.triangles.size(), worstBookkeeping);
     if (!reamedLine.empty()) std::printf("%s\n", reamedLine.c_str());
-    std::printf("written: %s/log.csv, %s/log.json, %s/bone_final.ply\n", outDir.c_str(), outDir.c_str(), outDir.c_str());
+    std::printf("written: %s/log.csv, %s/log.json, %s/bone_final.ply, %s/report.html\n", outDir.c_str(), outDir.c_str(),
+                outDir.c_str(), outDir.c_str());
   }
   return invariantsHeld ? kOk : kFailed;
 }

@@ -249,6 +249,19 @@ TEST(Cli, AxisAimsAPlanAtAVersionAndInclinationAndMeasuresItBack) {
   std::ifstream js(dir / "log.json");
   const auto log = nlohmann::json::parse(js);
   EXPECT_GT(log["summary"]["removed_total_mm3"].get<double>(), 100.0);
+  EXPECT_NEAR(log["summary"]["last_pose_version_deg"].get<double>(), -8.5, 1e-9);
+  // The report beside the log says the same, cut by cut.
+  std::ifstream reportFile(dir / "report.html");
+  std::stringstream report;
+  report << reportFile.rdbuf();
+  EXPECT_NE(report.str().find("-8.5° (retroversion), 4.0° (superior)"), std::string::npos);
+  const CliRun bare = run("ream --bone default --plan " + plan.string() + " --landmarks none --out " + dir.string());
+  ASSERT_EQ(bare.exitCode, 0) << bare.out;
+  std::ifstream bareFile(dir / "report.html");
+  std::stringstream bareReport;
+  bareReport << bareFile.rdbuf();
+  EXPECT_NE(bareReport.str().find("No scapular frame"), std::string::npos);
+  EXPECT_EQ(run("ream --bone default --plan " + plan.string() + " --landmarks /nonexistent.json --out " + dir.string()).exitCode, 3);
   // The same angles through --axis, and the default plan's axis measured by default.
   const std::vector<double> axis = a["aimed"]["axis"].get<std::vector<double>>();
   std::ostringstream arg;

@@ -7,6 +7,8 @@
 #include <QLocale>
 #include <QPushButton>
 #include <QTableWidget>
+#include <QFile>
+#include <QImage>
 #include <QTemporaryDir>
 #include <QtTest/QTest>
 #include <vtkCamera.h>
@@ -191,6 +193,34 @@ TEST(GuiPlanning, TheCutLogShowsEachCutsVersionAndInclination) {
   EXPECT_EQ(table->item(0, column)->text(), "–");
   s.bone()->setLandmarks(placed);
   EXPECT_EQ(table->item(0, column)->text(), expected);
+}
+
+// File → Export a report: one HTML file with what was removed, the landmarks' angles and the view's picture.
+TEST(GuiPlanning, AReportHoldsTheRemovedVolumeTheAnglesAndThePicture) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  GuiFixture f;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  const QString file = dir.filePath("report.html");
+  const QString error = f.window->exportReport(file);
+  ASSERT_TRUE(error.isEmpty()) << error.toStdString();
+  QFile in(file);
+  ASSERT_TRUE(in.open(QIODevice::ReadOnly));
+  const QString html = QString::fromUtf8(in.readAll());
+  const double removed = s.initialVolumeMm3() - s.bone()->current().volume();
+  EXPECT_TRUE(html.contains("<b>" + QString::number(removed, 'f', 3) + " mm³</b>")) << removed;
+  const AxisAngles a = reamerAngles(s);
+  EXPECT_TRUE(html.contains(QString::number(a.versionDeg, 'f', 1) + "° (")) << a.versionDeg;
+  EXPECT_TRUE(html.contains("trigonum scapulae"));
+  const QString marker = "data:image/png;base64,";
+  const int at = html.indexOf(marker);
+  ASSERT_GE(at, 0);
+  const int end = html.indexOf('"', at);
+  const QImage picture = QImage::fromData(QByteArray::fromBase64(html.mid(at + marker.size(), end - at - marker.size()).toLatin1()), "PNG");
+  ASSERT_FALSE(picture.isNull());
+  EXPECT_EQ(picture.width(), int(f.window->view()->width() * f.window->view()->devicePixelRatioF()));
+  EXPECT_TRUE(f.window->exportReport(dir.filePath("no/such/dir/report.html")).contains("no/such/dir"));
 }
 
 }  // namespace
