@@ -26,6 +26,7 @@
 #include "ReamSession.h"
 #include "ThesisInteractorStyle.h"
 #include "reamsim/collision/MeshRayCast.h"
+#include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/ui/MeshPolyData.h"
 
 namespace reamsim::ui {
@@ -269,8 +270,14 @@ bool BoneView::placeRequestedLandmark(int x, int y) {
   const std::optional<Vec3> point = boneSurfaceAt(x, y);
   if (!point) return true;
   const ScapulaLandmark which = *interaction->placeRequest();
+  BoneNode& bone = *session_.bone();
+  ScapulaLandmarks next = bone.landmarks();
+  next[which] = *point;
+  // A bone in a known patient frame (a CT bone) says which side it is once the scapular axis is placed.
+  if (next.side == BodySide::Unspecified)
+    if (const std::optional<BodySide> side = sideFromPatientFrame(bone.patientFrame(), next)) next.side = *side;
   Document::BatchScope batch(session_.document());
-  session_.bone()->setLandmark(which, *point);
+  bone.setLandmarks(next);
   interaction->setPlaceRequest(std::nullopt);
   return true;
 }

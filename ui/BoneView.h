@@ -56,11 +56,11 @@ class BoneView : public QVTKOpenGLNativeWidget {
   // Frames where only the reamer moved reuse the bone's picture (see CachedBoneLayer.h); off: full frames.
   void setBoneCacheEnabled(bool on);
   const CachedBoneLayer& boneCache() const;
-  double lastRenderMs() const { return lastRenderMs_; }
+  double lastRenderMs() const { return lastRenderMs_; }  // VTK's part of the last render() (benchmark)
   // The first point of the bone's surface under display point (x, y) (pixels, origin bottom left, as VTK
   // counts them), along the view direction; nullopt when the bone is not there.
   std::optional<Vec3> boneSurfaceAt(double x, double y) const;
-  const LandmarksLayer& landmarksLayer() const { return *landmarksLayer_; }  // VTK's part of the last render() (benchmark)
+  const LandmarksLayer& landmarksLayer() const { return *landmarksLayer_; }
 
  Q_SIGNALS:
   void reamerDragged(double mm);  // Ctrl + left drag, along the reamer axis

@@ -83,8 +83,11 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   connect(&importWatcher_, &QFutureWatcher<ImportOutcome>::finished, this, &MainWindow::importFinished);
   alertSubscription_ = session_->document().observeNode(session_->alerts()->id(), [this] { updateStatus(); });
   // The title's [*] marks unsaved changes: the undo history away from the point where the bone was opened
-  // or last saved.
-  connect(session_->undoStack(), &QUndoStack::cleanChanged, this, [this](bool clean) { setWindowModified(!clean); });
+  // or last saved, or landmarks placed since.
+  connect(session_->undoStack(), &QUndoStack::cleanChanged, this, [this] { setWindowModified(hasUnsavedChanges()); });
+  landmarksTitleSubscription_ = session_->document().observeNode(session_->bone()->id(), [this] {
+    if (isWindowModified() != hasUnsavedChanges()) setWindowModified(hasUnsavedChanges());
+  });
   updateStatus();
   updateTitle();
   resize(1280, 800);

@@ -175,6 +175,8 @@ class MainWindow : public QMainWindow {
   void removeRecoveryCopy();
   void restoreRecoveredReamer(const RecoveredBone& copy);
   void restoreRecoveredLandmarks(const RecoveredBone& copy);
+  static QString landmarksPathBeside(const QString& bonePath);  // NAME.landmarks.json beside NAME.ply
+  void openLandmarksBeside(const QString& bonePath);
   QString keepInRestored(const QString& file) const;  // a copy in recovery/restored/ named <time>_<name>
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
   // The bone's mesh only, on a worker with a progress dialog (Cancel); errors in a dialog; does not mark it
@@ -253,6 +255,8 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<RecoveryFiles> recovery_;
   std::unique_ptr<HistoryJournalWriter> journal_;  // the cut bone's undo history in the copy (the writer's alone)
   Subscription landmarksSubscription_;  // a change of the bone's landmarks schedules a copy
+  Subscription landmarksTitleSubscription_;  // ... and marks the title
+  ScapulaLandmarks savedLandmarks_;  // the cut bone's landmarks as opened or last saved (NAME.landmarks.json)
   ScapulaLandmarks copiedLandmarks_;    // the landmarks in the last copy written
   QTimer recoveryTimer_;
   QFutureWatcher<QString> recoveryWrite_;  // the error, empty when the copy was written

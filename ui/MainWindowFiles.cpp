@@ -8,6 +8,7 @@
 #include <QDir>
 #include <QDropEvent>
 #include <QEventLoop>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMenu>
@@ -32,6 +33,7 @@
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/ream/ReamReport.h"
+#include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/tools/ReamerPresets.h"
 #include "reamsim/mesh/FileReplace.h"
 #include "reamsim/ui/ProgressRelay.h"
@@ -62,6 +64,8 @@ bool MainWindow::loadDefaultCase() {
     installBone(std::move(bone), tr("default scapula"), {});
     try {  // the case runs without them: version and inclination wait for landmarks placed by hand
       session_->bone()->setLandmarks(loadDefaultLandmarks());
+      savedLandmarks_ = session_->bone()->landmarks();  // bundled: nothing to save
+      updateTitle();
     } catch (const std::exception& e) {
       statusBar()->showMessage(tr("The default scapula's landmarks could not be read: %1").arg(e.what()), 15000);
     }
@@ -150,6 +154,7 @@ void MainWindow::importFinished() {
     const Bounds b = BoneState::fromMesh(out.bone.mesh).bounds();
     session_->plan()->setPoses({});
     installBone(std::move(out.bone), QFileInfo(importPath_).fileName(), importPath_);
+    openLandmarksBeside(importPath_);
     session_->moveReamer(startPoseFor(b));
   } catch (const std::exception& e) {  // e.g. the reamer presets file is missing or broken
     showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), QString::fromStdString(e.what()));
@@ -167,6 +172,7 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
   session_->bone()->setSource(std::move(source));
   boneName_ = name;
   savedPath_.clear();  // another bone: Save asks where
+  savedLandmarks_ = session_->bone()->landmarks();  // none (loadBone clears them): the caller may bring some
   ++boneGeneration_;
   if (!recentPath.isEmpty()) addRecent(recentPath);
   updateTitle();
@@ -181,6 +187,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
   const QMetaObject::Connection watch =
       connect(session_->undoStack(), &QUndoStack::indexChanged, this, [&changedMeanwhile] { changedMeanwhile = true; });
   const std::string csv = cutLogCsv(session_->log()->entries());
+  const ScapulaLandmarks landmarks = session_->bone()->landmarks();
   const bool written = writeBoneFile(path);
   disconnect(watch);
   if (!written) return false;
@@ -198,6 +205,18 @@ bool MainWindow::saveBoneAs(const QString& path) {
     showError(tr("Cannot save the cut log %1").arg(QFileInfo(logPath).fileName()), QString::fromStdString(e.what()));
     return false;
   }
+  // The landmarks beside, or no file there: one left from an earlier save would come back on the next open.
+  const QString landmarksPath = landmarksPathBeside(path);
+  try {
+    if (!(landmarks == ScapulaLandmarks{}))
+      writeTextFile(landmarksPath.toStdString(), landmarksToJson(landmarks, "saved with the bone by ReamSim"));
+    else if (QFileInfo::exists(landmarksPath) && !QFile::remove(landmarksPath))
+      throw std::runtime_error(landmarksPath.toStdString() + ": cannot remove the landmarks of an earlier save");
+  } catch (const std::exception& e) {
+    showError(tr("Cannot save the landmarks %1").arg(QFileInfo(landmarksPath).fileName()), QString::fromStdString(e.what()));
+    return false;
+  }
+  savedLandmarks_ = landmarks;
   savedPath_ = path;  // written: the next Save goes here too
   if (changedMeanwhile) {
     statusBar()->showMessage(tr("Saved %1 and its cut log as they were when saving began; later cuts are not saved")
@@ -266,7 +285,29 @@ bool MainWindow::writeBoneFile(const QString& path) {
   return true;
 }
 
-bool MainWindow::hasUnsavedChanges() const { return !session_->undoStack()->isClean(); }
+// Cuts away from the saved point, or landmarks placed since (they are saved beside the bone).
+bool MainWindow::hasUnsavedChanges() const {
+  return !session_->undoStack()->isClean() || !(session_->bone()->landmarks() == savedLandmarks_);
+}
+
+QString MainWindow::landmarksPathBeside(const QString& bonePath) {
+  const QFileInfo info(bonePath);
+  return info.dir().filePath(info.completeBaseName() + ".landmarks.json");
+}
+
+// A bone opened from a file brings the landmarks saved beside it (NAME.landmarks.json), if any: they are part
+// of the work saved with it. One that cannot be read is named in the status bar; the bone opens without them.
+void MainWindow::openLandmarksBeside(const QString& bonePath) {
+  const QString file = landmarksPathBeside(bonePath);
+  if (!QFileInfo::exists(file)) return;
+  try {
+    session_->bone()->setLandmarks(loadLandmarks(file.toStdString()));
+    savedLandmarks_ = session_->bone()->landmarks();
+    updateTitle();
+  } catch (const std::exception& e) {
+    statusBar()->showMessage(tr("The landmarks beside the bone could not be read: %1").arg(e.what()), 15000);
+  }
+}
 
 // A bone that is not the cut one holds work no save wrote: cuts in its history, or a crash copy restored, and
 // its state was not written by a save (of when it was the cut bone).

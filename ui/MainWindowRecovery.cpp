@@ -222,6 +222,7 @@ void MainWindow::offerRecovery() {
     }
     session_->undoStack()->setIndex(int(found->historyCursor));  // undoes what had been undone before the crash
   }
+  session_->restartPath();  // the recovered bone is where a path of this session starts
   // Both on the history's own volume origin (the copied mesh's volume may differ by rounding).
   const double originalVolume = session_->bone()->history().entries().front().state.volume();
   const double atCopyVolume = session_->bone()->current().volume();

@@ -29,7 +29,7 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
   // the bone being left, and the step in flight is dropped (computed against the old bone).
   connect(&undo_, &QUndoStack::indexChanged, this, [this] {
     if (pushingCut_) return;
-    pathInterrupted_ = pathInterrupted_ || !path_.empty();  // the path goes on from a bone its steps did not leave
+    pathInterrupted_ = true;  // the path goes on from (or starts at) a bone its steps did not leave
     if (!queued_.empty() || running_) cancelQueued();
   });
   connect(&watcher_, &QFutureWatcher<StepResult>::finished, this, &ReamSession::finished);
@@ -68,8 +68,7 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
     reamer_->setPose(start);
   }
   undo_.clear();
-  path_.clear();
-  pathInterrupted_ = false;
+  restartPath();
   initialVolume_ = bone_->current().volume();
   cuts_ = steps_ = 0;
   removedBefore_.clear();
@@ -77,6 +76,11 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
   lastMinDistance_ = std::numeric_limits<double>::infinity();
   rebuildEngine();
   Q_EMIT boneReplaced();
+}
+
+void ReamSession::restartPath() {
+  path_.clear();
+  pathInterrupted_ = false;
 }
 
 void ReamSession::continueLog(std::vector<CutLogEntry> earlier, std::optional<double> removedMm3) {
@@ -177,7 +181,7 @@ void ReamSession::runSteps(const std::vector<Pose>& poses, const std::vector<boo
 
 void ReamSession::queuePendingUserMove() {
   if (!latestUserPose_) return;
-  queued_.push_back({*latestUserPose_, std::nullopt});
+  queued_.push_back({*latestUserPose_, std::nullopt, !latestUserMoved_});  // a placement stays one (Aim)
   latestUserPose_.reset();
 }
 
@@ -340,6 +344,9 @@ void ReamSession::finished() {
       Q_EMIT stepCancelled();
     }
   } else if (!r.error.isEmpty()) {
+    // The step never happened: as for Stop, the next one sweeps from where the bone was last computed (the path
+    // the session records, and a replay of it, go on from there too).
+    if (r.revision == bone_->currentRevision()) lastComputedPose_ = poseBeforeRunning_;
     // Stop the rest of a queued sequence: its steps would meet the same problem (one message, not one per step).
     clearQueue();
     sequenceDone_ = sequenceTotal_ = 0;

@@ -138,6 +138,9 @@ class ReamSession : public QObject {
   const std::vector<PathStep>& path() const { return path_; }
   // The bone changed under the path other than by its own steps: an undo, a redo, a bone exchanged.
   bool pathInterrupted() const { return pathInterrupted_; }
+  // The path starts again from the bone as it is now (loadBone does this; a crash restore, once it has put the
+  // recovered history back).
+  void restartPath();
 
   std::size_t cutsCommitted() const { return cuts_; }
   double lastMinDistanceMm() const { return lastMinDistance_; }

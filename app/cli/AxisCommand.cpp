@@ -71,6 +71,10 @@ int runAxis(const std::vector<std::string>& args) {
     json axes = json::array();
     try {
       if (a.has("axis")) axes.push_back(measured(frame, "--axis", parseAxis(a.value("axis"))));
+    } catch (const std::invalid_argument& e) {
+      throw InputError("--axis", e.what());
+    }
+    try {
       if (a.has("plan") || !a.has("axis")) {
         const std::string planArg = a.value("plan", "default");
         const std::string planPath = planArg == "default" ? defaultPlanPath() : planArg;
@@ -84,7 +88,7 @@ int runAxis(const std::vector<std::string>& args) {
         for (const auto& [source, axis] : runs) axes.push_back(measured(frame, source, axis));
       }
     } catch (const std::invalid_argument& e) {
-      throw InputError(a.value("plan", a.has("axis") ? "--axis" : "default plan"), e.what());
+      throw InputError(a.value("plan", "default plan"), e.what());
     }
     out["axes"] = axes;
     std::cout << out.dump(2) << "\n";

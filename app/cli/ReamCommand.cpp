@@ -22,6 +22,7 @@
 #include "reamsim/ream/Plan.h"
 #include "reamsim/ream/ReamController.h"
 #include "reamsim/ream/ReamReport.h"
+#include "reamsim/ream/Resources.h"
 #include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/tools/ReamerFile.h"
 #include "reamsim/tools/ReamerPresets.h"
@@ -190,7 +191,7 @@ int runReam(const std::vector<std::string>& args) {
 
   ReamReportInput report;
   report.boneName = a.value("bone", "default") == "default" ? "bundled default scapula" : a.value("bone");
-  report.boneSource = bone.importReport;
+  report.boneSource = a.value("bone", "default") == "default" ? resourcePath(kDefaultBoneFile) : a.value("bone");
   report.volumeAtStartMm3 = startVolume;
   report.volumeNowMm3 = boneNode.current().volume();
   report.facesAtStart = bone.mesh.triangles.size();

@@ -1,7 +1,10 @@
 // The planning dock through the real window: the reamer's version and inclination read in the scapular
 // frame of the bundled landmarks, the reamer aimed at asked-for angles, a landmark placed by a click on the
 // bone, landmark files.
+#include <QApplication>
 #include <QDockWidget>
+#include <QFileInfo>
+#include <QMouseEvent>
 #include <QDoubleSpinBox>
 #include <QLabel>
 #include <QLocale>
@@ -117,11 +120,16 @@ TEST(GuiPlanning, AClickOnTheBonePlacesTheLandmarkAskedFor) {
   EXPECT_EQ(s.interaction()->placeRequest(), ScapulaLandmark::GlenoidCentre);
   EXPECT_TRUE(place->isChecked());
 
-  // A click beside the bone places nothing and does not turn the view: the request waits.
+  // A click beside the bone places nothing and does not turn the view, even dragged (a left drag turns it
+  // otherwise): the request waits.
   vtkCamera* camera = view.renderer()->GetActiveCamera();
   double before[3], after[3];
   camera->GetDirectionOfProjection(before);
-  QTest::mouseClick(&view, Qt::LeftButton, {}, QPoint(3, view.height() - 3));
+  const QPoint corner(3, view.height() - 3), dragged = corner + QPoint(80, -40);
+  QTest::mousePress(&view, Qt::LeftButton, {}, corner);
+  QMouseEvent move(QEvent::MouseMove, dragged, view.mapToGlobal(dragged), Qt::NoButton, Qt::LeftButton, {});
+  QApplication::sendEvent(&view, &move);
+  QTest::mouseRelease(&view, Qt::LeftButton, {}, dragged);
   camera->GetDirectionOfProjection(after);
   EXPECT_FALSE(s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre]);
   EXPECT_EQ(s.interaction()->placeRequest(), ScapulaLandmark::GlenoidCentre);
@@ -139,6 +147,51 @@ TEST(GuiPlanning, AClickOnTheBonePlacesTheLandmarkAskedFor) {
   EXPECT_FALSE(place->isChecked());
   EXPECT_TRUE(view.landmarksLayer().shown(ScapulaLandmark::GlenoidCentre));
   EXPECT_TRUE(part<QLabel>(dock, "LandmarkPoint_glenoid_centre")->text().contains(QLocale().toString(placed->x, 'f', 1)));
+  EXPECT_EQ(s.bone()->landmarks().side, BodySide::Unspecified);  // the bundled bone names no patient frame
+
+  // In a known patient frame the side follows once the scapular axis is placed: the bundled scapula's axis
+  // points to +x, the patient's left in LPS.
+  s.bone()->setPatientFrame(PatientFrame::LPS);
+  s.bone()->setLandmarks({});
+  s.bone()->setLandmark(ScapulaLandmark::TrigonumScapulae, bundled[ScapulaLandmark::TrigonumScapulae]);
+  QTest::mouseClick(place, Qt::LeftButton);
+  QTest::mouseClick(&view, Qt::LeftButton, {}, widgetPointOf(view, centre));
+  EXPECT_TRUE(s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre]);
+  EXPECT_EQ(s.bone()->landmarks().side, BodySide::Left);
+}
+
+// Landmarks are work: placing one marks the window unsaved, Save writes them beside the bone
+// (NAME.landmarks.json), opening the bone brings them back, and a save without any removes the file.
+TEST(GuiPlanning, LandmarksAreSavedBesideTheBoneAndOpenWithIt) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  ASSERT_FALSE(w.hasUnsavedChanges());  // the bundled landmarks come with the bundled bone
+  Vec3 centre = *s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre];
+  centre.z += 1.25;
+  s.bone()->setLandmark(ScapulaLandmark::GlenoidCentre, centre);
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  EXPECT_TRUE(w.isWindowModified());
+  const ScapulaLandmarks placed = s.bone()->landmarks();
+  const QString bonePath = dir.filePath("scapula.ply");
+  ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  const QString beside = dir.filePath("scapula.landmarks.json");
+  ASSERT_TRUE(QFileInfo::exists(beside));
+  EXPECT_EQ(loadLandmarks(beside.toStdString()), placed);
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  EXPECT_FALSE(w.isWindowModified());
+
+  w.openFile(bonePath, true);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("scapula.ply"); }, 60000)) << w.lastError().toStdString();
+  EXPECT_EQ(s.bone()->landmarks(), placed);
+  EXPECT_FALSE(w.hasUnsavedChanges());
+
+  s.bone()->setLandmarks({});
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  ASSERT_TRUE(w.saveBoneAs(bonePath));
+  EXPECT_FALSE(QFileInfo::exists(beside));  // would bring the cleared points back on the next open
 }
 
 TEST(GuiPlanning, LandmarkFilesRoundTripAndADamagedOneIsNamed) {

@@ -698,5 +698,27 @@ TEST(GuiReaming, TheReamersPathExportsAsAPlanThatReplaysTheSession) {
   EXPECT_TRUE(w.exportPath(file).contains("no step")) << w.exportPath(file).toStdString();
 }
 
+// A placement asked for while a step runs (the Planning dock's Aim, then at once a feed) waits as the pending
+// move and stays a placement when the feed queues it: it must not sweep from where the reamer was.
+TEST(GuiReaming, APlacementWaitingBehindAStepStaysAPlacement) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  ReamSession& s = f.session();
+  const Pose start = s.plan()->poses().front();
+  const Pose near = advancedAlongAxis(start, -1.0);
+  Pose far = near;
+  far.tip = near.tip + Vec3{0, 15, 0};
+  s.runSteps({near});  // running now
+  ASSERT_TRUE(s.busy());
+  s.moveReamer(far, false);  // placed: waits behind the running step
+  s.runSteps({advancedAlongAxis(far, 0.1)});  // queues the waiting placement first
+  ASSERT_TRUE(s.waitIdle(60000));
+  const auto& path = s.path();
+  ASSERT_GE(path.size(), 3u);
+  EXPECT_TRUE(samePose(path[path.size() - 2].pose, far));
+  EXPECT_TRUE(path[path.size() - 2].placed);
+  EXPECT_FALSE(path.back().placed);
+}
+
 }  // namespace
 }  // namespace reamsim::ui::test

@@ -137,6 +137,19 @@ TEST(ScapularFrame, AxesAndAnglesOutsideTheirRangeAreRejected) {
   EXPECT_THROW(aimedReamerPose(f, {0, 0}, INFINITY), std::invalid_argument);
 }
 
+// A CT bone knows its patient frame, and with it which side a scapula is.
+TEST(ScapularFrame, TheSideFollowsFromAKnownPatientFrame) {
+  ScapulaLandmarks l = rightScapula();  // RAS-like: lateral +x is the patient's right
+  EXPECT_EQ(sideFromPatientFrame(PatientFrame::RAS, l), BodySide::Right);
+  EXPECT_EQ(sideFromPatientFrame(PatientFrame::LPS, l), BodySide::Left);  // +x is the patient's left in LPS
+  EXPECT_EQ(sideFromPatientFrame(PatientFrame::RAS, mirrored(l)), BodySide::Left);
+  EXPECT_FALSE(sideFromPatientFrame(PatientFrame::Unspecified, l));
+  l[ScapulaLandmark::TrigonumScapulae] = Vec3{50, -40, 0};  // the axis nearly sagittal: too close to tell
+  EXPECT_FALSE(sideFromPatientFrame(PatientFrame::RAS, l));
+  l[ScapulaLandmark::TrigonumScapulae].reset();
+  EXPECT_FALSE(sideFromPatientFrame(PatientFrame::RAS, l));
+}
+
 TEST(LandmarkFiles, RoundTripCompleteAndPartialSets) {
   const ScapulaLandmarks full = rightScapula();
   EXPECT_EQ(parseLandmarksJson(landmarksToJson(full, "test"), "mem"), full);
@@ -145,6 +158,7 @@ TEST(LandmarkFiles, RoundTripCompleteAndPartialSets) {
   const ScapulaLandmarks back = parseLandmarksJson(landmarksToJson(partial), "mem");
   EXPECT_EQ(back, partial);
   EXPECT_FALSE(back.complete());
+  EXPECT_EQ(parseLandmarksJson(landmarksToJson(ScapulaLandmarks{}), "mem"), ScapulaLandmarks{});  // none placed
 }
 
 TEST(LandmarkFiles, DamagedFilesNameTheFileAndTheField) {
@@ -154,7 +168,7 @@ TEST(LandmarkFiles, DamagedFilesNameTheFileAndTheField) {
   } cases[] = {
       {"{", "not valid JSON"},
       {"[1, 2]", "must be a JSON object"},
-      {"{}", "no landmark and no side"},
+      {R"({"side": "left", "glenoid_center": [1, 2, 3]})", "unknown key \"glenoid_center\""},
       {R"({"side": "up"})", "\"side\" must be"},
       {R"({"side": 3})", "\"side\" must be"},
       {R"({"side": "left", "glenoid_centre": [1, 2]})", "\"glenoid_centre\" must be an array of 3"},

@@ -36,6 +36,14 @@ ScapulaLandmarks parseLandmarksJson(const std::string& text, const std::string& 
     throw InputError(source, std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) throw InputError(source, "a landmark file must be a JSON object");
+  // A misspelt key must not read as a landmark left unplaced.
+  for (const auto& [key, value] : j.items()) {
+    bool known = key == "side" || key == "method";
+    for (ScapulaLandmark which : kScapulaLandmarks) known = known || key == jsonKey(which);
+    if (!known)
+      throw InputError(source, "unknown key \"" + key + "\" (a landmark file has \"side\", \"glenoid_centre\", "
+                               "\"trigonum_scapulae\", \"inferior_angle\" and \"method\")");
+  }
   ScapulaLandmarks out;
   if (j.contains("side")) {
     if (!j["side"].is_string()) throw InputError(source, "\"side\" must be \"right\", \"left\" or \"unspecified\"");
@@ -44,16 +52,11 @@ ScapulaLandmarks parseLandmarksJson(const std::string& text, const std::string& 
                                             j["side"].get<std::string>() + "\"");
     out.side = *side;
   }
-  bool any = false;
   for (ScapulaLandmark which : kScapulaLandmarks) {
     const std::string key = jsonKey(which);
     if (!j.contains(key) || j[key].is_null()) continue;
     out[which] = readPoint(j[key], key, source);
-    any = true;
   }
-  if (!any && out.side == BodySide::Unspecified)
-    throw InputError(source, "no landmark and no side: expected \"side\", \"glenoid_centre\", \"trigonum_scapulae\", "
-                             "\"inferior_angle\"");
   return out;
 }
 

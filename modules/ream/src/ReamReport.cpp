@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
+#include <system_error>
 
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/ScapularFrame.h"
@@ -32,6 +33,7 @@ std::string fixed(double value, int decimals) {
   if (!std::isfinite(value)) return "–";
   char buffer[64];
   const auto r = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
+  if (r.ec != std::errc()) return "–";  // beyond 60 digits: no bone measure is
   std::string s(buffer, r.ptr);
   if (s == "-0" || s.rfind("-0.", 0) == 0) {  // -0.00: a rounding to nothing keeps no sign
     bool zero = true;

@@ -83,6 +83,17 @@ Vec3 outwardAxisFor(const ScapularFrame& frame, const AxisAngles& angles) {
                     frame.superior * std::tan(radians(angles.inclinationDeg)));
 }
 
+std::optional<BodySide> sideFromPatientFrame(PatientFrame frame, const ScapulaLandmarks& landmarks) {
+  const std::optional<Vec3>& gc = landmarks[ScapulaLandmark::GlenoidCentre];
+  const std::optional<Vec3>& ts = landmarks[ScapulaLandmark::TrigonumScapulae];
+  if (frame == PatientFrame::Unspecified || !gc || !ts) return std::nullopt;
+  const Vec3 lateral = *gc - *ts;
+  const double length = norm(lateral);
+  if (!(std::abs(lateral.x) >= 0.3 * length) || !(length > 0)) return std::nullopt;
+  const bool towardPatientsLeft = (frame == PatientFrame::LPS) == (lateral.x > 0);
+  return towardPatientsLeft ? BodySide::Left : BodySide::Right;
+}
+
 Pose aimedReamerPose(const ScapularFrame& frame, const AxisAngles& angles, double clearanceMm) {
   if (!std::isfinite(clearanceMm)) throw std::invalid_argument("the clearance must be finite");
   const Vec3 o = outwardAxisFor(frame, angles);

@@ -40,7 +40,7 @@ QString capitalised(const char* text) {
 QDoubleSpinBox* angleBox(const QString& name, QWidget* parent) {
   auto* box = new QDoubleSpinBox(parent);
   box->setObjectName(name);
-  box->setRange(-60, 60);
+  box->setRange(-89, 89);  // outwardAxisFor's range
   box->setDecimals(1);
   box->setSingleStep(0.5);
   box->setSuffix(QStringLiteral("°"));

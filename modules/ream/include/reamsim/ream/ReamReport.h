@@ -2,7 +2,7 @@
 // A reaming report for review (clinicians, educators): one self-contained HTML file with the bone, the
 // reamer, the scapular landmarks and the reamer axis's version and inclination, the removed volume, one row
 // per cut, and optionally a picture of the view. Written by the window (File → Export a report…) and by
-// `reamsim-cli ream --report`. docs/FORMATS.md "Reaming report".
+// `reamsim-cli ream` (DIR/report.html). docs/FORMATS.md "Reaming report".
 #include <cstdint>
 #include <optional>
 #include <string>

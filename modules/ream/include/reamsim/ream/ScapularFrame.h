@@ -14,6 +14,7 @@
 #include <string>
 
 #include "reamsim/core/ScapulaLandmarks.h"
+#include "reamsim/core/PatientFrame.h"
 #include "reamsim/core/Pose.h"
 
 namespace reamsim {
@@ -46,8 +47,15 @@ Vec3 outwardAxisFor(const ScapularFrame& frame, const AxisAngles& angles);
 // outward direction (clear of the glenoid), feeding along the inward one.
 Pose aimedReamerPose(const ScapularFrame& frame, const AxisAngles& angles, double clearanceMm);
 
-// Landmark files (JSON, docs/PLANNING.md): "side" and the three points, each optional (a half-picked set is
-// kept as picked). loadLandmarks throws InputError naming the file and the field.
+// The side a bone in a known patient frame must be (docs/CT_IMPORT.md: LPS +x toward the patient's left, RAS
+// toward the right): the scapular axis GC - TS points laterally, away from the midline, so its x says which
+// side. nullopt when the frame is unspecified, a point is missing, or the axis runs within 17 degrees of the
+// sagittal plane (|x| < 0.3 of its length: too close to tell).
+std::optional<BodySide> sideFromPatientFrame(PatientFrame frame, const ScapulaLandmarks& landmarks);
+
+// Landmark files (JSON, docs/PLANNING.md): "side" and the three points, each optional (a half-placed set, or
+// none, is read back as written), and "method" (free text); any other key is an error (a misspelt key must not
+// read as a point left unplaced). loadLandmarks throws InputError naming the file and the field.
 ScapulaLandmarks loadLandmarks(const std::string& path);
 ScapulaLandmarks parseLandmarksJson(const std::string& text, const std::string& source);
 std::string landmarksToJson(const ScapulaLandmarks& landmarks, const std::string& method = {});
