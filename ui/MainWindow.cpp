@@ -84,9 +84,9 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   alertSubscription_ = session_->document().observeNode(session_->alerts()->id(), [this] { updateStatus(); });
   // The title's [*] marks unsaved changes: the undo history away from the point where the bone was opened
   // or last saved, or landmarks placed since.
-  connect(session_->undoStack(), &QUndoStack::cleanChanged, this, [this] { setWindowModified(hasUnsavedChanges()); });
+  connect(session_->undoStack(), &QUndoStack::cleanChanged, this, [this] { updateTitle(); });
   landmarksTitleSubscription_ = session_->document().observeNode(session_->bone()->id(), [this] {
-    if (isWindowModified() != hasUnsavedChanges()) setWindowModified(hasUnsavedChanges());
+    if (isWindowModified() != hasUnsavedChanges()) updateTitle();
   });
   updateStatus();
   updateTitle();
@@ -103,6 +103,10 @@ MainWindow::~MainWindow() {
   // Views and panels observe the session's document: they go first.
   alertSubscription_.reset();
   boneFrameSubscription_.reset();
+  landmarksSubscription_.reset();
+  landmarksTitleSubscription_.reset();
+  // The undo stack signals as it is destroyed with the session (cleanChanged): this window no longer listens.
+  session_->undoStack()->disconnect(this);
   otherBones_.reset();
   if (importStop_) importStop_->store(true);  // a repair under way stops at its next check
   if (importWatcher_.isRunning()) importWatcher_.waitForFinished();

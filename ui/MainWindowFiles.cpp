@@ -217,6 +217,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
     return false;
   }
   savedLandmarks_ = landmarks;
+  updateTitle();  // landmarks alone changed: the undo stack's clean state did not move
   savedPath_ = path;  // written: the next Save goes here too
   if (changedMeanwhile) {
     statusBar()->showMessage(tr("Saved %1 and its cut log as they were when saving began; later cuts are not saved")
