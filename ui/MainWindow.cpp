@@ -266,6 +266,11 @@ void MainWindow::buildDocks() {
     if (!dock) continue;
     panels_.push_back(dock);
     addDockWidget(Qt::RightDockWidgetArea, dock);
+    // A tall dock (the Planning one) shares the History's place as a tab, so that the cut log keeps its rows.
+    if (dock->objectName() == "PlanningPanel") {
+      tabifyDockWidget(historyDock_, dock);
+      dock->raise();
+    }
     viewMenuForDocks_->addAction(dock->toggleViewAction());
   }
 }
