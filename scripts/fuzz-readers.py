@@ -35,6 +35,7 @@ EXTENSIONS = {
     'mesh': ('.stl', '.obj', '.ply', '.off', '.vtp'),
     'plan': ('.json',),
     'presets': ('.json',),
+    'landmarks': ('.json',),
     'volume': ('.nii', '.nii.gz', '.nrrd', '.nhdr', '.mha', '.mhd'),
 }
 DRIVER_MODE = {'dicom': 'volume'}
@@ -64,6 +65,8 @@ WORDS = {
               b'\x20\x00\x32\x00', b'\x20\x00\x37\x00', b'\x28\x00\x08\x00', b'1.2.840.10008.1.2',
               b'1.2.840.10008.1.2.1', b'1.2.840.10008.1.2.2', b'1.2.840.10008.1.2.5', b'1.2.840.10008.1.2.4.50',
               b'1.2.840.10008.1.2.4.90', b'1.2.840.10008.1.2.1.99', b'\\', b'\\\\', b'nan', b'1e308', b'-0']}
+WORDS['landmarks'] = [b'"side"', b'"right"', b'"left"', b'"unspecified"', b'"glenoid_centre"', b'"trigonum_scapulae"',
+                      b'"inferior_angle"', b'"method"', b'null', b'true', b'[]', b'{}', b'[[[[[[', b'"\\ud800"', b'1e400']
 WORDS['presets'] = WORDS['plan'] + [b'"name"', b'"diameterMm"', b'"sphereRadiusMm"', b'"meshFile"', b'"/dev/zero"']
 NUMBER = re.compile(rb'[-+]?(\d+\.?\d*([eE][-+]?\d+)?|\.\d+)')
 
@@ -340,7 +343,7 @@ def mutants_of_series(rng, mutator, series, wd, n):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument('--driver', required=True)
-    ap.add_argument('--mode', required=True, choices=['mesh', 'plan', 'presets', 'volume', 'dicom'])
+    ap.add_argument('--mode', required=True, choices=['mesh', 'plan', 'presets', 'landmarks', 'volume', 'dicom'])
     ap.add_argument('--seeds', required=True, action='append', help='seed directory (repeatable)')
     ap.add_argument('--out', required=True, help='where findings are saved')
     ap.add_argument('--mutations', type=int, default=200, help='mutants per seed file or series')

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes the file readers under ASan + UBSan (docs/CT_IMPORT.md, "Fuzzing"): configures build-asan with the
 # fuzz driver, builds it, writes small seeds, and runs scripts/fuzz-readers.py for each mode.
-#   scripts/fuzz-readers.sh [MUTATIONS_PER_SEED] [MODE...]      modes: volume dicom mesh plan presets
+#   scripts/fuzz-readers.sh [MUTATIONS_PER_SEED] [MODE...]      modes: volume dicom mesh plan presets landmarks
 #   e.g. scripts/fuzz-readers.sh 1000 volume dicom
 # Findings (inputs that crash, hang, trip a sanitizer, give a FINDING or an error not naming the file) go to
 # $FUZZ_OUT (default /tmp/reamsim-fuzz/findings); the exit status is 1 if there are any.
@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 mutations=${1:-200}
 shift || true
 modes=("$@")
-[ ${#modes[@]} -gt 0 ] || modes=(volume dicom mesh plan presets)
+[ ${#modes[@]} -gt 0 ] || modes=(volume dicom mesh plan presets landmarks)
 out=${FUZZ_OUT:-/tmp/reamsim-fuzz}
 jobs=${FUZZ_JOBS:-2}
 
@@ -21,6 +21,7 @@ driver=build-asan/tests/fuzz/reader_fuzz_driver
 
 rm -rf "$out/seeds"
 ASAN_OPTIONS=detect_leaks=0 "$driver" seeds "$out/seeds"
+mkdir -p "$out/seeds/landmarks" && cp resources/bones/scapula_R_landmarks.json "$out/seeds/landmarks/"
 shared=../shared/data  # real volumes, where present (not on every machine)
 
 status=0
@@ -36,6 +37,7 @@ for mode in "${modes[@]}"; do
     mesh) seeds=(--seeds tests/data/good) ;;
     plan) seeds=(--seeds resources/plans) ;;
     presets) seeds=(--seeds resources) ;;
+    landmarks) seeds=(--seeds "$out/seeds/landmarks") ;;
     *) echo "unknown mode $mode" >&2; exit 2 ;;
   esac
   scripts/fuzz-readers.py --driver "$driver" --mode "$mode" "${seeds[@]}" --out "$out/findings" \

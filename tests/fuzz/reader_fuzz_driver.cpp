@@ -1,5 +1,5 @@
 // Fuzz driver for the file readers (scripts/fuzz-readers.py runs it on mutated files, docs/CT_IMPORT.md).
-//   reader_fuzz_driver MODE FILE...   MODE = mesh | plan | presets | volume
+//   reader_fuzz_driver MODE FILE...   MODE = mesh | plan | presets | landmarks | volume
 //     prints "@@ FILE", then "OK ..." or "EXC message" per input, and "FINDING ..." when a read that
 //     succeeded breaks an invariant the rest of the program relies on. Each input has FUZZ_TIMEOUT seconds
 //     (default 10): a hang ends the process with SIGALRM, so the runner knows which input it was.
@@ -27,6 +27,7 @@
 #include "reamsim/ctimport/VolumeIO.h"
 #include "reamsim/mesh/MeshIO.h"
 #include "reamsim/ream/Plan.h"
+#include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/tools/ReamerPresets.h"
 
 namespace {
@@ -87,6 +88,12 @@ std::string readOne(const std::string& mode, const std::string& file) {
       if (!finite(q.tip) || !std::isfinite(q.rollDeg) || !(std::abs(norm(q.axis) - 1) < 1e-6))
         return "FINDING pose not finite or axis not unit";
     return "OK poses=" + std::to_string(poses.size());
+  }
+  if (mode == "landmarks") {
+    const ScapulaLandmarks l = parseLandmarksJson(slurp(file), file);
+    for (ScapulaLandmark which : kScapulaLandmarks)
+      if (l[which] && !finite(*l[which])) return "FINDING landmark not finite";
+    return std::string("OK side=") + toString(l.side);
   }
   if (mode == "presets") {
     const auto specs = parsePresets(slurp(file), file, fs::path(file).parent_path().string());
@@ -159,7 +166,7 @@ void writeSeeds(const fs::path& dir) {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s mesh|plan|presets|volume FILE...\n       %s seeds DIR\n", argv[0], argv[0]);
+    std::fprintf(stderr, "usage: %s mesh|plan|presets|landmarks|volume FILE...\n       %s seeds DIR\n", argv[0], argv[0]);
     return 2;
   }
   const std::string mode = argv[1];

@@ -167,6 +167,8 @@ TEST(LandmarkFiles, DamagedFilesNameTheFileAndTheField) {
     const char* words;
   } cases[] = {
       {"{", "not valid JSON"},
+      {R"({"side": "left", "glenoid_centre": [1, 2, 1111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111]})",
+       "not valid JSON"},  // a number beyond double (found by scripts/fuzz-readers.sh)
       {"[1, 2]", "must be a JSON object"},
       {R"({"side": "left", "glenoid_center": [1, 2, 3]})", "unknown key \"glenoid_center\""},
       {R"({"side": "up"})", "\"side\" must be"},

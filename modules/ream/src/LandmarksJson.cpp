@@ -32,7 +32,7 @@ ScapulaLandmarks parseLandmarksJson(const std::string& text, const std::string& 
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number beyond double (fuzzing)
     throw InputError(source, std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) throw InputError(source, "a landmark file must be a JSON object");
