@@ -225,8 +225,8 @@ void BoneView::onDocumentEvent() {
       changed = true;
     }
   }
-  if (!(bone->landmarks() == shownLandmarks_)) {
-    shownLandmarks_ = bone->landmarks();
+  if (planningOf(*bone) != shownPlanning_) {
+    shownPlanning_ = planningOf(*bone);
     showLandmarks();
     changed = true;
   }
@@ -237,7 +237,7 @@ void BoneView::onDocumentEvent() {
 void BoneView::showLandmarks() {
   const Bounds b = session_.bone()->current().bounds();
   const double diagonal = b.empty() ? 100.0 : norm(b.max - b.min);
-  landmarksLayer_->show(shownLandmarks_, std::clamp(0.008 * diagonal, 0.8, 4.0));
+  landmarksLayer_->show(shownPlanning_.landmarks, shownPlanning_.plannedAxis, std::clamp(0.008 * diagonal, 0.8, 4.0));
   boneCache_->invalidate();
 }
 

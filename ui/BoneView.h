@@ -14,6 +14,7 @@
 #include "RenderSettings.h"
 #include "reamsim/core/Pose.h"
 #include "reamsim/core/ScapulaLandmarks.h"
+#include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/core/Signal.h"
 
 class vtkActor;
@@ -90,7 +91,7 @@ class BoneView : public QVTKOpenGLNativeWidget {
   vtkSmartPointer<vtkRenderer> renderer_, reamerRenderer_;
   std::unique_ptr<CachedBoneLayer> boneCache_;
   std::unique_ptr<LandmarksLayer> landmarksLayer_;
-  ScapulaLandmarks shownLandmarks_;
+  BonePlanning shownPlanning_;
   vtkSmartPointer<vtkCallbackCommand> beforeFrame_;
   double clipBox_[6] = {0, -1, 0, -1, 0, -1}, clipBone_[6] = {0, 0, 0, 0, 0, 0};
   unsigned long clipCameraTime_ = 0;

@@ -4,7 +4,9 @@
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
+#include <vtkLineSource.h>
 #include <vtkSphereSource.h>
+#include <vtkTubeFilter.h>
 
 namespace reamsim::ui {
 namespace {
@@ -28,13 +30,34 @@ LandmarksLayer::LandmarksLayer(vtkRenderer* renderer) : renderer_(renderer) {
     actors_[i]->PickableOff();
     renderer_->AddActor(actors_[i]);
   }
+  axisLine_ = vtkSmartPointer<vtkLineSource>::New();
+  axisTube_ = vtkSmartPointer<vtkTubeFilter>::New();
+  axisTube_->SetInputConnection(axisLine_->GetOutputPort());
+  axisTube_->SetNumberOfSides(12);
+  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  mapper->SetInputConnection(axisTube_->GetOutputPort());
+  axisActor_ = vtkSmartPointer<vtkActor>::New();
+  axisActor_->SetMapper(mapper);
+  axisActor_->GetProperty()->SetColor(0.95, 0.80, 0.10);
+  axisActor_->SetVisibility(false);
+  axisActor_->PickableOff();
+  renderer_->AddActor(axisActor_);
 }
 
 LandmarksLayer::~LandmarksLayer() {
   for (auto& actor : actors_) renderer_->RemoveActor(actor);
+  renderer_->RemoveActor(axisActor_);
 }
 
-void LandmarksLayer::show(const ScapulaLandmarks& landmarks, double radiusMm) {
+void LandmarksLayer::show(const ScapulaLandmarks& landmarks, const std::optional<Pose>& plannedAxis, double radiusMm) {
+  axisActor_->SetVisibility(plannedAxis.has_value());
+  if (plannedAxis) {
+    const Vec3 out = plannedAxis->tip - plannedAxis->axis * 40.0, in = plannedAxis->tip + plannedAxis->axis * 10.0;
+    axisLine_->SetPoint1(out.x, out.y, out.z);
+    axisLine_->SetPoint2(in.x, in.y, in.z);
+    axisTube_->SetRadius(0.2 * radiusMm);
+    axisTube_->Update();  // now, as the spheres below
+  }
   for (ScapulaLandmark which : kScapulaLandmarks) {
     const std::size_t i = std::size_t(which);
     const std::optional<Vec3>& p = landmarks[which];
@@ -45,6 +68,8 @@ void LandmarksLayer::show(const ScapulaLandmarks& landmarks, double radiusMm) {
     spheres_[i]->Update();  // now, not inside the next render: the view's bone picture cache compares times first
   }
 }
+
+bool LandmarksLayer::plannedAxisShown() const { return axisActor_->GetVisibility(); }
 
 bool LandmarksLayer::shown(ScapulaLandmark which) const { return actors_[std::size_t(which)]->GetVisibility(); }
 

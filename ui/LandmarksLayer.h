@@ -1,16 +1,21 @@
 #pragma once
-// The scapular landmarks in the main view: a small sphere at each placed point (glenoid centre red,
-// trigonum scapulae green, inferior angle blue), in the bone's renderer so that they are hidden by the
-// bone and the reamer as the bone itself is.
+// The bone's planning in the main view: a small sphere at each placed landmark (glenoid centre red,
+// trigonum scapulae green, inferior angle blue) and the planned reaming axis as a thin yellow rod through the
+// glenoid centre, in the bone's renderer so that they are hidden by the bone and the reamer as the bone is.
 #include <vtkSmartPointer.h>
 
 #include <array>
 
+#include <optional>
+
+#include "reamsim/core/Pose.h"
 #include "reamsim/core/ScapulaLandmarks.h"
 
 class vtkActor;
 class vtkRenderer;
+class vtkLineSource;
 class vtkSphereSource;
+class vtkTubeFilter;
 
 namespace reamsim::ui {
 
@@ -21,14 +26,19 @@ class LandmarksLayer {
   LandmarksLayer(const LandmarksLayer&) = delete;
   LandmarksLayer& operator=(const LandmarksLayer&) = delete;
 
-  // Shows the placed points with spheres of `radiusMm`; the others are hidden.
-  void show(const ScapulaLandmarks& landmarks, double radiusMm);
+  // Shows the placed points with spheres of `radiusMm` (the others hidden) and the planned axis, if any, as a
+  // rod of a fifth of that radius from 40 mm out of the bone to 10 mm into it.
+  void show(const ScapulaLandmarks& landmarks, const std::optional<Pose>& plannedAxis, double radiusMm);
   bool shown(ScapulaLandmark which) const;
+  bool plannedAxisShown() const;
 
  private:
   vtkRenderer* renderer_;
   std::array<vtkSmartPointer<vtkSphereSource>, 3> spheres_;
   std::array<vtkSmartPointer<vtkActor>, 3> actors_;
+  vtkSmartPointer<vtkLineSource> axisLine_;
+  vtkSmartPointer<vtkTubeFilter> axisTube_;
+  vtkSmartPointer<vtkActor> axisActor_;
 };
 
 }  // namespace reamsim::ui

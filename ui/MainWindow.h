@@ -15,6 +15,7 @@
 #include "BoneView.h"
 #include "ReamerMotion.h"
 #include "ReamSession.h"
+#include "reamsim/ream/ScapularFrame.h"
 
 class QAction;
 class QDialog;
@@ -175,7 +176,7 @@ class MainWindow : public QMainWindow {
   void removeRecoveryCopy();
   void restoreRecoveredReamer(const RecoveredBone& copy);
   void restoreRecoveredLandmarks(const RecoveredBone& copy);
-  static QString landmarksPathBeside(const QString& bonePath);  // NAME.landmarks.json beside NAME.ply
+  static QString landmarksPathBeside(const QString& bonePath);  // NAME.ply.landmarks.json beside NAME.ply
   void openLandmarksBeside(const QString& bonePath);
   QString keepInRestored(const QString& file) const;  // a copy in recovery/restored/ named <time>_<name>
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
@@ -256,8 +257,9 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<HistoryJournalWriter> journal_;  // the cut bone's undo history in the copy (the writer's alone)
   Subscription landmarksSubscription_;  // a change of the bone's landmarks schedules a copy
   Subscription landmarksTitleSubscription_;  // ... and marks the title
-  ScapulaLandmarks savedLandmarks_;  // the cut bone's landmarks as opened or last saved (NAME.landmarks.json)
-  ScapulaLandmarks copiedLandmarks_;    // the landmarks in the last copy written
+  BonePlanning savedPlanning_;   // the cut bone's landmarks and planned axis as opened or last saved (NAME.landmarks.json)
+  QString unreadablePlanningFile_;  // the landmarks beside the bone that could not be read when it was opened
+  std::optional<BonePlanning> copiedPlanning_;  // those in the crash-recovery copy kept (none: no copy)
   QTimer recoveryTimer_;
   QFutureWatcher<QString> recoveryWrite_;  // the error, empty when the copy was written
   bool recoveryOfferPending_ = false;      // a found copy not yet answered: nothing is written or removed

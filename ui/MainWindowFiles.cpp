@@ -22,6 +22,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 #include <atomic>
 #include <cmath>
+#include <unordered_set>
 #include <utility>
 
 #include "BonePlacement.h"
@@ -64,7 +65,7 @@ bool MainWindow::loadDefaultCase() {
     installBone(std::move(bone), tr("default scapula"), {});
     try {  // the case runs without them: version and inclination wait for landmarks placed by hand
       session_->bone()->setLandmarks(loadDefaultLandmarks());
-      savedLandmarks_ = session_->bone()->landmarks();  // bundled: nothing to save
+      savedPlanning_ = planningOf(*session_->bone());  // bundled: nothing to save
       updateTitle();
     } catch (const std::exception& e) {
       statusBar()->showMessage(tr("The default scapula's landmarks could not be read: %1").arg(e.what()), 15000);
@@ -172,7 +173,7 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
   session_->bone()->setSource(std::move(source));
   boneName_ = name;
   savedPath_.clear();  // another bone: Save asks where
-  savedLandmarks_ = session_->bone()->landmarks();  // none (loadBone clears them): the caller may bring some
+  savedPlanning_ = planningOf(*session_->bone());  // none (loadBone clears them): the caller may bring some
   ++boneGeneration_;
   if (!recentPath.isEmpty()) addRecent(recentPath);
   updateTitle();
@@ -187,7 +188,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
   const QMetaObject::Connection watch =
       connect(session_->undoStack(), &QUndoStack::indexChanged, this, [&changedMeanwhile] { changedMeanwhile = true; });
   const std::string csv = cutLogCsv(session_->log()->entries());
-  const ScapulaLandmarks landmarks = session_->bone()->landmarks();
+  const BonePlanning planning = planningOf(*session_->bone());
   const bool written = writeBoneFile(path);
   disconnect(watch);
   if (!written) return false;
@@ -208,16 +209,27 @@ bool MainWindow::saveBoneAs(const QString& path) {
   // The landmarks beside, or no file there: one left from an earlier save would come back on the next open.
   const QString landmarksPath = landmarksPathBeside(path);
   try {
-    if (!(landmarks == ScapulaLandmarks{}))
-      writeTextFile(landmarksPath.toStdString(), landmarksToJson(landmarks, "saved with the bone by ReamSim"));
+    // A file there that could not be read when the bone was opened is the user's to look at: kept aside, never
+    // replaced or removed.
+    if (landmarksPath == unreadablePlanningFile_ && QFileInfo::exists(landmarksPath)) {
+      const QString aside = landmarksPath + ".unreadable";
+      QFile::remove(aside);
+      if (!QFile::rename(landmarksPath, aside))
+        throw std::runtime_error(landmarksPath.toStdString() + ": cannot move the unreadable file aside");
+      unreadablePlanningFile_.clear();
+    }
+    if (planning != BonePlanning{})
+      writeTextFile(landmarksPath.toStdString(), planningToJson(planning, "saved with the bone by ReamSim"));
     else if (QFileInfo::exists(landmarksPath) && !QFile::remove(landmarksPath))
       throw std::runtime_error(landmarksPath.toStdString() + ": cannot remove the landmarks of an earlier save");
   } catch (const std::exception& e) {
     showError(tr("Cannot save the landmarks %1").arg(QFileInfo(landmarksPath).fileName()), QString::fromStdString(e.what()));
     return false;
   }
-  savedLandmarks_ = landmarks;
+  savedPlanning_ = planning;
   updateTitle();  // landmarks alone changed: the undo stack's clean state did not move
+  // Nor did the copy kept for a crash: written again (or removed, when nothing is left unsaved).
+  if (recovery_ && !recoveryOfferPending_ && !recoveryTimer_.isActive()) recoveryTimer_.start();
   savedPath_ = path;  // written: the next Save goes here too
   if (changedMeanwhile) {
     statusBar()->showMessage(tr("Saved %1 and its cut log as they were when saving began; later cuts are not saved")
@@ -288,25 +300,30 @@ bool MainWindow::writeBoneFile(const QString& path) {
 
 // Cuts away from the saved point, or landmarks placed since (they are saved beside the bone).
 bool MainWindow::hasUnsavedChanges() const {
-  return !session_->undoStack()->isClean() || !(session_->bone()->landmarks() == savedLandmarks_);
+  return !session_->undoStack()->isClean() || planningOf(*session_->bone()) != savedPlanning_;
 }
 
-QString MainWindow::landmarksPathBeside(const QString& bonePath) {
-  const QFileInfo info(bonePath);
-  return info.dir().filePath(info.completeBaseName() + ".landmarks.json");
-}
+// The mesh file's whole name, so that scapula.stl and scapula.ply beside it never share one.
+QString MainWindow::landmarksPathBeside(const QString& bonePath) { return bonePath + ".landmarks.json"; }
 
 // A bone opened from a file brings the landmarks saved beside it (NAME.landmarks.json), if any: they are part
 // of the work saved with it. One that cannot be read is named in the status bar; the bone opens without them.
 void MainWindow::openLandmarksBeside(const QString& bonePath) {
   const QString file = landmarksPathBeside(bonePath);
+  unreadablePlanningFile_.clear();
   if (!QFileInfo::exists(file)) return;
   try {
-    session_->bone()->setLandmarks(loadLandmarks(file.toStdString()));
-    savedLandmarks_ = session_->bone()->landmarks();
+    const BonePlanning planning = loadPlanning(file.toStdString());
+    Document::BatchScope batch(session_->document());
+    session_->bone()->setLandmarks(planning.landmarks);
+    session_->bone()->setPlannedAxis(planning.plannedAxis);
+    savedPlanning_ = planning;
     updateTitle();
   } catch (const std::exception& e) {
-    statusBar()->showMessage(tr("The landmarks beside the bone could not be read: %1").arg(e.what()), 15000);
+    unreadablePlanningFile_ = file;  // a save keeps it aside instead of replacing it
+    showError(tr("Landmarks not read"),
+              tr("%1\n\nThe bone opens without landmarks; the file stays as it is (a save moves it aside to %2).")
+                  .arg(QString::fromStdString(e.what()), QFileInfo(file).fileName() + ".unreadable"));
   }
 }
 
@@ -454,7 +471,12 @@ QString MainWindow::exportReport(const QString& file) {
   in.reamer = session_->reamer()->spec();
   if (session_->reamer()->cuttingVolume()) in.reamerPose = session_->reamer()->pose();
   in.landmarks = bone.landmarks();
+  in.plannedAxis = bone.plannedAxis();
   in.cuts = session_->log()->entries();
+  // The log only grows: a cut undone since (its state past the history's cursor, or on a branch left) is marked.
+  std::unordered_set<std::uint64_t> inBone;
+  for (std::size_t k = 0; k <= bone.history().cursor(); ++k) inBone.insert(bone.history().entries()[k].revision);
+  for (const CutLogEntry& e : in.cuts) in.undone.push_back(e.boneStateId != 0 && !inBone.count(e.boneStateId));
   in.writtenUnixMs = QDateTime::currentMSecsSinceEpoch();
   in.writtenBy = "ReamSim (File → Export a report)";
   // The view as it is drawn now: the bone, its removed depth or fresh cuts, the reamer, the landmarks.

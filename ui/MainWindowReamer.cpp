@@ -192,14 +192,21 @@ QString MainWindow::exportPath(const QString& file) {
     plan.poses.push_back(path[i].pose);
     if (path[i].placed) plan.placedPoses.push_back(i);
   }
+  const QString start = session_->pathStart() == ReamSession::PathStart::AsOpened
+                            ? tr("the bone as it was opened")
+                        : session_->pathStart() == ReamSession::PathStart::AsRecovered
+                            ? tr("the bone as it was restored from the crash-recovery copy (save it to have it as a file)")
+                            : tr("the bone as it stood when the path began (an undo or a redo had changed it after it "
+                                 "was opened)");
   plan.description = tr("The reamer's path in ReamSim on %1: %2 steps, each a move from the one before or, where "
-                        "marked placed, a placement. Run on the bone as it was opened, it makes the same cuts.%3")
+                        "marked placed, a placement. Run on %4, it makes the same cuts.%3")
                          .arg(boneName_)
                          .arg(path.size())
                          .arg(session_->pathInterrupted()
                                   ? tr(" Steps were undone or the bone was exchanged during the session: the replay "
                                        "runs every step on one bone and ends elsewhere.")
-                                  : QString())
+                                  : QString(),
+                              start)
                          .toStdString();
   try {
     writeTextFile(file.toStdString(), planToJson(plan));

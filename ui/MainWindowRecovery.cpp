@@ -47,7 +47,7 @@ void MainWindow::enableRecovery(const QString& dir, int delayMs) {
   connect(session_->undoStack(), &QUndoStack::cleanChanged, this, schedule);
   // Landmarks placed on a bone with unsaved cuts are the user's work too: the copy follows them.
   landmarksSubscription_ = session_->document().observeNode(session_->bone()->id(), [this, schedule] {
-    if (!(session_->bone()->landmarks() == copiedLandmarks_)) schedule();
+    if (!copiedPlanning_ || planningOf(*session_->bone()) != *copiedPlanning_) schedule();
   });
   connect(&recoveryWrite_, &QFutureWatcher<QString>::finished, this, [this] {
     const QString error = recoveryWrite_.result();
@@ -102,9 +102,9 @@ void MainWindow::writeRecoveryCopy() {
   std::string csv = cutLogCsv(session_->log()->entries());
   const PatientFrame frame = session_->bone()->patientFrame();
   description.name = boneName_;
-  copiedLandmarks_ = session_->bone()->landmarks();
-  if (!(copiedLandmarks_ == ScapulaLandmarks{}))
-    description.landmarksJson = QString::fromStdString(landmarksToJson(copiedLandmarks_, "crash-recovery copy"));
+  copiedPlanning_ = planningOf(*session_->bone());
+  if (*copiedPlanning_ != BonePlanning{})
+    description.landmarksJson = QString::fromStdString(planningToJson(*copiedPlanning_, "crash-recovery copy"));
   description.cuts = static_cast<int>(session_->log()->entries().size());
   description.removedMm3 = session_->initialVolumeMm3() - state.volume();  // undone cuts not counted
   const ReamerSpec& reamer = session_->reamer()->spec();
@@ -157,6 +157,7 @@ void MainWindow::endRecovery() {
 void MainWindow::removeRecoveryCopy() {
   recovery_->remove();
   journal_.reset();
+  copiedPlanning_.reset();  // no copy: any planning differs from it
 }
 
 void MainWindow::offerRecovery() {
@@ -222,7 +223,7 @@ void MainWindow::offerRecovery() {
     }
     session_->undoStack()->setIndex(int(found->historyCursor));  // undoes what had been undone before the crash
   }
-  session_->restartPath();  // the recovered bone is where a path of this session starts
+  session_->restartPath(ReamSession::PathStart::AsRecovered);  // the recovered bone is where a path starts
   // Both on the history's own volume origin (the copied mesh's volume may differ by rounding).
   const double originalVolume = session_->bone()->history().entries().front().state.volume();
   const double atCopyVolume = session_->bone()->current().volume();
@@ -262,8 +263,11 @@ void MainWindow::offerRecovery() {
 void MainWindow::restoreRecoveredLandmarks(const RecoveredBone& found) {
   if (found.landmarksJson.isEmpty()) return;  // none placed, or a copy from before session 54
   try {
-    session_->bone()->setLandmarks(
-        parseLandmarksJson(found.landmarksJson.toStdString(), recovery_->dir().toStdString() + "/recovery.json"));
+    const BonePlanning planning =
+        parsePlanningJson(found.landmarksJson.toStdString(), recovery_->dir().toStdString() + "/recovery.json");
+    Document::BatchScope batch(session_->document());
+    session_->bone()->setLandmarks(planning.landmarks);
+    session_->bone()->setPlannedAxis(planning.plannedAxis);
   } catch (const std::exception& e) {
     statusBar()->showMessage(tr("The landmarks of the copy could not be read: %1").arg(e.what()), 15000);
   }

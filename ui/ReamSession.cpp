@@ -29,7 +29,15 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
   // the bone being left, and the step in flight is dropped (computed against the old bone).
   connect(&undo_, &QUndoStack::indexChanged, this, [this] {
     if (pushingCut_) return;
-    pathInterrupted_ = true;  // the path goes on from (or starts at) a bone its steps did not leave
+    // The path goes on from a bone its steps did not leave (an undo, a redo, an exchanged bone; not a bone added
+    // beside). Before its first step it simply starts from there.
+    if (bone_->currentRevision() != pathRevision_) {
+      if (path_.empty())
+        pathStart_ = PathStart::AfterUndoOrRedo;
+      else
+        pathInterrupted_ = true;
+      pathRevision_ = bone_->currentRevision();
+    }
     if (!queued_.empty() || running_) cancelQueued();
   });
   connect(&watcher_, &QFutureWatcher<StepResult>::finished, this, &ReamSession::finished);
@@ -43,6 +51,9 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
 }
 
 ReamSession::~ReamSession() {
+  // ~QUndoStack clears the stack and reports indexChanged, after the members declared behind it are gone: this
+  // session must not hear it.
+  undo_.disconnect(this);
   queued_.clear();  // nobody to answer
   latestUserPose_.reset();
   if (control_) control_->stop = true;  // a long swing stops at its next Boolean
@@ -63,7 +74,8 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
     document_.remove(log_->id());  // the log is append-only: a new bone gets a new one
     log_ = &document_.create<LogNode>("Log");
     alerts_->clear();
-    bone_->setLandmarks({});  // another bone: the points were on the one before
+    bone_->setLandmarks({});  // another bone: the points and the plan were on the one before
+    bone_->setPlannedAxis(std::nullopt);
     interaction_->setPlaceRequest(std::nullopt);
     reamer_->setPose(start);
   }
@@ -78,9 +90,11 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
   Q_EMIT boneReplaced();
 }
 
-void ReamSession::restartPath() {
+void ReamSession::restartPath(PathStart start) {
   path_.clear();
   pathInterrupted_ = false;
+  pathStart_ = start;
+  pathRevision_ = bone_->currentRevision();
 }
 
 void ReamSession::continueLog(std::vector<CutLogEntry> earlier, std::optional<double> removedMm3) {
@@ -359,6 +373,7 @@ void ReamSession::finished() {
     options.initialVolumeMm3 = initialVolumeMm3();
     const CutLogEntry e = commitReamStep(document_, *bone_, *reamer_, *log_, alerts_, r.computation, steps_++, options);
     if (runningStep_) path_.push_back(*std::exchange(runningStep_, std::nullopt));
+    pathRevision_ = bone_->currentRevision();
     if (e.boneStateId != 0) {
       engine_->adopt(e.boneStateId);
       ++cuts_;

@@ -138,9 +138,12 @@ class ReamSession : public QObject {
   const std::vector<PathStep>& path() const { return path_; }
   // The bone changed under the path other than by its own steps: an undo, a redo, a bone exchanged.
   bool pathInterrupted() const { return pathInterrupted_; }
-  // The path starts again from the bone as it is now (loadBone does this; a crash restore, once it has put the
-  // recovered history back).
-  void restartPath();
+  // Where the path starts: the bone as opened, as restored from a crash copy, or as an undo or redo before
+  // its first step left it. The path starts again from the bone as it is now with restartPath (loadBone does
+  // this; a crash restore, once it has put the recovered history back).
+  enum class PathStart { AsOpened, AsRecovered, AfterUndoOrRedo };
+  PathStart pathStart() const { return pathStart_; }
+  void restartPath(PathStart start = PathStart::AsOpened);
 
   std::size_t cutsCommitted() const { return cuts_; }
   double lastMinDistanceMm() const { return lastMinDistance_; }
@@ -210,6 +213,8 @@ class ReamSession : public QObject {
   std::vector<PathStep> path_;
   std::optional<PathStep> runningStep_;  // what the running step adds to the path once committed
   bool pathInterrupted_ = false;
+  PathStart pathStart_ = PathStart::AsOpened;
+  std::uint64_t pathRevision_ = 0;  // the cut bone's revision where the path stands (after its last step)
   std::optional<Pose> latestUserPose_;
   bool latestUserMoved_ = false;
   bool lastStepSwept_ = false;

@@ -97,9 +97,10 @@ int runReam(const std::vector<std::string>& args) {
   LoadedBone bone = loadBone(a.value("bone", "default"), parseUnits(a.value("units", "auto")));
   // The scapular landmarks for the report's version and inclination: the bundled bone's by default.
   const std::string landmarksArg = a.value("landmarks", a.value("bone", "default") == "default" ? "default" : "none");
-  const ScapulaLandmarks landmarks = landmarksArg == "none"      ? ScapulaLandmarks{}
-                                     : landmarksArg == "default" ? loadDefaultLandmarks()
-                                                                 : loadLandmarks(landmarksArg);
+  const BonePlanning planning = landmarksArg == "none"      ? BonePlanning{}
+                                : landmarksArg == "default" ? BonePlanning{loadDefaultLandmarks(), std::nullopt}
+                                                            : loadPlanning(landmarksArg);
+  const ScapulaLandmarks& landmarks = planning.landmarks;
 
   TriangleMesh cuttingVolume;
   const ReamerSpec spec = resolveReamer(reamerArg, cuttingVolume);
@@ -199,6 +200,7 @@ int runReam(const std::vector<std::string>& args) {
   report.reamer = spec;
   if (!planNode.poses().empty()) report.reamerPose = planNode.poses().back();
   report.landmarks = landmarks;
+  report.plannedAxis = planning.plannedAxis;
   for (const CutLogEntry& e : log.entries())
     if (e.removedMm3 > 0) report.cuts.push_back(e);
   report.writtenUnixMs = std::chrono::duration_cast<std::chrono::milliseconds>(

@@ -136,6 +136,18 @@ TEST(Nodes, ABoneKeepsItsLandmarksAndTheyGoWithItsContent) {
   EXPECT_EQ(other.landmarks, placed);
   bone.swapContent(other);
   EXPECT_EQ(bone.landmarks(), placed);
+  // The planned axis goes with it too.
+  const int beforePlan = reports;
+  bone.setPlannedAxis(Pose{{1, 2, 3}, {0, 0, -1}, 0});
+  EXPECT_EQ(reports, beforePlan + 1);
+  bone.setPlannedAxis(Pose{{1, 2, 3}, {0, 0, -1}, 0});
+  EXPECT_EQ(reports, beforePlan + 1);  // the same: no report
+  bone.swapContent(other);
+  EXPECT_FALSE(bone.plannedAxis());
+  ASSERT_TRUE(other.plannedAxis);
+  bone.swapContent(other);
+  ASSERT_TRUE(bone.plannedAxis());
+  EXPECT_EQ(bone.plannedAxis()->tip.z, 3);
   EXPECT_EQ(parseBodySide("RIGHT"), BodySide::Right);
   EXPECT_FALSE(parseBodySide("middle"));
   EXPECT_STREQ(jsonKey(ScapulaLandmark::TrigonumScapulae), "trigonum_scapulae");

@@ -1,6 +1,7 @@
 // The planning dock through the real window: the reamer's version and inclination read in the scapular
 // frame of the bundled landmarks, the reamer aimed at asked-for angles, a landmark placed by a click on the
 // bone, landmark files.
+#include <QAction>
 #include <QApplication>
 #include <QDockWidget>
 #include <QFileInfo>
@@ -24,6 +25,7 @@
 #include "GuiHelpers.h"
 #include "LandmarksLayer.h"
 #include "MainWindow.h"
+#include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/ScapularFrame.h"
 
@@ -91,13 +93,32 @@ TEST(GuiPlanning, TheDockReadsTheReamerAxisAndAimsTheReamer) {
   EXPECT_EQ(s.bone()->currentRevision(), revisionBefore);
   EXPECT_TRUE(report->text().contains(QLocale().toString(-10.0, 'f', 1) + "°")) << report->text().toStdString();
   EXPECT_TRUE(report->text().contains("retroversion")) << report->text().toStdString();
+  // Aim planned the axis: through the glenoid centre, drawn in the view, the reamer on it.
+  ASSERT_TRUE(s.bone()->plannedAxis());
+  EXPECT_EQ(s.bone()->plannedAxis()->tip, centre);
+  const AxisAngles planned = axisAngles(scapularFrame(s.bone()->landmarks()), s.bone()->plannedAxis()->axis * -1.0);
+  EXPECT_NEAR(planned.versionDeg, -10, 1e-9);
+  EXPECT_TRUE(f.window->view()->landmarksLayer().plannedAxisShown());
+  auto* plan = part<QLabel>(dock, "PlannedAxis");
+  EXPECT_TRUE(plan->text().contains("the reamer is " + QLocale().toString(0.0, 'f', 1) + "° off it")) << plan->text().toStdString();
+  Pose tilted = s.reamer()->pose();
+  tilted.axis = normalized(tilted.axis + Vec3{0.05, 0, 0});
+  s.moveReamer(tilted);
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_FALSE(plan->text().contains("the reamer is " + QLocale().toString(0.0, 'f', 1) + "° off it")) << plan->text().toStdString();
+  QTest::mouseClick(part<QPushButton>(dock, "ClearPlannedAxis"), Qt::LeftButton);
+  EXPECT_FALSE(s.bone()->plannedAxis());
+  QCoreApplication::processEvents();
+  EXPECT_FALSE(f.window->view()->landmarksLayer().plannedAxisShown());
 
-  // "Take the reamer's" reads the angles back into the fields.
+  // "Take the reamer's" reads the angles back into the fields (the reamer's now, tilted off the plan above).
   version->setValue(0);
   inclination->setValue(0);
   QTest::mouseClick(part<QPushButton>(dock, "TakeReamerAngles"), Qt::LeftButton);
-  EXPECT_NEAR(version->value(), -10, 0.05);
-  EXPECT_NEAR(inclination->value(), 5, 0.05);
+  const AxisAngles now = reamerAngles(s);
+  EXPECT_NEAR(version->value(), now.versionDeg, 0.05);
+  EXPECT_NEAR(inclination->value(), now.inclinationDeg, 0.05);
+  EXPECT_GT(std::abs(now.versionDeg + 10) + std::abs(now.inclinationDeg - 5), 0.5);
 }
 
 TEST(GuiPlanning, AClickOnTheBonePlacesTheLandmarkAskedFor) {
@@ -177,7 +198,7 @@ TEST(GuiPlanning, LandmarksAreSavedBesideTheBoneAndOpenWithIt) {
   const ScapulaLandmarks placed = s.bone()->landmarks();
   const QString bonePath = dir.filePath("scapula.ply");
   ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
-  const QString beside = dir.filePath("scapula.landmarks.json");
+  const QString beside = dir.filePath("scapula.ply.landmarks.json");
   ASSERT_TRUE(QFileInfo::exists(beside));
   EXPECT_EQ(loadLandmarks(beside.toStdString()), placed);
   EXPECT_FALSE(w.hasUnsavedChanges());
@@ -192,6 +213,17 @@ TEST(GuiPlanning, LandmarksAreSavedBesideTheBoneAndOpenWithIt) {
   EXPECT_TRUE(w.hasUnsavedChanges());
   ASSERT_TRUE(w.saveBoneAs(bonePath));
   EXPECT_FALSE(QFileInfo::exists(beside));  // would bring the cleared points back on the next open
+
+  // A file beside that cannot be read is named, and a save keeps it aside instead of replacing it.
+  writeTextFile(beside.toStdString(), R"({"side": "right", "glenoid_center": [1, 2, 3]})");
+  w.openFile(bonePath, true);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w.lastError().contains("glenoid_center"); }, 60000)) << w.lastError().toStdString();
+  EXPECT_TRUE(w.lastError().contains(beside)) << w.lastError().toStdString();
+  EXPECT_FALSE(s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre]);
+  s.bone()->setLandmarks(placed);
+  ASSERT_TRUE(w.saveBoneAs(bonePath));
+  EXPECT_EQ(loadLandmarks(beside.toStdString()), placed);
+  EXPECT_TRUE(QFileInfo::exists(beside + ".unreadable"));
 }
 
 TEST(GuiPlanning, LandmarkFilesRoundTripAndADamagedOneIsNamed) {
@@ -255,6 +287,10 @@ TEST(GuiPlanning, AReportHoldsTheRemovedVolumeTheAnglesAndThePicture) {
   GuiFixture f;
   ReamSession& s = f.session();
   cutOnce(s);
+  s.bone()->setPlannedAxis(Pose{*s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre], s.reamer()->pose().axis, 0});
+  cutOnce(s, 1.0);
+  f.window->action("undo")->trigger();  // the second cut: logged, not in the bone
+  ASSERT_TRUE(s.waitIdle(60000));
   const QString file = dir.filePath("report.html");
   const QString error = f.window->exportReport(file);
   ASSERT_TRUE(error.isEmpty()) << error.toStdString();
@@ -266,6 +302,10 @@ TEST(GuiPlanning, AReportHoldsTheRemovedVolumeTheAnglesAndThePicture) {
   const AxisAngles a = reamerAngles(s);
   EXPECT_TRUE(html.contains(QString::number(a.versionDeg, 'f', 1) + "° (")) << a.versionDeg;
   EXPECT_TRUE(html.contains("trigonum scapulae"));
+  EXPECT_TRUE(html.contains("Planned axis: version, inclination"));
+  EXPECT_TRUE(html.contains("<th>off the plan</th>"));
+  EXPECT_TRUE(html.contains("2 (1 undone: not in the bone now)")) << html.toStdString();
+  EXPECT_EQ(html.count(" (undone)</td>"), 1);
   const QString marker = "data:image/png;base64,";
   const int at = html.indexOf(marker);
   ASSERT_GE(at, 0);

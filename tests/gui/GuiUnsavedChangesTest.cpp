@@ -155,7 +155,7 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   }
   EXPECT_EQ(contents(path), bone);
   EXPECT_EQ(contents(log), cuts);
-  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.cut_log.csv", "bone.landmarks.json", "bone.ply"}));
+  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.cut_log.csv", "bone.ply", "bone.ply.landmarks.json"}));
   EXPECT_TRUE(w.hasUnsavedChanges());
   EXPECT_TRUE(w.lastError().isEmpty()) << "a cancel is not an error: " << w.lastError().toStdString();
   {
@@ -166,7 +166,7 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   }
   EXPECT_TRUE(w.isVisible());
   EXPECT_EQ(contents(path), bone);
-  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.cut_log.csv", "bone.landmarks.json", "bone.ply"}));
+  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.cut_log.csv", "bone.ply", "bone.ply.landmarks.json"}));
   // Let run, the same save writes the cut bone and both cuts.
   ASSERT_TRUE(w.saveBoneAs(path)) << w.lastError().toStdString();
   EXPECT_FALSE(w.hasUnsavedChanges());

@@ -161,6 +161,21 @@ TEST(LandmarkFiles, RoundTripCompleteAndPartialSets) {
   EXPECT_EQ(parseLandmarksJson(landmarksToJson(ScapulaLandmarks{}), "mem"), ScapulaLandmarks{});  // none placed
 }
 
+// The same files carry the reaming axis planned on the bone (docs/PLANNING.md), when there is one.
+TEST(LandmarkFiles, APlannedAxisRoundTripsBesideTheLandmarks) {
+  BonePlanning planning{rightScapula(), Pose{{60, 0, 0}, {-3, 0, 0}, 0}};
+  const BonePlanning back = parsePlanningJson(planningToJson(planning, "test"), "mem");
+  EXPECT_EQ(back.landmarks, planning.landmarks);
+  ASSERT_TRUE(back.plannedAxis);
+  EXPECT_EQ(back.plannedAxis->tip, planning.plannedAxis->tip);
+  EXPECT_EQ(back.plannedAxis->axis, (Vec3{-1, 0, 0}));  // normalised on reading
+  EXPECT_EQ(parseLandmarksJson(planningToJson(planning), "mem"), planning.landmarks);
+  EXPECT_FALSE(parsePlanningJson(landmarksToJson(planning.landmarks), "mem").plannedAxis);
+  for (const char* bad : {R"({"planned_axis": {"tip": [0, 0, 0]}})", R"({"planned_axis": {"tip": [0, 0, 0], "axis": [0, 0, 0]}})",
+                          R"({"planned_axis": [1, 2, 3]})"})
+    EXPECT_THROW(parsePlanningJson(bad, "plan.json"), InputError) << bad;
+}
+
 TEST(LandmarkFiles, DamagedFilesNameTheFileAndTheField) {
   const struct {
     const char* text;

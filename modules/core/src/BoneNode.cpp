@@ -53,6 +53,15 @@ void BoneNode::setLandmarkSide(BodySide side) {
   setLandmarks(next);
 }
 
+void BoneNode::setPlannedAxis(const std::optional<Pose>& axis) {
+  const bool same = axis.has_value() == plannedAxis_.has_value() &&
+                    (!axis || (axis->tip == plannedAxis_->tip && axis->axis == plannedAxis_->axis &&
+                               axis->rollDeg == plannedAxis_->rollDeg));
+  if (same) return;
+  plannedAxis_ = axis;
+  markModified();
+}
+
 void BoneNode::setPatientFrame(PatientFrame frame) {
   if (frame == patientFrame_) return;
   patientFrame_ = frame;
@@ -79,6 +88,7 @@ void BoneNode::swapContent(BoneContent& other) {
   std::swap(patientFrame_, other.patientFrame);
   std::swap(source_, other.source);
   std::swap(landmarks_, other.landmarks);
+  std::swap(plannedAxis_, other.plannedAxis);
   std::swap(cuttable_, other.cuttable);
   setName(std::move(other.name));  // marks the node modified (batched with the rest by the caller)
   other.name = std::move(name);

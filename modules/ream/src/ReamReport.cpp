@@ -100,12 +100,21 @@ std::string reamReportHtml(const ReamReportInput& in) {
   h += row("Volume now", fixed(in.volumeNowMm3, 3) + " mm³");
   h += row("Removed (as opened − now)", "<b>" + fixed(removed, 3) + " mm³</b>");
   h += row("Faces", std::to_string(in.facesAtStart) + " as opened, " + std::to_string(in.facesNow) + " now");
-  h += row("Cuts logged", std::to_string(in.cuts.size()));
+  std::size_t undone = 0;
+  for (std::size_t i = 0; i < in.cuts.size() && i < in.undone.size(); ++i) undone += in.undone[i] ? 1 : 0;
+  h += row("Cuts logged", std::to_string(in.cuts.size()) +
+                              (undone ? " (" + std::to_string(undone) + " undone: not in the bone now)" : std::string()));
   h += row("Reamer", reamerText(in.reamer));
   if (in.reamerPose) {
     h += row("Reamer tip (mm)", point(in.reamerPose->tip));
     h += row("Reamer feed axis", point(in.reamerPose->axis));
     h += row("Reamer axis: version, inclination", angles(in.reamerPose->axis));
+  }
+  if (in.plannedAxis) {
+    h += row("Planned axis: version, inclination", angles(in.plannedAxis->axis));
+    h += row("Planned axis through (mm)", point(in.plannedAxis->tip));
+    if (in.reamerPose)
+      h += row("Reamer axis off the plan", fixed(axisDeviationDeg(in.plannedAxis->axis, in.reamerPose->axis), 1) + "°");
   }
   h += "</table>\n";
 
@@ -127,12 +136,20 @@ std::string reamReportHtml(const ReamReportInput& in) {
     h += "<p>No cut was logged.</p>\n";
   } else {
     h += "<table>\n<tr><th>step</th><th>time (UTC)</th><th>removed mm³</th><th>cumulative mm³</th><th>faces</th>"
-         "<th>cut ms</th><th>reamer</th><th>version, inclination</th></tr>\n";
-    for (const CutLogEntry& e : in.cuts)
-      h += "<tr><td class=\"n\">" + std::to_string(e.stepIndex) + "</td><td>" + escaped(isoTimeUtc(e.timeUnixMs)) +
-           "</td><td class=\"n\">" + fixed(e.removedMm3, 3) + "</td><td class=\"n\">" + fixed(e.cumulativeMm3, 3) +
-           "</td><td class=\"n\">" + std::to_string(e.faces) + "</td><td class=\"n\">" + fixed(e.cutMs, 1) +
-           "</td><td>" + escaped(e.reamer) + "</td><td>" + angles(e.pose.axis) + "</td></tr>\n";
+         "<th>cut ms</th><th>reamer</th><th>version, inclination</th>" +
+         std::string(in.plannedAxis ? "<th>off the plan</th>" : "") + "</tr>\n";
+    for (std::size_t i = 0; i < in.cuts.size(); ++i) {
+      const CutLogEntry& e = in.cuts[i];
+      const bool wasUndone = i < in.undone.size() && in.undone[i];
+      h += "<tr><td class=\"n\">" + std::to_string(e.stepIndex) + (wasUndone ? " (undone)" : "") + "</td><td>" +
+           escaped(isoTimeUtc(e.timeUnixMs)) + "</td><td class=\"n\">" + fixed(e.removedMm3, 3) +
+           "</td><td class=\"n\">" + fixed(e.cumulativeMm3, 3) + "</td><td class=\"n\">" + std::to_string(e.faces) +
+           "</td><td class=\"n\">" + fixed(e.cutMs, 1) + "</td><td>" + escaped(e.reamer) + "</td><td>" +
+           angles(e.pose.axis) + "</td>" +
+           (in.plannedAxis ? "<td class=\"n\">" + fixed(axisDeviationDeg(in.plannedAxis->axis, e.pose.axis), 1) + "°</td>"
+                           : std::string()) +
+           "</tr>\n";
+    }
     h += "</table>\n";
   }
   if (!in.pngBase64.empty()) {

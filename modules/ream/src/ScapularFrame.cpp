@@ -1,6 +1,7 @@
 #include "reamsim/ream/ScapularFrame.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <stdexcept>
 
@@ -17,6 +18,13 @@ double degrees(double rad) { return rad * 180 / kPi; }
 bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 std::string name(ScapulaLandmark which) { return displayName(which); }
+
+// A number for a message, with a decimal point whatever the process's locale (std::to_string follows it).
+std::string number(double value) {
+  char buffer[64];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, 2);
+  return r.ec == std::errc() ? std::string(buffer, r.ptr) : "?";
+}
 
 // The smallest angle of the triangle (a, b, c), in degrees: near 0 when the three lie near one line.
 double smallestAngleDeg(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -46,7 +54,7 @@ ScapularFrame scapularFrame(const ScapulaLandmarks& landmarks) {
   for (const auto& p : pairs) {
     const double d = norm(*landmarks[p.a] - *landmarks[p.b]);
     if (!(d >= kMinSeparationMm))
-      throw std::invalid_argument("the " + name(p.a) + " and the " + name(p.b) + " are " + std::to_string(d) +
+      throw std::invalid_argument("the " + name(p.a) + " and the " + name(p.b) + " are " + number(d) +
                                   " mm apart (at least " + std::to_string(int(kMinSeparationMm)) +
                                   " mm needed): place them again");
   }
@@ -69,7 +77,7 @@ AxisAngles axisAngles(const ScapularFrame& frame, const Vec3& outward) {
   const Vec3 o = normalized(outward);
   const double l = dot(o, frame.lateral);
   if (!(l > 0))
-    throw std::invalid_argument("the axis points medially (" + std::to_string(degrees(std::acos(std::clamp(l, -1.0, 1.0)))) +
+    throw std::invalid_argument("the axis points medially (" + number(degrees(std::acos(std::clamp(l, -1.0, 1.0)))) +
                                 " degrees from the scapular axis): version and inclination are defined within 90 degrees");
   return {degrees(std::atan2(dot(o, frame.anterior), l)), degrees(std::atan2(dot(o, frame.superior), l))};
 }
@@ -81,6 +89,11 @@ Vec3 outwardAxisFor(const ScapularFrame& frame, const AxisAngles& angles) {
                                   std::to_string(int(kMaxAngleDeg)) + " degrees");
   return normalized(frame.lateral + frame.anterior * std::tan(radians(angles.versionDeg)) +
                     frame.superior * std::tan(radians(angles.inclinationDeg)));
+}
+
+double axisDeviationDeg(const Vec3& a, const Vec3& b) {
+  if (!(norm(a) > 0) || !(norm(b) > 0)) return 0;
+  return degrees(std::atan2(norm(cross(a, b)), dot(a, b)));  // accurate near 0 and 180, where acos is not
 }
 
 std::optional<BodySide> sideFromPatientFrame(PatientFrame frame, const ScapulaLandmarks& landmarks) {

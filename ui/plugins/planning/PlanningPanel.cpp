@@ -66,6 +66,12 @@ PlanningPanel::PlanningPanel(Document& document, QWidget* parent)
   report_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   layout->addWidget(report_);
 
+  plan_ = new QLabel(body);
+  plan_->setObjectName("PlannedAxis");
+  plan_->setWordWrap(true);
+  plan_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  layout->addWidget(plan_);
+
   auto* aimBox = new QGroupBox(tr("Aim the reamer through the glenoid centre"), body);
   auto* form = new QFormLayout(aimBox);
   version_ = angleBox("AimVersion", aimBox);
@@ -88,15 +94,21 @@ PlanningPanel::PlanningPanel(Document& document, QWidget* parent)
   take_->setToolTip(tr("Fill in the version and inclination the reamer has now"));
   aim_ = new QPushButton(tr("Aim"), aimBox);
   aim_->setObjectName("AimReamer");
-  aim_->setToolTip(tr("Place the reamer on this axis through the glenoid centre, clear of the bone"));
+  aim_->setToolTip(tr("Plan this axis through the glenoid centre and place the reamer on it, clear of the bone"));
+  clearPlan_ = new QPushButton(tr("Clear the plan"), aimBox);
+  clearPlan_->setObjectName("ClearPlannedAxis");
   aimButtons->addWidget(take_);
   aimButtons->addWidget(aim_);
+  aimButtons->addWidget(clearPlan_);
   form->addRow(aimButtons);
   layout->addWidget(aimBox);
   layout->addStretch(1);
   setWidget(body);
 
   connect(take_, &QPushButton::clicked, this, &PlanningPanel::takeReamerAngles);
+  connect(clearPlan_, &QPushButton::clicked, this, [this] {
+    if (BoneNode* b = bone()) b->setPlannedAxis(std::nullopt);
+  });
   connect(aim_, &QPushButton::clicked, this, [this] {
     const QString why = aimReamer();
     if (!why.isEmpty()) QMessageBox::warning(this, tr("Aim the reamer"), why);
@@ -209,8 +221,26 @@ void PlanningPanel::sync() {
                   : tr("Version and inclination need the landmarks: %1.").arg(QString::fromStdString(e.what()));
   }
   report_->setText(text);
+  plan_->setText(planText());
+  clearPlan_->setEnabled(node && node->plannedAxis());
   aim_->setEnabled(framed && reamer());
   take_->setEnabled(framed && reamer());
+}
+
+// The planned axis in the frame, and how far the reamer's axis is off it (the angle between the two axes).
+QString PlanningPanel::planText() const {
+  const BoneNode* node = bone();
+  if (!node || !node->plannedAxis()) return tr("No axis planned: Aim plans one.");
+  const Pose& planned = *node->plannedAxis();
+  QString text = tr("Planned axis");
+  try {
+    const AxisAngles a = axisAngles(scapularFrame(node->landmarks()), planned.axis * -1.0);
+    text += tr(": version %1, inclination %2").arg(degreesText(a.versionDeg), degreesText(a.inclinationDeg));
+  } catch (const std::invalid_argument&) {  // landmarks changed since: the axis stays, its angles do not
+  }
+  if (const ReamerNode* r = reamer(); r && r->cuttingVolume())
+    text += tr("; the reamer is %1 off it").arg(degreesText(axisDeviationDeg(planned.axis, r->pose().axis)));
+  return text + ".";
 }
 
 QString PlanningPanel::aimReamer() {
@@ -218,7 +248,10 @@ QString PlanningPanel::aimReamer() {
   if (!r || !bone()) return tr("There is no reamer or no bone in the document.");
   try {
     const ScapularFrame frame = scapularFrame(bone()->landmarks());
-    r->requestPlacement(aimedReamerPose(frame, {version_->value(), inclination_->value()}, clearance_->value()));
+    const AxisAngles angles{version_->value(), inclination_->value()};
+    const Pose placed = aimedReamerPose(frame, angles, clearance_->value());
+    bone()->setPlannedAxis(Pose{frame.origin, placed.axis, 0});
+    r->requestPlacement(placed);
     return {};
   } catch (const std::invalid_argument& e) {
     return tr("The reamer cannot be aimed: %1.").arg(QString::fromStdString(e.what()));

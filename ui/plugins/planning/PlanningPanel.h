@@ -29,9 +29,11 @@ class PlanningPanel : public QDockWidget {
   PlanningPanel(Document& document, QWidget* parent);
 
   QString axisReport() const;  // what the dock says of the reamer's axis now
+  QString planText() const;    // what it says of the planned axis
 
  public Q_SLOTS:
-  // Ask for the reamer at the dock's version, inclination and clearance; returns why not, empty when asked.
+  // Plans the axis at the dock's version and inclination through the glenoid centre (BoneNode::plannedAxis) and
+  // asks for the reamer on it, its tip the clearance out; returns why not, empty when asked.
   QString aimReamer();
   // The reamer's present angles into the aim fields (so that a small change starts from where it is).
   void takeReamerAngles();
@@ -57,6 +59,8 @@ class PlanningPanel : public QDockWidget {
   QDoubleSpinBox* clearance_ = nullptr;
   QPushButton* aim_ = nullptr;
   QPushButton* take_ = nullptr;
+  QPushButton* clearPlan_ = nullptr;
+  QLabel* plan_ = nullptr;
 };
 
 }  // namespace reamsim::ui

@@ -3,12 +3,14 @@
 // use), plus what import produced: the original, unrepaired mesh for display, the repair report, where
 // the bone came from and the patient coordinate convention its coordinates are in.
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "reamsim/core/BoneHistory.h"
 #include "reamsim/core/ScapulaLandmarks.h"
 #include "reamsim/core/Node.h"
 #include "reamsim/core/PatientFrame.h"
+#include "reamsim/core/Pose.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
 namespace reamsim {
@@ -25,6 +27,7 @@ struct BoneContent {
   std::string source;
   bool cuttable = false;  // a clean closed solid the engine may cut (else shown, with collision alerts only)
   ScapulaLandmarks landmarks;  // placed on this bone, in its coordinates (docs/PLANNING.md)
+  std::optional<Pose> plannedAxis;  // the reaming axis planned on it (docs/PLANNING.md)
 };
 
 class BoneNode : public Node {
@@ -59,12 +62,16 @@ class BoneNode : public Node {
   void setLandmarks(const ScapulaLandmarks& landmarks);
   void setLandmark(ScapulaLandmark which, const std::optional<Vec3>& point);
   void setLandmarkSide(BodySide side);
+  // The reaming axis planned on this bone: `tip` the glenoid centre it passes through, `axis` the feed
+  // direction (into the bone). Set by the Planning dock's Aim; nullopt when none is planned.
+  const std::optional<Pose>& plannedAxis() const { return plannedAxis_; }
+  void setPlannedAxis(const std::optional<Pose>& axis);
   // Whether the engine may cut it: set by whoever imported it, from the import's validation (closed,
   // outward, free of self-intersections and degenerate faces). A bone that is not is shown, not cut.
   bool cuttable() const { return cuttable_; }
   void setCuttable(bool cuttable);
 
-  // Exchanges name, history, original mesh, report, frame, source, landmarks and cuttability with `other` (reported
+  // Exchanges name, history, original mesh, report, frame, source, landmarks, planned axis and cuttability with `other` (reported
   // as modified; wrap in a Document::BatchScope for a single notification).
   void swapContent(BoneContent& other);
 
@@ -75,6 +82,7 @@ class BoneNode : public Node {
   PatientFrame patientFrame_ = PatientFrame::Unspecified;
   std::string source_;
   ScapulaLandmarks landmarks_;
+  std::optional<Pose> plannedAxis_;
   bool cuttable_ = false;
 };
 

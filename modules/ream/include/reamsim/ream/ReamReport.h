@@ -26,7 +26,9 @@ struct ReamReportInput {
   ReamerSpec reamer;                // the reamer now
   std::optional<Pose> reamerPose;   // where it is now
   ScapulaLandmarks landmarks;       // the bone's (any not placed: no frame, no angles)
+  std::optional<Pose> plannedAxis;  // the axis planned on the bone (each cut's axis is measured off it)
   std::vector<CutLogEntry> cuts;    // the log's rows, in order
+  std::vector<bool> undone;         // beside `cuts` (or empty): the row's cut is not in the bone now (undone)
   std::string pngBase64;            // a picture of the view (PNG, base64); empty: none
   std::int64_t writtenUnixMs = 0;   // when (0: not said)
   std::string writtenBy = "ReamSim";

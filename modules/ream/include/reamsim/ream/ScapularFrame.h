@@ -47,6 +47,9 @@ Vec3 outwardAxisFor(const ScapularFrame& frame, const AxisAngles& angles);
 // outward direction (clear of the glenoid), feeding along the inward one.
 Pose aimedReamerPose(const ScapularFrame& frame, const AxisAngles& angles, double clearanceMm);
 
+// The angle between two axes in degrees (0..180), e.g. the reamer's off the planned one; 0 for a zero axis.
+double axisDeviationDeg(const Vec3& a, const Vec3& b);
+
 // The side a bone in a known patient frame must be (docs/CT_IMPORT.md: LPS +x toward the patient's left, RAS
 // toward the right): the scapular axis GC - TS points laterally, away from the midline, so its x says which
 // side. nullopt when the frame is unspecified, a point is missing, or the axis runs within 17 degrees of the
@@ -59,5 +62,20 @@ std::optional<BodySide> sideFromPatientFrame(PatientFrame frame, const ScapulaLa
 ScapulaLandmarks loadLandmarks(const std::string& path);
 ScapulaLandmarks parseLandmarksJson(const std::string& text, const std::string& source);
 std::string landmarksToJson(const ScapulaLandmarks& landmarks, const std::string& method = {});
+
+// A bone's planning as one file: its landmarks and, optionally, the reaming axis planned on it
+// ("planned_axis": {"tip": [x, y, z], "axis": [x, y, z]}: through `tip` (the glenoid centre), feeding along
+// `axis`, normalised on reading; a zero or non-finite axis is an error). The landmark functions above read and
+// write the same files without the axis.
+struct BonePlanning {
+  ScapulaLandmarks landmarks;
+  std::optional<Pose> plannedAxis;
+};
+bool operator==(const BonePlanning& a, const BonePlanning& b);  // to the bit
+inline bool operator!=(const BonePlanning& a, const BonePlanning& b) { return !(a == b); }
+BonePlanning planningOf(const class BoneNode& bone);  // its landmarks and planned axis
+BonePlanning loadPlanning(const std::string& path);
+BonePlanning parsePlanningJson(const std::string& text, const std::string& source);
+std::string planningToJson(const BonePlanning& planning, const std::string& method = {});
 
 }  // namespace reamsim
