@@ -176,6 +176,8 @@ class MainWindow : public QMainWindow {
   void removeRecoveryCopy();
   void restoreRecoveredReamer(const RecoveredBone& copy);
   void restoreRecoveredLandmarks(const RecoveredBone& copy);
+  // writeTextFile, its error as the message to show (empty when written).
+  static QString writeTextReporting(const QString& file, const std::string& text);
   static QString landmarksPathBeside(const QString& bonePath);  // NAME.ply.landmarks.json beside NAME.ply
   void openLandmarksBeside(const QString& bonePath);
   QString keepInRestored(const QString& file) const;  // a copy in recovery/restored/ named <time>_<name>

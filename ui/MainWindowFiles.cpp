@@ -484,8 +484,12 @@ QString MainWindow::exportReport(const QString& file) {
   QBuffer buffer(&png);
   buffer.open(QIODevice::WriteOnly);
   if (view_->grabFramebuffer().save(&buffer, "PNG")) in.pngBase64 = png.toBase64().toStdString();
+  return writeTextReporting(file, reamReportHtml(in));
+}
+
+QString MainWindow::writeTextReporting(const QString& file, const std::string& text) {
   try {
-    writeTextFile(file.toStdString(), reamReportHtml(in));
+    writeTextFile(file.toStdString(), text);
   } catch (const std::exception& e) {
     return QString::fromStdString(e.what());
   }

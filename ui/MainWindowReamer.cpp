@@ -208,12 +208,7 @@ QString MainWindow::exportPath(const QString& file) {
                                   : QString(),
                               start)
                          .toStdString();
-  try {
-    writeTextFile(file.toStdString(), planToJson(plan));
-  } catch (const std::exception& e) {
-    return QString::fromStdString(e.what());
-  }
-  return {};
+  return writeTextReporting(file, planToJson(plan));
 }
 
 void MainWindow::exportPathInteractive() {
