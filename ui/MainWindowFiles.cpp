@@ -212,8 +212,8 @@ bool MainWindow::saveBoneAs(const QString& path) {
     // A file there that could not be read when the bone was opened is the user's to look at: kept aside, never
     // replaced or removed.
     if (landmarksPath == unreadablePlanningFile_ && QFileInfo::exists(landmarksPath)) {
-      const QString aside = landmarksPath + ".unreadable";
-      QFile::remove(aside);
+      QString aside = landmarksPath + ".unreadable";
+      for (int n = 2; QFileInfo::exists(aside); ++n) aside = landmarksPath + ".unreadable." + QString::number(n);
       if (!QFile::rename(landmarksPath, aside))
         throw std::runtime_error(landmarksPath.toStdString() + ": cannot move the unreadable file aside");
       unreadablePlanningFile_.clear();
@@ -473,10 +473,12 @@ QString MainWindow::exportReport(const QString& file) {
   in.landmarks = bone.landmarks();
   in.plannedAxis = bone.plannedAxis();
   in.cuts = session_->log()->entries();
-  // The log only grows: a cut undone since (its state past the history's cursor, or on a branch left) is marked.
-  std::unordered_set<std::uint64_t> inBone;
-  for (std::size_t k = 0; k <= bone.history().cursor(); ++k) inBone.insert(bone.history().entries()[k].revision);
-  for (const CutLogEntry& e : in.cuts) in.undone.push_back(e.boneStateId != 0 && !inBone.count(e.boneStateId));
+  // The log only grows: a cut undone since (its state in this bone's history, past the cursor) is marked. Rows of
+  // another bone (before an exchange) or of a branch the history left are not this history's: not marked.
+  std::unordered_set<std::uint64_t> undone;
+  for (std::size_t k = bone.history().cursor() + 1; k < bone.history().size(); ++k)
+    undone.insert(bone.history().entries()[k].revision);
+  for (const CutLogEntry& e : in.cuts) in.undone.push_back(e.boneStateId != 0 && undone.count(e.boneStateId) > 0);
   in.writtenUnixMs = QDateTime::currentMSecsSinceEpoch();
   in.writtenBy = "ReamSim (File → Export a report)";
   // The view as it is drawn now: the bone, its removed depth or fresh cuts, the reamer, the landmarks.

@@ -196,8 +196,8 @@ QString MainWindow::exportPath(const QString& file) {
                             ? tr("the bone as it was opened")
                         : session_->pathStart() == ReamSession::PathStart::AsRecovered
                             ? tr("the bone as it was restored from the crash-recovery copy (save it to have it as a file)")
-                            : tr("the bone as it stood when the path began (an undo or a redo had changed it after it "
-                                 "was opened)");
+                            : tr("the bone as it stood when the path began (an undo, a redo or a bone exchanged had "
+                                 "changed it since it was opened or restored)");
   plan.description = tr("The reamer's path in ReamSim on %1: %2 steps, each a move from the one before or, where "
                         "marked placed, a placement. Run on %4, it makes the same cuts.%3")
                          .arg(boneName_)

@@ -10,6 +10,7 @@
 #include <QStatusBar>
 #include <QtConcurrent/QtConcurrentRun>
 #include <cmath>
+#include <unordered_map>
 #include <utility>
 
 #include "BoneCommands.h"
@@ -51,7 +52,10 @@ void MainWindow::enableRecovery(const QString& dir, int delayMs) {
   });
   connect(&recoveryWrite_, &QFutureWatcher<QString>::finished, this, [this] {
     const QString error = recoveryWrite_.result();
-    if (!error.isEmpty()) statusBar()->showMessage(tr("No crash-recovery copy: %1").arg(error), 10000);
+    if (!error.isEmpty()) {
+      copiedPlanning_.reset();  // not in a copy: the next change of the planning writes one again
+      statusBar()->showMessage(tr("No crash-recovery copy: %1").arg(error), 10000);
+    }
   });
   if (recovery_->found()) {
     recoveryOfferPending_ = true;
@@ -210,9 +214,12 @@ void MainWindow::offerRecovery() {
   // The undo history up to the crash, from its journal, with the History dock's steps: undo and redo as before
   // the crash. One that cannot be read back (or does not end at the copied bone) is reported and kept; the
   // recovered bone is then the history's only state.
+  std::unordered_map<std::uint64_t, std::uint64_t> revisionMap;  // the crashed history's revisions → the adopted ones
   if (std::optional<BoneHistory> history = readRecoveredHistory(*found, copied.liveTriangleCount(), copied.volume())) {
     session_->adoptHistory(std::move(*history));
     const BoneHistory& adopted = session_->bone()->history();
+    for (std::size_t k = 0; k < adopted.size() && k < found->historyRevisions.size(); ++k)
+      revisionMap[found->historyRevisions[k]] = adopted.entries()[k].revision;
     for (std::size_t k = 1; k < adopted.size(); ++k) {
       const BoneState& before = adopted.entries()[k - 1].state;
       const BoneState& after = adopted.entries()[k].state;
@@ -241,7 +248,7 @@ void MainWindow::offerRecovery() {
       // What was removed before the history's first state: all of it when that is the recovered bone, less the
       // cuts between the two when it is the bone as opened.
       const double removed = found->removedMm3.value_or(rows.empty() ? 0.0 : rows.back().cumulativeMm3);
-      session_->continueLog(std::move(rows), removed - (originalVolume - atCopyVolume));
+      session_->continueLog(std::move(rows), removed - (originalVolume - atCopyVolume), revisionMap);
     } catch (const std::exception& e) {
       recoveredLogPath_ = keepInRestored(found->logPath);
       showError(tr("The cut log was not restored"),

@@ -33,7 +33,7 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
     // beside). Before its first step it simply starts from there.
     if (bone_->currentRevision() != pathRevision_) {
       if (path_.empty())
-        pathStart_ = PathStart::AfterUndoOrRedo;
+        pathStart_ = PathStart::Changed;
       else
         pathInterrupted_ = true;
       pathRevision_ = bone_->currentRevision();
@@ -97,11 +97,13 @@ void ReamSession::restartPath(PathStart start) {
   pathRevision_ = bone_->currentRevision();
 }
 
-void ReamSession::continueLog(std::vector<CutLogEntry> earlier, std::optional<double> removedMm3) {
+void ReamSession::continueLog(std::vector<CutLogEntry> earlier, std::optional<double> removedMm3,
+                              const std::unordered_map<std::uint64_t, std::uint64_t>& revisions) {
   if (earlier.empty()) return;
   Document::BatchScope batch(document_);
   for (CutLogEntry& e : earlier) {
-    e.boneStateId = 0;
+    const auto mapped = revisions.find(e.boneStateId);
+    e.boneStateId = mapped == revisions.end() ? 0 : mapped->second;
     steps_ = std::max(steps_, e.stepIndex + 1);
     log_->append(std::move(e));
   }

@@ -141,7 +141,7 @@ class ReamSession : public QObject {
   // Where the path starts: the bone as opened, as restored from a crash copy, or as an undo or redo before
   // its first step left it. The path starts again from the bone as it is now with restartPath (loadBone does
   // this; a crash restore, once it has put the recovered history back).
-  enum class PathStart { AsOpened, AsRecovered, AfterUndoOrRedo };
+  enum class PathStart { AsOpened, AsRecovered, Changed };  // Changed: by an undo, a redo or an exchange
   PathStart pathStart() const { return pathStart_; }
   void restartPath(PathStart start = PathStart::AsOpened);
 
@@ -154,8 +154,10 @@ class ReamSession : public QObject {
   // the log panel lists it, new steps continue its numbering and the cumulative volume goes on from what had
   // been removed from this bone (`removedMm3`, as the copy recorded it: cuts undone before the crash are not
   // counted; without it, the last row's cumulative volume). The rows' bone revisions belong to the crashed
-  // session's history and are cleared (0).
-  void continueLog(std::vector<CutLogEntry> earlier, std::optional<double> removedMm3 = std::nullopt);
+  // session's history: those `revisions` maps (the crashed history's to the adopted one's, state by state)
+  // become this history's, the others are cleared (0).
+  void continueLog(std::vector<CutLogEntry> earlier, std::optional<double> removedMm3 = std::nullopt,
+                   const std::unordered_map<std::uint64_t, std::uint64_t>& revisions = {});
 
  Q_SIGNALS:
   void busyChanged(bool busy);

@@ -196,6 +196,8 @@ TEST(GuiPlanning, LandmarksAreSavedBesideTheBoneAndOpenWithIt) {
   EXPECT_TRUE(w.hasUnsavedChanges());
   EXPECT_TRUE(w.isWindowModified());
   const ScapulaLandmarks placed = s.bone()->landmarks();
+  const Pose plannedAxis{centre, {0, -1, 0}, 0};
+  s.bone()->setPlannedAxis(plannedAxis);
   const QString bonePath = dir.filePath("scapula.ply");
   ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
   const QString beside = dir.filePath("scapula.ply.landmarks.json");
@@ -207,15 +209,23 @@ TEST(GuiPlanning, LandmarksAreSavedBesideTheBoneAndOpenWithIt) {
   w.openFile(bonePath, true);
   ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("scapula.ply"); }, 60000)) << w.lastError().toStdString();
   EXPECT_EQ(s.bone()->landmarks(), placed);
+  ASSERT_TRUE(s.bone()->plannedAxis());
+  EXPECT_EQ(s.bone()->plannedAxis()->axis, plannedAxis.axis);
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  s.bone()->setPlannedAxis(std::nullopt);  // the plan alone is work too
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  s.bone()->setPlannedAxis(plannedAxis);
   EXPECT_FALSE(w.hasUnsavedChanges());
 
   s.bone()->setLandmarks({});
+  s.bone()->setPlannedAxis(std::nullopt);
   EXPECT_TRUE(w.hasUnsavedChanges());
   ASSERT_TRUE(w.saveBoneAs(bonePath));
   EXPECT_FALSE(QFileInfo::exists(beside));  // would bring the cleared points back on the next open
 
   // A file beside that cannot be read is named, and a save keeps it aside instead of replacing it.
-  writeTextFile(beside.toStdString(), R"({"side": "right", "glenoid_center": [1, 2, 3]})");
+  const std::string damaged = R"({"side": "right", "glenoid_center": [1, 2, 3]})";
+  writeTextFile(beside.toStdString(), damaged);
   w.openFile(bonePath, true);
   ASSERT_TRUE(QTest::qWaitFor([&] { return w.lastError().contains("glenoid_center"); }, 60000)) << w.lastError().toStdString();
   EXPECT_TRUE(w.lastError().contains(beside)) << w.lastError().toStdString();
@@ -223,7 +233,9 @@ TEST(GuiPlanning, LandmarksAreSavedBesideTheBoneAndOpenWithIt) {
   s.bone()->setLandmarks(placed);
   ASSERT_TRUE(w.saveBoneAs(bonePath));
   EXPECT_EQ(loadLandmarks(beside.toStdString()), placed);
-  EXPECT_TRUE(QFileInfo::exists(beside + ".unreadable"));
+  QFile kept(beside + ".unreadable");
+  ASSERT_TRUE(kept.open(QIODevice::ReadOnly));
+  EXPECT_EQ(kept.readAll().toStdString(), damaged);  // as it was
 }
 
 TEST(GuiPlanning, LandmarkFilesRoundTripAndADamagedOneIsNamed) {

@@ -141,6 +141,7 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
     Vec3 centre = *crashed.session().bone()->landmarks()[ScapulaLandmark::GlenoidCentre];
     centre.x += 0.75;
     crashed.session().bone()->setLandmark(ScapulaLandmark::GlenoidCentre, centre);
+    crashed.session().bone()->setPlannedAxis(Pose{centre, {0, 0, -1}, 0});
     landmarks = crashed.session().bone()->landmarks();
     const std::optional<RecoveredBone> copy = settledCopy(*crashed.window);
     ASSERT_TRUE(copy);
@@ -179,7 +180,8 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
     EXPECT_NEAR(restored[i].removedMm3, logged[i].removedMm3, 1e-8 * logged[i].removedMm3);
     EXPECT_NEAR(restored[i].cumulativeMm3, logged[i].cumulativeMm3, 1e-8 * logged[i].cumulativeMm3);
     EXPECT_EQ(restored[i].reamer, logged[i].reamer);
-    EXPECT_EQ(restored[i].boneStateId, 0u);  // the crashed session's revisions are not this history's
+    // The crashed session's revisions, mapped state by state to the adopted history's.
+    EXPECT_EQ(restored[i].boneStateId, f.session().bone()->history().entries()[i + 1].revision);
   }
   auto* table = w.findChild<QTableWidget*>("LogTable");  // what the user sees
   ASSERT_NE(table, nullptr);
@@ -190,6 +192,8 @@ TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   EXPECT_TRUE(status.contains("undo history (2 steps)")) << status.toStdString() << w.lastError().toStdString();
   EXPECT_EQ(f.session().reamer()->spec().name, "glenoid-40-R32");
   EXPECT_EQ(f.session().bone()->landmarks(), landmarks);  // to the bit: the copy keeps every digit
+  ASSERT_TRUE(f.session().bone()->plannedAxis());
+  EXPECT_EQ(f.session().bone()->plannedAxis()->tip, *landmarks[ScapulaLandmark::GlenoidCentre]);
   // The undo history is back as it was at the crash: the bone as opened, the first cut (here), the undone second.
   EXPECT_EQ(f.session().bone()->history().size(), 3u);
   EXPECT_EQ(f.session().bone()->history().cursor(), 1u);

@@ -272,7 +272,10 @@ QString PlanningPanel::loadLandmarksFrom(const QString& path) {
   BoneNode* node = bone();
   if (!node) return tr("There is no bone to place landmarks on.");
   try {
-    node->setLandmarks(loadLandmarks(path.toStdString()));
+    const BonePlanning planning = loadPlanning(path.toStdString());
+    Document::BatchScope batch(document_);
+    node->setLandmarks(planning.landmarks);
+    node->setPlannedAxis(planning.plannedAxis);
     return {};
   } catch (const std::exception& e) {
     return QString::fromStdString(e.what());
@@ -283,7 +286,7 @@ QString PlanningPanel::saveLandmarksTo(const QString& path) {
   const BoneNode* node = bone();
   if (!node) return tr("There are no landmarks to save.");
   try {
-    writeTextFile(path.toStdString(), landmarksToJson(node->landmarks(), "placed in ReamSim"));
+    writeTextFile(path.toStdString(), planningToJson(planningOf(*node), "placed in ReamSim"));
     return {};
   } catch (const std::exception& e) {
     return QString::fromStdString(e.what());
