@@ -225,8 +225,8 @@ void BoneView::onDocumentEvent() {
       changed = true;
     }
   }
-  if (planningOf(*bone) != shownPlanning_) {
-    shownPlanning_ = planningOf(*bone);
+  if (BonePlanning planning = planningOf(*bone); planning != shownPlanning_) {
+    shownPlanning_ = std::move(planning);
     showLandmarks();
     changed = true;
   }

@@ -314,9 +314,7 @@ void MainWindow::openLandmarksBeside(const QString& bonePath) {
   if (!QFileInfo::exists(file)) return;
   try {
     const BonePlanning planning = loadPlanning(file.toStdString());
-    Document::BatchScope batch(session_->document());
-    session_->bone()->setLandmarks(planning.landmarks);
-    session_->bone()->setPlannedAxis(planning.plannedAxis);
+    applyPlanning(*session_->bone(), planning);
     savedPlanning_ = planning;
     updateTitle();
   } catch (const std::exception& e) {

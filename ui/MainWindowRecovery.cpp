@@ -270,11 +270,8 @@ void MainWindow::offerRecovery() {
 void MainWindow::restoreRecoveredLandmarks(const RecoveredBone& found) {
   if (found.landmarksJson.isEmpty()) return;  // none placed, or a copy from before session 54
   try {
-    const BonePlanning planning =
-        parsePlanningJson(found.landmarksJson.toStdString(), recovery_->dir().toStdString() + "/recovery.json");
-    Document::BatchScope batch(session_->document());
-    session_->bone()->setLandmarks(planning.landmarks);
-    session_->bone()->setPlannedAxis(planning.plannedAxis);
+    applyPlanning(*session_->bone(), parsePlanningJson(found.landmarksJson.toStdString(),
+                                                        recovery_->dir().toStdString() + "/recovery.json"));
   } catch (const std::exception& e) {
     statusBar()->showMessage(tr("The landmarks of the copy could not be read: %1").arg(e.what()), 15000);
   }

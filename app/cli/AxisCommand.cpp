@@ -38,7 +38,7 @@ Vec3 parseAxis(const std::string& text) {
 
 // The angles of a feed axis (the reamer's, into the bone): measured on the outward direction, its opposite.
 json measured(const ScapularFrame& frame, const std::string& source, const Vec3& feedAxis) {
-  const AxisAngles a = axisAngles(frame, feedAxis * -1.0);
+  const AxisAngles a = feedAxisAngles(frame, feedAxis);
   return {{"source", source}, {"axis", vec(normalized(feedAxis))}, {"version_deg", a.versionDeg},
           {"inclination_deg", a.inclinationDeg}};
 }

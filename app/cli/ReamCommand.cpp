@@ -207,7 +207,7 @@ int runReam(const std::vector<std::string>& args) {
                              std::chrono::system_clock::now().time_since_epoch()).count();
   report.writtenBy = "reamsim-cli ream --plan " + planArg;
   if (report.reamerPose && landmarks.complete()) try {
-      const AxisAngles last = axisAngles(scapularFrame(landmarks), report.reamerPose->axis * -1.0);
+      const AxisAngles last = feedAxisAngles(scapularFrame(landmarks), report.reamerPose->axis);
       summary["last_pose_version_deg"] = last.versionDeg;
       summary["last_pose_inclination_deg"] = last.inclinationDeg;
     } catch (const std::invalid_argument& e) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "reamsim/core/BoneNode.h"
+#include "reamsim/core/Document.h"
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/ream/ScapularFrame.h"
 
@@ -36,6 +37,13 @@ bool operator==(const BonePlanning& a, const BonePlanning& b) {
 }
 
 BonePlanning planningOf(const BoneNode& bone) { return {bone.landmarks(), bone.plannedAxis()}; }
+
+void applyPlanning(BoneNode& bone, const BonePlanning& planning) {
+  std::optional<Document::BatchScope> batch;
+  if (bone.document()) batch.emplace(*bone.document());
+  bone.setLandmarks(planning.landmarks);
+  bone.setPlannedAxis(planning.plannedAxis);
+}
 
 BonePlanning parsePlanningJson(const std::string& text, const std::string& source) {
   json j;

@@ -76,7 +76,7 @@ std::string reamReportHtml(const ReamReportInput& in) {
   auto angles = [&](const Vec3& feedAxis) -> std::string {
     if (!frame) return "–";
     try {
-      return anglesText(axisAngles(*frame, feedAxis * -1.0));
+      return anglesText(feedAxisAngles(*frame, feedAxis));
     } catch (const std::invalid_argument& e) {
       return escaped(e.what());
     }

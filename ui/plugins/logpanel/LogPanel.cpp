@@ -20,19 +20,9 @@
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/tools/ReamedSurface.h"
+#include "reamsim/ui/PointText.h"
 
 namespace reamsim::ui {
-namespace {
-
-// "x, y, z" in the user's locale; where the decimal sign is a comma the coordinates are parted by "; ".
-QString pointText(const Vec3& p) {
-  QLocale shown;
-  shown.setNumberOptions(QLocale::OmitGroupSeparator);
-  const QString sep = shown.decimalPoint() == QChar(',') ? QStringLiteral("; ") : QStringLiteral(", ");
-  return shown.toString(p.x, 'f', 2) + sep + shown.toString(p.y, 'f', 2) + sep + shown.toString(p.z, 'f', 2);
-}
-
-}  // namespace
 
 LogPanel::LogPanel(Document& document, QWidget* parent) : QDockWidget(tr("Cut log"), parent), document_(document) {
   setObjectName("LogPanel");
@@ -116,11 +106,11 @@ void LogPanel::sync() {
     cell(2, shown.toString(e.cumulativeMm3, 'f', 3));
     cell(3, shown.toString(e.cutMs, 'f', 1));
     cell(4, shown.toString(qlonglong(e.faces)));
-    cell(5, e.contactPoint ? pointText(*e.contactPoint) : QStringLiteral("–"));
+    cell(5, e.contactPoint ? pointText(*e.contactPoint, 2) : QStringLiteral("–"));
     if (e.moveContactT && e.moveContactPoint)  // a move onto the bone: where it first met it
       table_->item(row, 5)->setToolTip(tr("the move first met the bone %L1 % of the way, at %2 mm")
                                            .arg(100.0 * *e.moveContactT, 0, 'f', 1)
-                                           .arg(pointText(*e.moveContactPoint)));
+                                           .arg(pointText(*e.moveContactPoint, 2)));
     cell(6, QString::number(e.stepIndex));
     cell(7, QString::fromStdString(e.reamer));  // a session may change reamers
     if (e.reamerDiameterMm > 0)
@@ -154,7 +144,7 @@ void LogPanel::showAngles(std::size_t first) {
   for (std::size_t i = first; i < shown_ && i < entries.size(); ++i) {
     QString text = QStringLiteral("–");
     if (frame) try {
-        const AxisAngles a = axisAngles(*frame, entries[i].pose.axis * -1.0);
+        const AxisAngles a = feedAxisAngles(*frame, entries[i].pose.axis);
         text = shown.toString(a.versionDeg, 'f', 1) + QStringLiteral("° / ") + shown.toString(a.inclinationDeg, 'f', 1) +
                QStringLiteral("°");
       } catch (const std::invalid_argument&) {  // pointing medially

@@ -16,18 +16,12 @@
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/ScapularFrame.h"
+#include "reamsim/ui/PointText.h"
 
 namespace reamsim::ui {
 namespace {
 
 constexpr double kDefaultClearanceMm = 10;  // clear of the glenoid rim for tilts up to ~25 degrees
-
-QString pointText(const Vec3& p) {
-  QLocale shown;
-  shown.setNumberOptions(QLocale::OmitGroupSeparator);
-  const QString sep = shown.decimalPoint() == QChar(',') ? QStringLiteral("; ") : QStringLiteral(", ");
-  return shown.toString(p.x, 'f', 1) + sep + shown.toString(p.y, 'f', 1) + sep + shown.toString(p.z, 'f', 1);
-}
 
 QString degreesText(double deg) { return QLocale().toString(deg, 'f', 1) + QStringLiteral("°"); }
 
@@ -193,7 +187,7 @@ void PlanningPanel::sync() {
     const std::size_t i = std::size_t(which);
     const std::optional<Vec3>& p = marks[which];
     const bool asking = asked.has_value() && *asked == which;
-    pointLabels_[i]->setText(p ? pointText(*p) : tr("not placed"));
+    pointLabels_[i]->setText(p ? pointText(*p, 1) : tr("not placed"));
     placeButtons_[i]->setChecked(asking);
     placeButtons_[i]->setText(asking ? tr("Click on the bone…") : (p ? tr("Place again") : tr("Place")));
     placeButtons_[i]->setEnabled(node != nullptr && interaction() != nullptr);
@@ -209,7 +203,7 @@ void PlanningPanel::sync() {
     if (!r || !r->cuttingVolume()) {
       text = tr("No reamer to measure.");
     } else {
-      const AxisAngles a = axisAngles(frame, r->pose().axis * -1.0);
+      const AxisAngles a = feedAxisAngles(frame, r->pose().axis);
       text = tr("Reamer axis: version %1 (%2), inclination %3 (%4)")
                  .arg(degreesText(a.versionDeg),
                       a.versionDeg < 0 ? tr("retroversion") : (a.versionDeg > 0 ? tr("anteversion") : tr("neutral")),
@@ -234,7 +228,7 @@ QString PlanningPanel::planText() const {
   const Pose& planned = *node->plannedAxis();
   QString text = tr("Planned axis");
   try {
-    const AxisAngles a = axisAngles(scapularFrame(node->landmarks()), planned.axis * -1.0);
+    const AxisAngles a = feedAxisAngles(scapularFrame(node->landmarks()), planned.axis);
     text += tr(": version %1, inclination %2").arg(degreesText(a.versionDeg), degreesText(a.inclinationDeg));
   } catch (const std::invalid_argument&) {  // landmarks changed since: the axis stays, its angles do not
   }
@@ -261,7 +255,7 @@ QString PlanningPanel::aimReamer() {
 void PlanningPanel::takeReamerAngles() {
   if (!reamer() || !bone()) return;
   try {
-    const AxisAngles a = axisAngles(scapularFrame(bone()->landmarks()), reamer()->pose().axis * -1.0);
+    const AxisAngles a = feedAxisAngles(scapularFrame(bone()->landmarks()), reamer()->pose().axis);
     version_->setValue(a.versionDeg);
     inclination_->setValue(a.inclinationDeg);
   } catch (const std::invalid_argument&) {  // the report above says why
@@ -272,10 +266,7 @@ QString PlanningPanel::loadLandmarksFrom(const QString& path) {
   BoneNode* node = bone();
   if (!node) return tr("There is no bone to place landmarks on.");
   try {
-    const BonePlanning planning = loadPlanning(path.toStdString());
-    Document::BatchScope batch(document_);
-    node->setLandmarks(planning.landmarks);
-    node->setPlannedAxis(planning.plannedAxis);
+    applyPlanning(*node, loadPlanning(path.toStdString()));
     return {};
   } catch (const std::exception& e) {
     return QString::fromStdString(e.what());

@@ -39,6 +39,11 @@ ScapularFrame scapularFrame(const ScapulaLandmarks& landmarks);
 // finite, or points medially (o.L <= 0: version and inclination are defined within +-90 degrees).
 AxisAngles axisAngles(const ScapularFrame& frame, const Vec3& outward);
 
+// The same for a reamer's feed axis (into the bone, as Pose::axis): the angles of its opposite.
+inline AxisAngles feedAxisAngles(const ScapularFrame& frame, const Vec3& feedAxis) {
+  return axisAngles(frame, feedAxis * -1.0);
+}
+
 // The unit outward direction with these angles (each finite and within +-89 degrees, else
 // std::invalid_argument).
 Vec3 outwardAxisFor(const ScapularFrame& frame, const AxisAngles& angles);
@@ -74,6 +79,7 @@ struct BonePlanning {
 bool operator==(const BonePlanning& a, const BonePlanning& b);  // to the bit
 inline bool operator!=(const BonePlanning& a, const BonePlanning& b) { return !(a == b); }
 BonePlanning planningOf(const class BoneNode& bone);  // its landmarks and planned axis
+void applyPlanning(class BoneNode& bone, const BonePlanning& planning);  // both set, one report to observers
 BonePlanning loadPlanning(const std::string& path);
 BonePlanning parsePlanningJson(const std::string& text, const std::string& source);
 std::string planningToJson(const BonePlanning& planning, const std::string& method = {});
