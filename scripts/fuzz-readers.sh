@@ -22,6 +22,13 @@ driver=build-asan/tests/fuzz/reader_fuzz_driver
 rm -rf "$out/seeds"
 ASAN_OPTIONS=detect_leaks=0 "$driver" seeds "$out/seeds"
 mkdir -p "$out/seeds/landmarks" && cp resources/bones/scapula_R_landmarks.json "$out/seeds/landmarks/"
+# A recorded path's extras (placements, notes, times: docs/PLAN_FORMAT.md) beside the bundled plans.
+mkdir -p "$out/seeds/plan" && cat > "$out/seeds/plan/recorded_path.json" <<'JSON'
+{"reamer": "glenoid-36-R30", "poses": [
+  {"tip": [-38.1, 12.5, 101.0], "axis": [-0.6, 0.04, -0.8], "placed": true, "t_ms": 0, "note": "seat, \"then\" feed\n2 mm"},
+  {"tip": [-38.2, 12.5, 100.9], "axis": [-0.6, 0.04, -0.8], "t_ms": 812.5},
+  {"tip": [-38.3, 12.5, 100.8], "axis": [-0.6, 0.04, -0.8], "t_ms": 1650, "note": "5° – done ✓"}]}
+JSON
 shared=../shared/data  # real volumes, where present (not on every machine)
 
 status=0
@@ -35,7 +42,7 @@ for mode in "${modes[@]}"; do
       ;;
     dicom) seeds=(--seeds "$out/seeds/dicom") ;;
     mesh) seeds=(--seeds tests/data/good) ;;
-    plan) seeds=(--seeds resources/plans) ;;
+    plan) seeds=(--seeds resources/plans --seeds "$out/seeds/plan") ;;
     presets) seeds=(--seeds resources) ;;
     landmarks) seeds=(--seeds "$out/seeds/landmarks") ;;
     *) echo "unknown mode $mode" >&2; exit 2 ;;

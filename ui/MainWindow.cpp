@@ -88,6 +88,11 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   landmarksTitleSubscription_ = session_->document().observeNode(session_->bone()->id(), [this] {
     if (isWindowModified() != hasUnsavedChanges()) updateTitle();
   });
+  notesSubscription_ = session_->document().subscribe([this](const DocumentEvent& e) {
+    if (e.id.kind() == NodeKind::Log && isWindowModified() != hasUnsavedChanges()) updateTitle();
+  });
+  connect(session_.get(), &ReamSession::noteReached, this,
+          [this](const QString& note) { statusBar()->showMessage(tr("Note: %1").arg(note), 10000); });
   updateStatus();
   updateTitle();
   resize(1280, 800);
@@ -207,6 +212,8 @@ void MainWindow::buildMenus() {
       [this] { askReamToDepth(); });
   add(reamer, "feed_by", tr("&Feed along the axis by…"), QKeySequence("Ctrl+F"), [this] { askFeedBy(); });
   add(reamer, "run_plan", tr("Run a &plan…"), QKeySequence("Ctrl+Shift+P"), [this] { runPlanFile(); });
+  add(reamer, "replay_plan", tr("&Replay a recorded path at its pace…"), {},
+      [this] { runPlanFile({}, PlanPace::AsRecorded); });
   reamer->addSeparator();
   add(reamer, "choose_reamer", tr("&Choose the reamer…"), QKeySequence("Ctrl+Shift+R"), [this] { chooseReamer(); });
   add(reamer, "choose_reamer_mesh", tr("Choose a reamer &mesh…"), {}, [this] { chooseReamerMesh(); })

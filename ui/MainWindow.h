@@ -44,6 +44,10 @@ struct ImportOutcome {
   QString stoppedAt;  // the repair's stage where a cancelled import's worker stopped
 };
 
+// How a plan's steps are run: as fast as they compute, or each timed pose at its recorded time (t_ms: a path
+// exported from a session); a plan without times cannot be replayed at its pace.
+enum class PlanPace { AsFastAsComputed, AsRecorded };
+
 class MainWindow : public QMainWindow {
   Q_OBJECT
  public:
@@ -117,9 +121,10 @@ class MainWindow : public QMainWindow {
   void exportReportInteractive();
   // Runs a plan file (docs/PLAN_FORMAT.md) on the bone as `reamsim-cli ream --plan` does: its reamer (a
   // preset) is taken, the reamer is placed at the first pose (and at every pose marked "placed") and follows
-  // the rest as a path (sideways moves sweep). An empty path: the user picks the file. False (with a message
-  // naming the file and the problem) when the plan cannot be run.
-  bool runPlanFile(const QString& path = {});
+  // the rest as a path (sideways moves sweep), as fast as the steps compute or at the pace they were recorded
+  // at (PlanPace). An empty path: the user picks the file. False (with a message naming the file and the
+  // problem) when the plan cannot be run.
+  bool runPlanFile(const QString& path = {}, PlanPace pace = PlanPace::AsFastAsComputed);
   void showPluginsDialog();
   void showError(const QString& title, const QString& message);
   // CT import (MainWindowCtImport.cpp): the plugin's dialog for `path` (empty: the user picks one in
@@ -261,7 +266,13 @@ class MainWindow : public QMainWindow {
   Subscription landmarksTitleSubscription_;  // ... and marks the title
   BonePlanning savedPlanning_;   // the cut bone's landmarks and planned axis as opened or last saved (NAME.landmarks.json)
   QString unreadablePlanningFile_;  // the landmarks beside the bone that could not be read when it was opened
-  std::optional<BonePlanning> copiedPlanning_;  // those in the crash-recovery copy kept (none: no copy)
+  std::optional<BonePlanning> copiedPlanning_;
+  // The log's notes (annotations) are saved with it (NAME.cut_log.csv): their count of changes at the last save
+  // or open (LogNode::notesRevision), and in the crash-recovery copy kept.
+  std::uint64_t savedNotesRevision_ = 0;
+  std::optional<std::uint64_t> copiedNotesRevision_;
+  Subscription notesSubscription_;  // a note changed: the title...
+  Subscription recoveryNotesSubscription_;  // ... and a crash copy  // those in the crash-recovery copy kept (none: no copy)
   QTimer recoveryTimer_;
   QFutureWatcher<QString> recoveryWrite_;  // the error, empty when the copy was written
   bool recoveryOfferPending_ = false;      // a found copy not yet answered: nothing is written or removed

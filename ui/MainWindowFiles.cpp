@@ -174,6 +174,7 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
   boneName_ = name;
   savedPath_.clear();  // another bone: Save asks where
   savedPlanning_ = planningOf(*session_->bone());  // none (loadBone clears them): the caller may bring some
+  savedNotesRevision_ = session_->log()->notesRevision();  // a new log
   ++boneGeneration_;
   if (!recentPath.isEmpty()) addRecent(recentPath);
   updateTitle();
@@ -188,6 +189,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
   const QMetaObject::Connection watch =
       connect(session_->undoStack(), &QUndoStack::indexChanged, this, [&changedMeanwhile] { changedMeanwhile = true; });
   const std::string csv = cutLogCsv(session_->log()->entries());
+  const std::uint64_t notesRevision = session_->log()->notesRevision();
   const BonePlanning planning = planningOf(*session_->bone());
   const bool written = writeBoneFile(path);
   disconnect(watch);
@@ -227,7 +229,8 @@ bool MainWindow::saveBoneAs(const QString& path) {
     return false;
   }
   savedPlanning_ = planning;
-  updateTitle();  // landmarks alone changed: the undo stack's clean state did not move
+  savedNotesRevision_ = notesRevision;
+  updateTitle();  // landmarks or notes alone changed: the undo stack's clean state did not move
   // Nor did the copy kept for a crash: written again (or removed, when nothing is left unsaved).
   if (recovery_ && !recoveryOfferPending_ && !recoveryTimer_.isActive()) recoveryTimer_.start();
   savedPath_ = path;  // written: the next Save goes here too
@@ -298,9 +301,10 @@ bool MainWindow::writeBoneFile(const QString& path) {
   return true;
 }
 
-// Cuts away from the saved point, or landmarks placed since (they are saved beside the bone).
+// Cuts away from the saved point, or landmarks placed or notes written since (saved beside the bone).
 bool MainWindow::hasUnsavedChanges() const {
-  return !session_->undoStack()->isClean() || planningOf(*session_->bone()) != savedPlanning_;
+  return !session_->undoStack()->isClean() || planningOf(*session_->bone()) != savedPlanning_ ||
+         session_->log()->notesRevision() != savedNotesRevision_;
 }
 
 // The mesh file's whole name, so that scapula.stl and scapula.ply beside it never share one.
@@ -396,9 +400,13 @@ bool MainWindow::confirmDiscardChanges(const QString& action) {
   if (!hasUnsavedChanges()) return true;
   const QString name = boneName_.isEmpty() ? tr("The bone") : tr("The bone (%1)").arg(boneName_);
   const std::size_t cuts = session_->log()->entries().size();
+  QStringList what;  // since it was opened or last saved
+  if (!session_->undoStack()->isClean()) what << tr("the bone has changed");
+  if (planningOf(*session_->bone()) != savedPlanning_) what << tr("its landmarks or planned axis have changed");
+  if (session_->log()->notesRevision() != savedNotesRevision_) what << tr("notes on its cuts have changed");
   QMessageBox box(QMessageBox::Warning, tr("Unsaved changes"),
-                  tr("%1 has changed since it was opened or last saved (its cut log holds %2).")
-                      .arg(name, cuts == 1 ? tr("1 cut") : tr("%1 cuts").arg(cuts)),
+                  tr("%1 is not saved: %2 since it was opened or last saved (its cut log holds %3).")
+                      .arg(name, what.join(tr("; ")), cuts == 1 ? tr("1 cut") : tr("%1 cuts").arg(cuts)),
                   QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, this);
   box.setObjectName("UnsavedChangesDialog");
   box.setInformativeText(tr("Save the bone, and its cut log beside it, before you %1?").arg(action));

@@ -9,6 +9,7 @@
 #include <QStatusBar>
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 #include <utility>
 
 #include "MainWindow.h"
@@ -124,9 +125,11 @@ ReamerSpec MainWindow::planReamer(const std::string& reamer, const QString& plan
   return reamerFromArgument(reamer, reamerPresetsPath());
 }
 
-bool MainWindow::runPlanFile(const QString& path) {
+bool MainWindow::runPlanFile(const QString& path, PlanPace pace) {
+  const bool paced = pace == PlanPace::AsRecorded;
   QString file = path;
-  if (file.isEmpty()) file = QFileDialog::getOpenFileName(this, tr("Run a plan"), {}, tr("Plans (*.json)"));
+  if (file.isEmpty())
+    file = QFileDialog::getOpenFileName(this, paced ? tr("Replay a recorded path") : tr("Run a plan"), {}, tr("Plans (*.json)"));
   if (file.isEmpty()) return false;
   const QString title = tr("Cannot run the plan %1").arg(QFileInfo(file).fileName());
   ReamPlan plan;
@@ -135,6 +138,9 @@ bool MainWindow::runPlanFile(const QString& path) {
     plan = loadPlan(file.toStdString());
     poses = plan.expandedPoses();
     if (poses.empty()) throw InputError(file.toStdString(), "the plan has no poses");
+    if (paced && !plan.hasTimes())
+      throw InputError(file.toStdString(), "no pose has a recorded time (t_ms), so there is no pace to replay it at: "
+                                           "run it as a plan, or export a path from a session (File menu)");
   } catch (const std::exception& e) {
     showError(title, QString::fromStdString(e.what()));
     return false;
@@ -170,10 +176,11 @@ bool MainWindow::runPlanFile(const QString& path) {
   // waiting goes (a queued feed, a move not yet computed, a ream to depth whose search is out).
   pendingDepth_.reset();
   session_->cancelQueued();
-  std::vector<bool> placed = plan.expandedPlacements();
-  placed.front() = true;  // as the command line's runner
-  session_->runSteps(poses, placed);
-  statusBar()->showMessage(tr("Running %1: %Ln step(s)", "", int(poses.size())).arg(QFileInfo(file).fileName()), 5000);
+  session_->runPlan(plan, paced);
+  statusBar()->showMessage((paced ? tr("Replaying %1 at its recorded pace: %Ln step(s)", "", int(poses.size()))
+                                  : tr("Running %1: %Ln step(s)", "", int(poses.size())))
+                               .arg(QFileInfo(file).fileName()),
+                           5000);
   return true;
 }
 
@@ -188,10 +195,21 @@ QString MainWindow::exportPath(const QString& file) {
           .arg(QString::fromStdString(reamer.name), QString::fromStdString(path[i].reamer.name));
   ReamPlan plan;
   plan.reamer = reamer.meshFile.empty() ? reamer.name : reamer.meshFile;
+  std::unordered_map<std::size_t, std::string> notes;  // by step: the log's rows are the steps that cut
+  for (const CutLogEntry& row : session_->log()->entries())
+    if (!row.note.empty()) notes[row.stepIndex] = row.note;
+  bool anyNote = false;
   for (std::size_t i = 0; i < path.size(); ++i) {
     plan.poses.push_back(path[i].pose);
     if (path[i].placed) plan.placedPoses.push_back(i);
+    const auto note = notes.find(path[i].stepIndex);
+    plan.poseNotes.push_back(note == notes.end() ? std::string() : note->second);
+    anyNote = anyNote || note != notes.end();
+    // The pace it was made at, from its first step (a clock set back meanwhile cannot make time go back).
+    const double sinceFirst = double(path[i].timeUnixMs - path.front().timeUnixMs);
+    plan.poseTimesMs.push_back(std::max(sinceFirst, i > 0 ? plan.poseTimesMs.back().value_or(0.0) : 0.0));
   }
+  if (!anyNote) plan.poseNotes.clear();
   const QString start = session_->pathStart() == ReamSession::PathStart::AsOpened
                             ? tr("the bone as it was opened")
                         : session_->pathStart() == ReamSession::PathStart::AsRecovered

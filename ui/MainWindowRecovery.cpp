@@ -50,10 +50,15 @@ void MainWindow::enableRecovery(const QString& dir, int delayMs) {
   landmarksSubscription_ = session_->document().observeNode(session_->bone()->id(), [this, schedule] {
     if (!copiedPlanning_ || planningOf(*session_->bone()) != *copiedPlanning_) schedule();
   });
+  // So are the notes written on the log's rows.
+  recoveryNotesSubscription_ = session_->document().subscribe([this, schedule](const DocumentEvent& e) {
+    if (e.id.kind() == NodeKind::Log && copiedNotesRevision_ != session_->log()->notesRevision()) schedule();
+  });
   connect(&recoveryWrite_, &QFutureWatcher<QString>::finished, this, [this] {
     const QString error = recoveryWrite_.result();
     if (!error.isEmpty()) {
-      copiedPlanning_.reset();  // not in a copy: the next change of the planning writes one again
+      copiedPlanning_.reset();
+      copiedNotesRevision_.reset();  // not in a copy: the next change of the planning writes one again
       statusBar()->showMessage(tr("No crash-recovery copy: %1").arg(error), 10000);
     }
   });
@@ -104,6 +109,7 @@ void MainWindow::writeRecoveryCopy() {
   for (const BoneHistory::Entry& e : entries) description.history->revisions.push_back(e.revision);
   description.history->cursor = history.cursor();
   std::string csv = cutLogCsv(session_->log()->entries());
+  copiedNotesRevision_ = session_->log()->notesRevision();
   const PatientFrame frame = session_->bone()->patientFrame();
   description.name = boneName_;
   copiedPlanning_ = planningOf(*session_->bone());

@@ -1,6 +1,8 @@
 #include "ReamSession.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include <QElapsedTimer>
 #include <QEventLoop>
@@ -41,6 +43,9 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
     if (!queued_.empty() || running_) cancelQueued();
   });
   connect(&watcher_, &QFutureWatcher<StepResult>::finished, this, &ReamSession::finished);
+  paceTimer_ = new QTimer(this);
+  paceTimer_->setSingleShot(true);
+  connect(paceTimer_, &QTimer::timeout, this, [this] { startNext(); });
   progressTimer_ = new QTimer(this);
   progressTimer_->setInterval(kProgressMs);
   connect(progressTimer_, &QTimer::timeout, this, [this] {
@@ -195,6 +200,29 @@ void ReamSession::runSteps(const std::vector<Pose>& poses, const std::vector<boo
   startNext();
 }
 
+void ReamSession::runPlan(const ReamPlan& plan, bool atRecordedPace) {
+  const std::vector<Pose> poses = plan.expandedPoses();
+  if (!engine_ || poses.empty()) return;
+  std::vector<bool> placed = plan.expandedPlacements();
+  placed.front() = true;  // as the command line's runner: the first pose comes from nowhere
+  const std::vector<std::string> notes = plan.expandedNotes();
+  const std::vector<std::optional<double>> times = plan.expandedTimesMs();
+  std::optional<double> firstTime;
+  queuePendingUserMove();
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    QueuedStep step{poses[i], std::nullopt, placed[i], notes[i]};
+    if (atRecordedPace && times[i]) {
+      if (!firstTime) firstTime = times[i];
+      step.dueMs = *times[i] - *firstTime;
+    }
+    queued_.push_back(std::move(step));
+  }
+  paceClock_.invalidate();  // started by the first paced step (after the steps queued before it)
+  sequenceTotal_ += static_cast<int>(poses.size());
+  Q_EMIT progress(sequenceDone_, sequenceTotal_);
+  startNext();
+}
+
 void ReamSession::queuePendingUserMove() {
   if (!latestUserPose_) return;
   queued_.push_back({*latestUserPose_, std::nullopt, !latestUserMoved_});  // a placement stays one (Aim)
@@ -218,6 +246,7 @@ void ReamSession::clearQueue() {
   const bool searchQueued =
       std::any_of(queued_.begin(), queued_.end(), [](const QueuedStep& q) { return q.searchMm.has_value(); });
   queued_.clear();
+  paceTimer_->stop();
   if (searchQueued) Q_EMIT contactSearched(ContactSearch{});  // Dropped
 }
 
@@ -261,9 +290,19 @@ void ReamSession::startNext() {
   }
   Pose pose;
   bool moved = true;  // queued steps (feeds, ream to depth, plans) follow a path
+  runningNote_.clear();
   if (!queued_.empty()) {
+    if (const std::optional<double> due = queued_.front().dueMs) {
+      if (!paceClock_.isValid()) paceClock_.start();  // the recorded path's first timed step: its time 0
+      const qint64 wait = static_cast<qint64>(std::ceil(*due)) - paceClock_.elapsed();
+      if (wait > 0) {  // busy meanwhile (the queue is not empty): a move by hand or Stop drops the rest
+        paceTimer_->start(static_cast<int>(std::min<qint64>(wait, std::numeric_limits<int>::max())));
+        return;
+      }
+    }
     const QueuedStep next = queued_.front();
     queued_.pop_front();
+    runningNote_ = next.note;
     if (next.searchMm) {
       startSearch(next.pose, *next.searchMm);
       return;
@@ -373,8 +412,14 @@ void ReamSession::finished() {
     CommitOptions options;
     options.logEveryStep = false;  // the GUI's log lists cuts
     options.initialVolumeMm3 = initialVolumeMm3();
+    const std::size_t rowsBefore = log_->size();
     const CutLogEntry e = commitReamStep(document_, *bone_, *reamer_, *log_, alerts_, r.computation, steps_++, options);
-    if (runningStep_) path_.push_back(*std::exchange(runningStep_, std::nullopt));
+    if (!runningNote_.empty() && log_->size() > rowsBefore) log_->setNote(log_->size() - 1, runningNote_);
+    if (runningStep_) {
+      runningStep_->stepIndex = e.stepIndex;
+      runningStep_->timeUnixMs = e.timeUnixMs;
+      path_.push_back(*std::exchange(runningStep_, std::nullopt));
+    }
     pathRevision_ = bone_->currentRevision();
     if (e.boneStateId != 0) {
       engine_->adopt(e.boneStateId);
@@ -388,6 +433,7 @@ void ReamSession::finished() {
     lastMinDistance_ = e.minDistanceMm;
     lastStepSwept_ = r.computation.swept;
     Q_EMIT stepFinished(e.minDistanceMm, e.contact);
+    if (!runningNote_.empty()) Q_EMIT noteReached(QString::fromStdString(runningNote_));
   }  // else: computed against a bone that has changed since (undo, new bone): dropped
   if (sequenceTotal_ > 0) {
     ++sequenceDone_;

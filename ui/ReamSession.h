@@ -7,6 +7,7 @@
 // (commitReamStep) and pushed on the undo stack. User moves are coalesced (the latest pose wins while a
 // step is running); explicit step sequences (feed, ream to depth, the demo plan) run every step.
 // A result computed against a bone that changed meanwhile (undo, new bone) is dropped.
+#include <QElapsedTimer>
 #include <QFutureWatcher>
 #include <QObject>
 #include <QString>
@@ -25,6 +26,7 @@
 #include "reamsim/core/LogNode.h"
 #include "reamsim/core/PlanNode.h"
 #include "reamsim/core/ReamerNode.h"
+#include "reamsim/ream/Plan.h"
 #include "reamsim/ream/ReamEngine.h"
 #include "reamsim/ui/PluginInterfaces.h"
 
@@ -107,6 +109,11 @@ class ReamSession : public QObject {
   void runSteps(const std::vector<Pose>& poses, bool placeFirst = false);
   // The same with each step's placement given (`placed[i]`: nothing swept to poses[i]; a plan's `placed` poses).
   void runSteps(const std::vector<Pose>& poses, const std::vector<bool>& placed);
+  // A plan's steps (ReamPlan::expandedPoses) with their placements and notes: a step's note goes to the log row
+  // it makes and is announced (noteReached). With `atRecordedPace` a pose with a time (t_ms) waits until that
+  // much time has passed since the plan's first timed pose ran, as it was recorded (a step that takes longer
+  // to compute delays the ones after it); the rest run as fast as they compute.
+  void runPlan(const ReamPlan& plan, bool atRecordedPace);
   // Queues a search for the first contact of the reamer advancing from `start` along its axis (up to
   // maxMm): run on the worker after the steps queued before it, against the bone they leave, on the
   // engine's own collision structure (no tree is built for it). Answered by contactSearched.
@@ -134,6 +141,8 @@ class ReamSession : public QObject {
     Pose pose;
     bool placed = false;
     ReamerSpec reamer;
+    std::size_t stepIndex = 0;   // the step's number (CutLogEntry::stepIndex of its log row, if it made one)
+    std::int64_t timeUnixMs = 0;  // when it was committed
   };
   const std::vector<PathStep>& path() const { return path_; }
   // The bone changed under the path other than by its own steps: an undo, a redo, a bone exchanged.
@@ -169,6 +178,7 @@ class ReamSession : public QObject {
   void stepProgress(int booleansDone, int booleansTotal);
   void boneReplaced();
   void contactSearched(const ContactSearch& result);
+  void noteReached(const QString& note);  // a plan's step with a note was committed
 
  private:
   void startNext();
@@ -210,7 +220,12 @@ class ReamSession : public QObject {
     Pose pose;
     std::optional<double> searchMm;  // set: a contact search from `pose` along its axis, not a step
     bool placed = false;             // placed there (nothing swept), not a travel from the step before
+    std::string note;                // a plan's note for the step
+    std::optional<double> dueMs;     // paced: not started before paceClock_ has reached it
   };
+  QElapsedTimer paceClock_;  // started when a paced plan is queued
+  QTimer* paceTimer_ = nullptr;  // wakes the queue when the next paced step is due
+  std::string runningNote_;
   std::deque<QueuedStep> queued_;
   std::vector<PathStep> path_;
   std::optional<PathStep> runningStep_;  // what the running step adds to the path once committed

@@ -255,6 +255,31 @@ TEST(Cli, AxisAimsAPlanAtAVersionAndInclinationAndMeasuresItBack) {
   std::stringstream report;
   report << reportFile.rdbuf();
   EXPECT_NE(report.str().find("-8.5° (retroversion), 4.0° (superior)"), std::string::npos);
+  // A pose's note (an educator's annotation) goes to that step's row, in the log and the report.
+  {
+    std::ifstream in(plan);
+    nlohmann::json noted = nlohmann::json::parse(in);
+    const nlohmann::json& feed = noted["feed"];
+    nlohmann::json pose = feed["start"];
+    const double advance = feed["step_mm"].get<double>() * (feed["count"].get<int>() + 0.5);
+    for (int k = 0; k < 3; ++k)
+      pose["tip"][k] = pose["tip"][k].get<double>() + advance * pose["axis"][k].get<double>();
+    pose["note"] = "last half step, \"gently\" <here>";
+    noted["poses"] = nlohmann::json::array({pose});
+    const fs::path notedPlan = scratch("noted_plan.json");
+    std::ofstream(notedPlan) << noted.dump();
+    const CliRun n = run("ream --bone default --plan " + notedPlan.string() + " --out " + dir.string());
+    ASSERT_EQ(n.exitCode, 0) << n.out;
+    std::ifstream notedLog(dir / "log.json");
+    const auto rows = nlohmann::json::parse(notedLog)["steps"];
+    ASSERT_EQ(rows.size(), std::size_t(feed["count"].get<int>() + 1));
+    EXPECT_EQ(rows.back()["note"], "last half step, \"gently\" <here>");
+    EXPECT_EQ(rows.front()["note"], "");
+    std::ifstream notedReport(dir / "report.html");
+    std::stringstream html;
+    html << notedReport.rdbuf();
+    EXPECT_NE(html.str().find("last half step, &quot;gently&quot; &lt;here&gt;"), std::string::npos);
+  }
   const CliRun bare = run("ream --bone default --plan " + plan.string() + " --landmarks none --out " + dir.string());
   ASSERT_EQ(bare.exitCode, 0) << bare.out;
   std::ifstream bareFile(dir / "report.html");

@@ -71,6 +71,24 @@ TEST(Nodes, PlanAndLog) {
   EXPECT_EQ(log.size(), 2u);
   EXPECT_EQ(log.last().stepIndex, 1u);
   EXPECT_EQ(log.cumulativeMm3(), 20);
+
+  // A row's note is the one thing that changes after it is appended: a change is reported and counted, the
+  // same note again is not.
+  int modified = 0;
+  const Subscription sub = doc.observeNode(log.id(), [&] { ++modified; });
+  EXPECT_EQ(log.notesRevision(), 0u);
+  log.setNote(0, "seated");
+  EXPECT_EQ(log.entries()[0].note, "seated");
+  EXPECT_EQ(log.entries()[1].note, "");
+  EXPECT_EQ(log.notesRevision(), 1u);
+  EXPECT_EQ(modified, 1);
+  log.setNote(0, "seated");
+  EXPECT_EQ(log.notesRevision(), 1u);
+  EXPECT_EQ(modified, 1);
+  log.setNote(0, "");
+  EXPECT_EQ(log.notesRevision(), 2u);
+  EXPECT_THROW(log.setNote(2, "no such row"), std::out_of_range);
+  EXPECT_EQ(log.notesRevision(), 2u);
 }
 
 TEST(Nodes, AlertsReportOnlyRealChanges) {

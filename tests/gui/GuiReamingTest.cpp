@@ -3,6 +3,7 @@
 // interrupts the feed, it does not jump to its end).
 #include <QAction>
 #include <QDockWidget>
+#include <QElapsedTimer>
 #include <QLabel>
 #include <QInputDialog>
 #include <QLocale>
@@ -696,6 +697,90 @@ TEST(GuiReaming, TheReamersPathExportsAsAPlanThatReplaysTheSession) {
   EXPECT_TRUE(s.path().empty());
   EXPECT_FALSE(s.pathInterrupted());
   EXPECT_TRUE(w.exportPath(file).contains("no step")) << w.exportPath(file).toStdString();
+}
+
+// An educator's session: notes written on cuts go into the exported path with the time of every step; replayed at
+// its recorded pace on the bone as opened, each step waits for its time, the notes come back on the replay's
+// log rows and are announced, and the replay cuts as the session did. Stop drops the steps still waiting.
+TEST(GuiReaming, ANotedPathReplaysAtItsRecordedPaceWithItsNotes) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);  // the fixture's placement, then a cut 0.5 mm in
+  QTest::qWait(700);  // the trainee pauses
+  const Pose seated = s.reamer()->pose();
+  s.runSteps({advancedAlongAxis(seated, 0.2), advancedAlongAxis(seated, 0.4)});
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.log()->size(), 3u);
+  auto* panel = w.findChild<QDockWidget*>("LogPanel");
+  ASSERT_NE(panel, nullptr);
+  const QString first = QString::fromUtf8("seated: 0.5 mm, \"listen\" for the rim"), last = "final depth";
+  bool annotated = false;
+  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, 0), Q_ARG(QString, first)));
+  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, 2), Q_ARG(QString, last)));
+
+  const QString file = dir.filePath("session.json");
+  ASSERT_TRUE(w.exportPath(file).isEmpty());
+  const ReamPlan plan = loadPlan(file.toStdString());
+  ASSERT_EQ(plan.poses.size(), 4u);  // the placement, the cut, two feed steps
+  ASSERT_EQ(plan.poseTimesMs.size(), 4u);
+  EXPECT_EQ(plan.poseTimesMs[0], 0.0);
+  const double span = *plan.poseTimesMs[3];
+  EXPECT_GE(*plan.poseTimesMs[2] - *plan.poseTimesMs[1], 600.0);  // the pause is in the file
+  ASSERT_EQ(plan.poseNotes.size(), 4u);
+  EXPECT_EQ(plan.poseNotes[0], "");  // the placement made no cut, so no row to write on
+  EXPECT_EQ(plan.poseNotes[1], first.toStdString());
+  EXPECT_EQ(plan.poseNotes[2], "");
+  EXPECT_EQ(plan.poseNotes[3], last.toStdString());
+  const double volumeAfterSession = s.bone()->current().volume();
+
+  // The bone as opened again, and the session replayed at its pace.
+  ImportedBone again;
+  again.mesh = loadDefaultBone().mesh;
+  again.cuttable = true;
+  s.loadBone(std::move(again), "again", seated);
+  QSignalSpy notes(&s, &ReamSession::noteReached);
+  QElapsedTimer clock;
+  clock.start();
+  ASSERT_TRUE(w.runPlanFile(file, PlanPace::AsRecorded)) << w.lastError().toStdString();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_GE(double(clock.elapsed()), span - 1.0);  // no step ran before its time
+  ASSERT_EQ(s.log()->size(), 3u);
+  EXPECT_EQ(s.log()->entries()[0].note, first.toStdString());
+  EXPECT_EQ(s.log()->entries()[1].note, "");
+  EXPECT_EQ(s.log()->entries()[2].note, last.toStdString());
+  ASSERT_EQ(notes.count(), 2);
+  EXPECT_EQ(notes.at(1).at(0).toString(), last);
+  EXPECT_NEAR(s.bone()->current().volume(), volumeAfterSession, 1e-9 * volumeAfterSession);
+
+  // Stop while a step waits for its time: the rest is dropped, at once.
+  ReamPlan slow = plan;
+  slow.poseTimesMs[3] = 600000.0;  // ten minutes in
+  const QString slowFile = dir.filePath("slow.json");
+  writeTextFile(slowFile.toStdString(), planToJson(slow));
+  s.loadBone(ImportedBone{loadDefaultBone().mesh, {}, {}, true}, "again", seated);
+  ASSERT_TRUE(w.runPlanFile(slowFile, PlanPace::AsRecorded));
+  for (int i = 0; i < 600 && s.log()->size() < 2; ++i) QTest::qWait(50);
+  ASSERT_EQ(s.log()->size(), 2u);
+  EXPECT_TRUE(s.busy());  // the last step waits
+  clock.restart();
+  w.action("stop")->trigger();
+  ASSERT_TRUE(s.waitIdle(5000));
+  EXPECT_LT(clock.elapsed(), 5000);
+  EXPECT_EQ(s.log()->size(), 2u);
+
+  // As fast as computed, the same file takes no pause; a plan without times has no pace to replay at.
+  s.loadBone(ImportedBone{loadDefaultBone().mesh, {}, {}, true}, "again", seated);
+  ASSERT_TRUE(w.runPlanFile(slowFile));
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(s.log()->size(), 3u);
+  ReamPlan untimed = plan;
+  untimed.poseTimesMs.clear();
+  writeTextFile(file.toStdString(), planToJson(untimed));
+  EXPECT_FALSE(w.runPlanFile(file, PlanPace::AsRecorded));
+  EXPECT_TRUE(w.lastError().contains("no pose has a recorded time")) << w.lastError().toStdString();
 }
 
 // A placement asked for while a step runs (the Planning dock's Aim, then at once a feed) waits as the pending

@@ -18,6 +18,7 @@
 #include "OtherBonesLayer.h"
 #include "RecoveryFiles.h"
 #include "reamsim/mesh/MeshIO.h"
+#include "reamsim/ream/CutLogIO.h"
 #include "reamsim/tools/Primitives.h"
 
 namespace reamsim::ui::test {
@@ -113,6 +114,33 @@ TEST(GuiRecovery, UnsavedCutsAreCopiedASaveOrACloseRemovesTheCopy) {
   EXPECT_EQ(copy->cuts, 2);  // the log since the bone was opened
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
   EXPECT_FALSE(RecoveryFiles(dir.filePath("recovery")).found());  // a normal close leaves no copy
+}
+
+// A note written on a cut after the bone was saved is unsaved work of its own: copied, and back after a crash.
+TEST(GuiRecovery, ANoteWrittenAfterASaveIsCopiedAndComesBack) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir, out;
+  const std::string note = "left at 1.5 mm: sclerotic bone";
+  {
+    GuiFixture crashed;
+    crashed.window->enableRecovery(dir.filePath("recovery"), 0);
+    cutOnce(crashed.session());
+    ASSERT_TRUE(crashed.window->saveBoneAs(out.filePath("bone.ply")));
+    EXPECT_FALSE(settledCopy(*crashed.window));  // saved: nothing to recover
+    crashed.session().log()->setNote(0, note);   // as the log dock writes it
+    const std::optional<RecoveredBone> copy = settledCopy(*crashed.window);
+    ASSERT_TRUE(copy);
+    const std::vector<CutLogEntry> rows = readCutLogCsv(copy->logPath.toStdString());
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_EQ(rows[0].note, note);
+  }  // gone without a close, as in a crash
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
+  ASSERT_EQ(f.session().log()->size(), 1u);
+  EXPECT_EQ(f.session().log()->entries()[0].note, note);
 }
 
 TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
@@ -348,7 +376,7 @@ TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
   EXPECT_NEAR(f.session().bone()->current().volume(), volume, 1e-9 * volume);  // the bone is back
   EXPECT_TRUE(f.session().log()->empty());
   const std::string message = w.lastError().toStdString();
-  EXPECT_NE(message.find(QFileInfo(copy->logPath).fileName().toStdString() + ":3: 2 fields where the header has 26"),
+  EXPECT_NE(message.find(QFileInfo(copy->logPath).fileName().toStdString() + ":3: 2 fields where the header has 27"),
             std::string::npos) << message;
   ASSERT_FALSE(w.recoveredLogPath().isEmpty());
   EXPECT_NE(message.find(w.recoveredLogPath().toStdString()), std::string::npos) << message;

@@ -4,9 +4,12 @@
 // through the real modal dialogs, as a user would.
 #include <QAction>
 #include <QDir>
+#include <QDockWidget>
 #include <QFile>
 #include <QFileInfo>
+#include <QInputDialog>
 #include <QMessageBox>
+#include <QTableWidget>
 #include <QPushButton>
 #include <QTemporaryDir>
 #include <QThread>
@@ -16,6 +19,7 @@
 #include "GuiEnvironment.h"
 #include "GuiHelpers.h"
 #include "reamsim/mesh/MeshIO.h"
+#include "reamsim/ream/CutLogIO.h"
 
 namespace reamsim::ui::test {
 namespace {
@@ -256,6 +260,100 @@ TEST(GuiUnsavedChanges, SavingMarksTheBoneSavedUntilTheHistoryMovesAway) {
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_FALSE(w.hasUnsavedChanges());
   EXPECT_TRUE(closeAnswering(w, {}, 0));
+}
+
+// A note written on a cut in the log dock is work: the title marks it, Save writes it in the cut log beside the
+// bone, and closing after a note written since asks again.
+TEST(GuiUnsavedChanges, ANoteOnACutIsSavedWithTheLog) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  QTemporaryDir out;
+  ASSERT_TRUE(w.saveBoneAs(out.filePath("bone.ply"))) << w.lastError().toStdString();
+  ASSERT_FALSE(w.isWindowModified());
+  auto* panel = w.findChild<QDockWidget*>("LogPanel");
+  ASSERT_NE(panel, nullptr);
+  bool annotated = false;
+  const QString note = QString::fromUtf8("rim reached, \"stop\" here\nnext: 2° more retroversion");
+  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, 0),
+                                        Q_ARG(QString, note)));
+  EXPECT_TRUE(annotated);
+  QString shown;
+  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "noteOfRow", Q_RETURN_ARG(QString, shown), Q_ARG(int, 0)));
+  EXPECT_EQ(shown, note);  // the table follows the document
+  EXPECT_EQ(s.log()->entries()[0].note, note.toStdString());
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  EXPECT_TRUE(w.isWindowModified());
+  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, 1),
+                                        Q_ARG(QString, note)));
+  EXPECT_FALSE(annotated);  // no such row
+  ASSERT_TRUE(w.saveBoneAs(out.filePath("bone.ply"))) << w.lastError().toStdString();
+  EXPECT_FALSE(w.isWindowModified());
+  const std::vector<CutLogEntry> saved = readCutLogCsv(out.filePath("bone.cut_log.csv").toStdString());
+  ASSERT_EQ(saved.size(), 1u);
+  EXPECT_EQ(saved[0].note, note.toStdString());
+  // Changed after the save: asked about on close (Cancel keeps the window).
+  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, 0),
+                                        Q_ARG(QString, QString("changed"))));
+  EXPECT_TRUE(w.isWindowModified());
+  QString text;
+  EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Cancel, &text)}, 1));
+  EXPECT_TRUE(text.contains("notes on its cuts have changed")) << text.toStdString();
+  EXPECT_FALSE(text.contains("the bone has changed")) << text.toStdString();  // saved: only the note is new
+  EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
+}
+
+// As a user writes one: a double-click on the cut's row opens the note dialog with the note so far; OK writes
+// it, Cancel leaves it.
+TEST(GuiUnsavedChanges, ADoubleClickOnACutWritesItsNote) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  cutOnce(s, 0.7);
+  auto* panel = w.findChild<QDockWidget*>("LogPanel");
+  ASSERT_NE(panel, nullptr);
+  auto* table = panel->findChild<QTableWidget*>("LogTable");
+  ASSERT_NE(table, nullptr);
+  ASSERT_EQ(table->rowCount(), 2);
+  const auto writeNote = [](const QString& note, QString* shown) {
+    return [note, shown](QWidget* m) {
+      auto* dialog = qobject_cast<QInputDialog*>(m);
+      ASSERT_NE(dialog, nullptr) << m->metaObject()->className();
+      *shown = dialog->textValue();
+      if (note.isNull()) return dialog->reject();
+      dialog->setTextValue(note);
+      dialog->accept();
+    };
+  };
+  const auto doubleClickRow = [&](int row) {
+    table->scrollToItem(table->item(row, 0));
+    const QRect cell = table->visualItemRect(table->item(row, 0));
+    // A double-click is a press and release, then the double-click event (QTest sends only the last).
+    QTest::mouseClick(table->viewport(), Qt::LeftButton, {}, cell.center());
+    QTest::mouseDClick(table->viewport(), Qt::LeftButton, {}, cell.center());
+  };
+  QString before;
+  {
+    ModalAnswers answers({writeNote("second pass\ndeeper", &before)});
+    doubleClickRow(1);
+    EXPECT_EQ(answers.seen(), 1);
+  }
+  EXPECT_TRUE(before.isEmpty());
+  EXPECT_EQ(s.log()->entries()[1].note, "second pass\ndeeper");
+  EXPECT_EQ(s.log()->entries()[0].note, "");
+  EXPECT_EQ(table->item(1, table->columnCount() - 1)->text(), "second pass\ndeeper");
+  {
+    ModalAnswers answers({writeNote(QString(), &before)});  // Cancel
+    doubleClickRow(1);
+    EXPECT_EQ(answers.seen(), 1);
+  }
+  EXPECT_EQ(before, "second pass\ndeeper");  // the dialog starts from the note so far
+  EXPECT_EQ(s.log()->entries()[1].note, "second pass\ndeeper");
+  EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
 }
 
 }  // namespace

@@ -53,7 +53,9 @@ std::vector<CutLogEntry> variedEntries() {
   a.reamer = "glenoid-36-R30";
   a.reamerDiameterMm = 36;
   a.reamerSphereRadiusMm = 30;
+  a.note = "seated, \"first\" pass";
   CutLogEntry b = a;
+  b.note.clear();
   b.stepIndex = 7;
   b.timeUnixMs = 0;  // not recorded
   b.contact = true;
@@ -104,6 +106,7 @@ TEST(CutLog, ACsvReadsBackToTheRowsItWasWrittenFrom) {
     EXPECT_EQ(back[i].reamer, rows[i].reamer);
     EXPECT_EQ(back[i].reamerDiameterMm, rows[i].reamerDiameterMm);
     EXPECT_EQ(back[i].reamerSphereRadiusMm, rows[i].reamerSphereRadiusMm);
+    EXPECT_EQ(back[i].note, rows[i].note);
   }
   EXPECT_EQ(back[1].contactPoint->z, 99.875);
   EXPECT_TRUE(cutLogFromCsv(cutLogCsv({}), "empty.csv").empty());  // a header alone: no rows
@@ -115,6 +118,49 @@ TEST(CutLog, ACsvReadsBackToTheRowsItWasWrittenFrom) {
   for (char ch : plain) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
   EXPECT_EQ(cutLogCsv(cutLogFromCsv(crlf, "crlf.csv")), plain);
   EXPECT_EQ(cutLogCsv(cutLogFromCsv(csv.substr(0, csv.size() - 1), "cut.csv")), csv);
+}
+
+// A row's note (an educator's annotation) is any text: commas, quotes, line breaks, UTF-8. It reads back as
+// written, the JSON has it, and a log written before rows had notes (no "note" column) still reads.
+TEST(CutLog, NotesReadBackAndLogsWithoutTheNoteColumnStillRead) {
+  std::vector<CutLogEntry> rows = variedEntries();
+  rows[0].note = "Glenoid: 5° retroversion – corrected ✓";
+  rows[1].note = "line one, \"quoted\"\nline two\n";
+  rows[2].note = ",";
+  const std::string csv = cutLogCsv(rows);
+  const std::vector<CutLogEntry> back = cutLogFromCsv(csv, "notes.csv");
+  ASSERT_EQ(back.size(), 3u);
+  for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(back[i].note, rows[i].note) << i;
+  const std::string json = cutLogJson(rows);
+  EXPECT_NE(json.find("\"note\": \"Glenoid: 5° retroversion – corrected ✓\""), std::string::npos) << json;
+  EXPECT_NE(json.find(R"("note": "line one, \"quoted\"\nline two\n")"), std::string::npos) << json;
+  // A note that is not UTF-8 (a damaged file read back) does not stop the JSON.
+  rows[2].note = "\xff\xfe";
+  EXPECT_NE(cutLogJson(rows).find("\"note\": \"\xef\xbf\xbd\xef\xbf\xbd\""), std::string::npos);
+
+  // The same rows as the writer wrote them before session 55: no "note" column.
+  std::vector<CutLogEntry> plain = variedEntries();
+  for (CutLogEntry& e : plain) e.note.clear();
+  const std::string text = cutLogCsv(plain);
+  std::string old;
+  for (std::size_t at = 0, end; at < text.size(); at = end + 1) {
+    end = text.find('\n', at);
+    std::string line = text.substr(at, end - at);
+    if (at == 0) {
+      ASSERT_EQ(line.substr(line.size() - 5), ",note");
+      line.resize(line.size() - 5);
+    } else if (!line.empty() && line.back() == ',') {  // a record's last line: its empty note's field goes
+      line.pop_back();
+    }
+    old += line + "\n";
+  }
+  const std::vector<CutLogEntry> oldRows = cutLogFromCsv(old, "before_notes.csv");
+  ASSERT_EQ(oldRows.size(), 3u);
+  EXPECT_EQ(cutLogCsv(oldRows), cutLogCsv(plain));
+  // An old header with a row of the new width, and the reverse, are refused.
+  const std::string oldHeader = old.substr(0, old.find('\n') + 1);
+  const std::string newRows = text.substr(text.find('\n') + 1);
+  EXPECT_THROW(cutLogFromCsv(oldHeader + newRows, "mixed.csv"), InputError);
 }
 
 // Each damage is refused with the file, the line (of the record it is in) and the column.
@@ -137,7 +183,7 @@ TEST(CutLog, ADamagedCsvIsRefusedNamingTheLineAndTheColumn) {
     std::string after, from, to, where, what;
   };
   const std::vector<Damage> damages = {
-      {"", "-38.125000", "-38,125000", ":2: ", "27 fields where the header has 26"},  // a decimal comma
+      {"", "-38.125000", "-38,125000", ":2: ", "28 fields where the header has 27"},  // a decimal comma
       {"", "-38.125000", "-38.12x000", ":2: ", "column 3 (tip_x): '-38.12x000' is not a number"},
       {"", ",14998,", ",1.5e4,", ":2: ", "column 15 (faces): '1.5e4' is not a whole number"},
       {"", "2026-11-22T05:27:11.325Z", "2026-11-31T05:27:11.325Z", ":2: ", "column 2 (time_utc)"},

@@ -76,5 +76,49 @@ TEST(Plan, PlacedPosesRoundTripAndFollowTheFeed) {
                  "feed.start.placed is for the poses");
 }
 
+// A recorded session's notes and times ("note", "t_ms"): kept through a round trip, counted after the feed's
+// steps (which have neither), and refused clearly when they are not a string, or a time that is negative, huge
+// or earlier than an earlier pose's.
+TEST(Plan, NotesAndRecordedTimesRoundTrip) {
+  const ReamPlan p = parsePlan(
+      R"({"feed": {"start": {"tip": [0, 0, 5], "axis": [0, 0, -1]}, "step_mm": 0.5, "count": 2},
+          "poses": [{"tip": [0, 0, 0], "axis": [1, 0, 0], "t_ms": 0, "note": "seat, \"then\" tilt\nslowly"},
+                    {"tip": [0, 0, 1], "axis": [1, 0, 0]},
+                    {"tip": [0, 0, 2], "axis": [1, 0, 0], "t_ms": 1250.5, "note": ""},
+                    {"tip": [0, 0, 3], "axis": [1, 0, 0], "t_ms": 1250.5, "note": "5° – done ✓"}]})",
+      "plan.json");
+  EXPECT_EQ(p.poseNotes, (std::vector<std::string>{"seat, \"then\" tilt\nslowly", "", "", "5° – done ✓"}));
+  ASSERT_EQ(p.poseTimesMs.size(), 4u);
+  EXPECT_EQ(p.poseTimesMs[0], 0.0);
+  EXPECT_FALSE(p.poseTimesMs[1].has_value());
+  EXPECT_EQ(p.poseTimesMs[3], 1250.5);
+  EXPECT_TRUE(p.hasTimes());
+  EXPECT_EQ(p.expandedNotes(), (std::vector<std::string>{"", "", "seat, \"then\" tilt\nslowly", "", "", "5° – done ✓"}));
+  const std::vector<std::optional<double>> times = p.expandedTimesMs();
+  ASSERT_EQ(times.size(), 6u);
+  EXPECT_FALSE(times[0].has_value());
+  EXPECT_EQ(times[2], 0.0);
+  EXPECT_EQ(times[5], 1250.5);
+  const ReamPlan q = parsePlan(planToJson(p), "again.json");
+  EXPECT_EQ(q.poseNotes, p.poseNotes);
+  EXPECT_EQ(q.poseTimesMs, p.poseTimesMs);
+  // A plan without them has none (and writes none).
+  const ReamPlan bare = parsePlan(R"({"poses": [{"tip": [0, 0, 0], "axis": [1, 0, 0]}]})", "bare.json");
+  EXPECT_TRUE(bare.poseNotes.empty());
+  EXPECT_TRUE(bare.poseTimesMs.empty());
+  EXPECT_FALSE(bare.hasTimes());
+  EXPECT_EQ(bare.expandedNotes(), std::vector<std::string>{""});
+  EXPECT_EQ(planToJson(bare).find("t_ms"), std::string::npos);
+  expectRejected(R"({"poses": [{"tip": [0, 0, 0], "axis": [1, 0, 0], "note": 3}]})", "poses[0].note must be a string");
+  expectRejected(R"({"poses": [{"tip": [0, 0, 0], "axis": [1, 0, 0], "t_ms": -1}]})", "poses[0].t_ms must be a number");
+  expectRejected(R"({"poses": [{"tip": [0, 0, 0], "axis": [1, 0, 0], "t_ms": 1e12}]})", "from 0 to 1e9");
+  expectRejected(R"({"poses": [{"tip": [0, 0, 0], "axis": [1, 0, 0], "t_ms": "1"}]})", "poses[0].t_ms");
+  expectRejected(R"({"poses": [{"tip": [0, 0, 0], "axis": [1, 0, 0], "t_ms": 500}, {"tip": [0, 0, 1], "axis": [1, 0, 0]},
+                               {"tip": [0, 0, 2], "axis": [1, 0, 0], "t_ms": 499}]})",
+                 "poses[2].t_ms goes back in time (499.0 after 500.0)");
+  expectRejected(R"({"feed": {"start": {"tip": [0, 0, 0], "axis": [1, 0, 0], "note": "x"}, "step_mm": 1, "count": 1}})",
+                 "feed.start.note is for the poses");
+}
+
 }  // namespace
 }  // namespace reamsim

@@ -57,6 +57,18 @@ TEST(ReamReport, SaysWhatWasRemovedCutByCutAndEscapesNames) {
   EXPECT_EQ(html.find("<img"), std::string::npos);
   EXPECT_EQ(count(html, "<table>"), count(html, "</table>"));
   EXPECT_EQ(count(html, "<tr>"), count(html, "</tr>"));
+  EXPECT_EQ(html.find("<th>note</th>"), std::string::npos);  // no cut has a note: no column
+}
+
+// A cut's note (an annotation) gets a column, escaped, when any cut has one.
+TEST(ReamReport, ShowsTheCutsNotesEscaped) {
+  ReamReportInput in = twoCuts();
+  in.cuts[1].note = "tilted <5°> & \"re-seated\"\nthen fed";
+  const std::string html = reamReportHtml(in);
+  EXPECT_NE(html.find("<th>note</th>"), std::string::npos);
+  EXPECT_EQ(count(html, "<td class=\"note\">"), 2u);  // the row without a note has an empty cell
+  EXPECT_NE(html.find("<td class=\"note\">tilted &lt;5°&gt; &amp; &quot;re-seated&quot;\nthen fed</td>"), std::string::npos);
+  EXPECT_EQ(count(html, "<tr>"), count(html, "</tr>"));
 }
 
 TEST(ReamReport, GivesTheAxisVersionAndInclinationWithLandmarks) {

@@ -7,4 +7,11 @@ void LogNode::append(CutLogEntry entry) {
   markModified();
 }
 
+void LogNode::setNote(std::size_t row, std::string note) {
+  if (entries_.at(row).note == note) return;
+  entries_[row].note = std::move(note);
+  ++notesRevision_;
+  markModified();
+}
+
 }  // namespace reamsim

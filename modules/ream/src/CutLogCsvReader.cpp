@@ -174,16 +174,18 @@ std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::strin
   if (rows.empty()) throw InputError(file, "empty: not a cut log (no header line)");
   std::string header = text.substr(0, text.find('\n'));  // as written: no field quoted
   if (!header.empty() && header.back() == '\r') header.pop_back();
-  if (header != detail::kCutLogCsvHeader)
+  const bool withNotes = header == detail::kCutLogCsvHeader;
+  if (!withNotes && header != detail::kCutLogCsvHeaderWithoutNotes)
     throw InputError(file, 1,
                      "not a ReamSim cut log: the header is not \"" + std::string(detail::kCutLogCsvHeader) + "\"");
+  const std::size_t columns = columnNames().size() - (withNotes ? 0 : 1);
   std::vector<CutLogEntry> out;
   out.reserve(rows.size() - 1);
   for (std::size_t i = 1; i < rows.size(); ++i) {
     const Record& r = rows[i];
-    if (r.fields.size() != columnNames().size())
+    if (r.fields.size() != columns)
       throw InputError(file, r.line, std::to_string(r.fields.size()) + " fields where the header has " +
-                                         std::to_string(columnNames().size()));
+                                         std::to_string(columns));
     const RowReader f(r, file);
     CutLogEntry e;
     e.stepIndex = f.count(0);
@@ -204,6 +206,7 @@ std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::strin
     e.reamer = f.text(23);
     e.reamerDiameterMm = f.optionalNumber(24).value_or(0.0);
     e.reamerSphereRadiusMm = f.optionalNumber(25);
+    if (withNotes) e.note = f.text(26);
     out.push_back(std::move(e));
   }
   return out;

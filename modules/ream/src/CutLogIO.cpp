@@ -69,7 +69,8 @@ std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
            pointCsv(e.moveContactPoint);
     out += "," + csvField(e.reamer) + "," +
            (e.reamerDiameterMm > 0 ? num(e.reamerDiameterMm, NumberStyle::Significant9) : std::string()) + "," +
-           (e.reamerSphereRadiusMm ? num(*e.reamerSphereRadiusMm, NumberStyle::Significant9) : std::string()) + "\n";
+           (e.reamerSphereRadiusMm ? num(*e.reamerSphereRadiusMm, NumberStyle::Significant9) : std::string()) + "," +
+           csvField(e.note) + "\n";
   }
   return out;
 }
@@ -97,10 +98,12 @@ std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::strin
                                                     {"diameter_mm", e.reamerDiameterMm},
                                                     {"sphere_radius_mm", e.reamerSphereRadiusMm ? nlohmann::json(*e.reamerSphereRadiusMm)
                                                                                                 : nlohmann::json(nullptr)}};
+    r["note"] = e.note;
     rows.push_back(r);
   }
   nlohmann::json j = {{"summary", nlohmann::json::parse(summaryJson)}, {"steps", rows}};
-  return j.dump(2);
+  // A note read from a damaged file may not be UTF-8: replaced (U+FFFD), never a reason to lose the log.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 void writeTextFile(const std::string& path, const std::string& text) { replaceFile(path, text); }

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "reamsim/mesh/MeshError.h"
@@ -27,7 +28,16 @@ Vec3 readVec3(const json& j, const std::string& where, const std::string& source
   return v;
 }
 
-Pose readPose(const json& j, const std::string& where, const std::string& source, bool* placed = nullptr) {
+constexpr double kMaxTimeMs = 1e9;  // 11.6 days: beyond any session, and exact in a double to the microsecond
+
+// What a pose of "poses" may carry besides where it is (docs/PLAN_FORMAT.md).
+struct PoseExtras {
+  bool placed = false;
+  std::string note;
+  std::optional<double> timeMs;
+};
+
+Pose readPose(const json& j, const std::string& where, const std::string& source, PoseExtras* extras = nullptr) {
   if (!j.is_object()) throw InputError(source, where + " must be an object with \"tip\" and \"axis\"");
   for (const char* key : {"tip", "axis"})
     if (!j.contains(key)) throw InputError(source, where + " lacks \"" + key + "\"");
@@ -41,17 +51,31 @@ Pose readPose(const json& j, const std::string& where, const std::string& source
     p.rollDeg = j["roll_deg"].get<double>();
     if (!std::isfinite(p.rollDeg)) throw InputError(source, where + ".roll_deg must be finite");
   }
+  for (const char* key : {"placed", "note", "t_ms"})
+    if (j.contains(key) && !extras)
+      throw InputError(source, where + "." + key + " is for the poses of \"poses\"");
   if (j.contains("placed")) {
-    if (!placed) throw InputError(source, where + ".placed is for the poses of \"poses\"");
     if (!j["placed"].is_boolean()) throw InputError(source, where + ".placed must be true or false");
-    *placed = j["placed"].get<bool>();
+    extras->placed = j["placed"].get<bool>();
+  }
+  if (j.contains("note")) {
+    if (!j["note"].is_string()) throw InputError(source, where + ".note must be a string");
+    extras->note = j["note"].get<std::string>();
+  }
+  if (j.contains("t_ms")) {
+    const json& t = j["t_ms"];
+    if (!t.is_number() || !std::isfinite(t.get<double>()) || t.get<double>() < 0 || t.get<double>() > kMaxTimeMs)
+      throw InputError(source, where + ".t_ms must be a number of milliseconds from 0 to 1e9");
+    extras->timeMs = t.get<double>();
   }
   return p;
 }
 
-json poseJson(const Pose& p, bool placed = false) {
+json poseJson(const Pose& p, bool placed = false, const std::string& note = {}, std::optional<double> timeMs = {}) {
   json j = {{"tip", {p.tip.x, p.tip.y, p.tip.z}}, {"axis", {p.axis.x, p.axis.y, p.axis.z}}, {"roll_deg", p.rollDeg}};
   if (placed) j["placed"] = true;
+  if (timeMs) j["t_ms"] = *timeMs;
+  if (!note.empty()) j["note"] = note;
   return j;
 }
 }  // namespace
@@ -71,6 +95,25 @@ std::vector<bool> ReamPlan::expandedPlacements() const {
   for (std::size_t i : placedPoses)
     if (i < poses.size()) out[first + i] = true;
   return out;
+}
+
+std::vector<std::string> ReamPlan::expandedNotes() const {
+  std::vector<std::string> out(feed ? std::size_t(feed->count) : 0);
+  out.resize(out.size() + poses.size());
+  std::copy(poseNotes.begin(), poseNotes.begin() + std::min(poseNotes.size(), poses.size()), out.end() - poses.size());
+  return out;
+}
+
+std::vector<std::optional<double>> ReamPlan::expandedTimesMs() const {
+  std::vector<std::optional<double>> out(feed ? std::size_t(feed->count) : 0);
+  out.resize(out.size() + poses.size());
+  std::copy(poseTimesMs.begin(), poseTimesMs.begin() + std::min(poseTimesMs.size(), poses.size()),
+            out.end() - poses.size());
+  return out;
+}
+
+bool ReamPlan::hasTimes() const {
+  return std::any_of(poseTimesMs.begin(), poseTimesMs.end(), [](const std::optional<double>& t) { return t.has_value(); });
 }
 
 double ReamPlan::maxStepMm() const {
@@ -117,11 +160,25 @@ ReamPlan parsePlan(const std::string& text, const std::string& source) {
   }
   if (j.contains("poses")) {
     if (!j["poses"].is_array()) throw InputError(source, "\"poses\" must be an array");
-    for (std::size_t i = 0; i < j["poses"].size(); ++i) {
-      bool placed = false;
-      plan.poses.push_back(readPose(j["poses"][i], "poses[" + std::to_string(i) + "]", source, &placed));
-      if (placed) plan.placedPoses.push_back(i);
+    const std::size_t n = j["poses"].size();
+    std::vector<std::string> notes(n);
+    std::vector<std::optional<double>> times(n);
+    std::optional<double> lastTime;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string where = "poses[" + std::to_string(i) + "]";
+      PoseExtras extras;
+      plan.poses.push_back(readPose(j["poses"][i], where, source, &extras));
+      if (extras.placed) plan.placedPoses.push_back(i);
+      notes[i] = std::move(extras.note);
+      times[i] = extras.timeMs;
+      if (extras.timeMs && lastTime && *extras.timeMs < *lastTime)
+        throw InputError(source, where + ".t_ms goes back in time (" + json(*extras.timeMs).dump() + " after " +
+                                     json(*lastTime).dump() + ")");
+      if (extras.timeMs) lastTime = extras.timeMs;
     }
+    if (std::any_of(notes.begin(), notes.end(), [](const std::string& t) { return !t.empty(); }))
+      plan.poseNotes = std::move(notes);
+    if (lastTime) plan.poseTimesMs = std::move(times);
   }
   if (!plan.feed && plan.poses.empty()) throw InputError(source, "the plan has neither \"feed\" nor \"poses\"");
   return plan;
@@ -144,9 +201,12 @@ std::string planToJson(const ReamPlan& plan) {
   if (!plan.poses.empty()) {
     j["poses"] = json::array();
     for (std::size_t i = 0; i < plan.poses.size(); ++i)
-      j["poses"].push_back(poseJson(plan.poses[i], std::binary_search(plan.placedPoses.begin(), plan.placedPoses.end(), i)));
+      j["poses"].push_back(poseJson(plan.poses[i], std::binary_search(plan.placedPoses.begin(), plan.placedPoses.end(), i),
+                                    i < plan.poseNotes.size() ? plan.poseNotes[i] : std::string(),
+                                    i < plan.poseTimesMs.size() ? plan.poseTimesMs[i] : std::nullopt));
   }
-  return j.dump(2);
+  // A note that is not UTF-8 (typed in no editor, but read from a damaged file) is replaced, not a failed export.
+  return j.dump(2, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace reamsim

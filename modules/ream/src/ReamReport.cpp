@@ -1,5 +1,6 @@
 #include "reamsim/ream/ReamReport.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -86,7 +87,7 @@ std::string reamReportHtml(const ReamReportInput& in) {
   h += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escaped(in.title) +
        "</title>\n<style>\nbody{font-family:sans-serif;margin:2em;max-width:70em}\n"
        "table{border-collapse:collapse;margin:0.5em 0 1.5em}\nth,td{border:1px solid #bbb;padding:0.25em 0.6em;"
-       "text-align:left}\ntd.n{text-align:right}\nimg{max-width:100%;border:1px solid #bbb}\n</style>\n</head>\n<body>\n";
+       "text-align:left}\ntd.n{text-align:right}\ntd.note{white-space:pre-wrap}\nimg{max-width:100%;border:1px solid #bbb}\n</style>\n</head>\n<body>\n";
   h += "<h1>" + escaped(in.title) + "</h1>\n";
   h += "<p>Written " + escaped(in.writtenUnixMs > 0 ? isoTimeUtc(in.writtenUnixMs) : std::string("(time not recorded)")) +
        " by " + escaped(in.writtenBy) + ".</p>\n";
@@ -135,9 +136,10 @@ std::string reamReportHtml(const ReamReportInput& in) {
   if (in.cuts.empty()) {
     h += "<p>No cut was logged.</p>\n";
   } else {
+    const bool anyNote = std::any_of(in.cuts.begin(), in.cuts.end(), [](const CutLogEntry& e) { return !e.note.empty(); });
     h += "<table>\n<tr><th>step</th><th>time (UTC)</th><th>removed mm³</th><th>cumulative mm³</th><th>faces</th>"
          "<th>cut ms</th><th>reamer</th><th>version, inclination</th>" +
-         std::string(in.plannedAxis ? "<th>off the plan</th>" : "") + "</tr>\n";
+         std::string(in.plannedAxis ? "<th>off the plan</th>" : "") + (anyNote ? "<th>note</th>" : "") + "</tr>\n";
     for (std::size_t i = 0; i < in.cuts.size(); ++i) {
       const CutLogEntry& e = in.cuts[i];
       const bool wasUndone = i < in.undone.size() && in.undone[i];
@@ -148,7 +150,7 @@ std::string reamReportHtml(const ReamReportInput& in) {
            angles(e.pose.axis) + "</td>" +
            (in.plannedAxis ? "<td class=\"n\">" + fixed(axisDeviationDeg(in.plannedAxis->axis, e.pose.axis), 1) + "°</td>"
                            : std::string()) +
-           "</tr>\n";
+           (anyNote ? "<td class=\"note\">" + escaped(e.note) + "</td>" : std::string()) + "</tr>\n";
     }
     h += "</table>\n";
   }

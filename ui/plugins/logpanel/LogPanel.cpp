@@ -4,6 +4,7 @@
 #include <QFileDialog>
 #include <QHBoxLayout>
 #include <QHeaderView>
+#include <QInputDialog>
 #include <QLabel>
 #include <QLocale>
 #include <QMessageBox>
@@ -29,11 +30,13 @@ LogPanel::LogPanel(Document& document, QWidget* parent) : QDockWidget(tr("Cut lo
   auto* body = new QWidget(this);
   auto* layout = new QVBoxLayout(body);
   auto* splitter = new QSplitter(Qt::Vertical, body);
-  table_ = new QTableWidget(0, 9, splitter);
+  table_ = new QTableWidget(0, 10, splitter);
   table_->setObjectName("LogTable");
   table_->setHorizontalHeaderLabels({tr("time"), tr("removed mm³"), tr("cumulative mm³"), tr("cut ms"), tr("faces"),
                                      tr("contact point (mm)"), tr("step"), tr("reamer"),
-                                     tr("version / inclination")});
+                                     tr("version / inclination"), tr("note")});
+  table_->horizontalHeaderItem(kNoteColumn)
+      ->setToolTip(tr("Your annotation of the cut: double-click the row, or select it and press Note…"));
   table_->horizontalHeaderItem(kAnglesColumn)
       ->setToolTip(tr("The reamer axis's version and inclination in the scapular frame of the bone's landmarks "
                       "(Planning dock; docs/PLANNING.md): – where the landmarks are not all placed"));
@@ -51,11 +54,17 @@ LogPanel::LogPanel(Document& document, QWidget* parent) : QDockWidget(tr("Cut lo
   seatButton_->setFocusPolicy(Qt::NoFocus);
   seatButton_->setToolTip(tr("How much of the reamer's cutting face sits on reamed bone at its pose, and how far "
                              "the bone stands off the face's ideal sphere"));
+  noteButton_ = new QPushButton(tr("Note…"), body);
+  noteButton_->setObjectName("AnnotateRow");
+  noteButton_->setFocusPolicy(Qt::NoFocus);
+  noteButton_->setToolTip(tr("Write a note on the selected cut (the last one when none is selected): saved with the "
+                             "log, in the report and in an exported path, shown when the path is replayed"));
   seatLabel_ = new QLabel(body);
   seatLabel_->setObjectName("SeatReport");
   seatLabel_->setWordWrap(true);
   seatLabel_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   auto* buttons = new QHBoxLayout;
+  buttons->addWidget(noteButton_);
   buttons->addWidget(seatButton_);
   buttons->addWidget(exportButton_);
   layout->addWidget(splitter);
@@ -64,6 +73,8 @@ LogPanel::LogPanel(Document& document, QWidget* parent) : QDockWidget(tr("Cut lo
   setWidget(body);
   connect(exportButton_, &QPushButton::clicked, this, &LogPanel::exportCsvInteractive);
   connect(seatButton_, &QPushButton::clicked, this, [this] { measureSeat(); });
+  connect(noteButton_, &QPushButton::clicked, this, [this] { annotateInteractive(); });
+  connect(table_, &QTableWidget::cellDoubleClicked, this, [this](int row, int) { annotateInteractive(row); });
   subscription_ = document_.subscribe([this](const DocumentEvent& e) {
     if (e.id.kind() == NodeKind::Log || e.id.kind() == NodeKind::Bone) sync();
   });
@@ -77,6 +88,7 @@ void LogPanel::sync() {
   if (!log || log->id() != logId_) {  // another log (new bone) or none: start over
     table_->setRowCount(0);
     shown_ = 0;
+    notesShown_ = 0;
     logId_ = log ? log->id() : NodeId{};
   }
   if (!log) {
@@ -89,7 +101,10 @@ void LogPanel::sync() {
   const bool otherLandmarks = !(landmarks == anglesFrom_);
   anglesFrom_ = landmarks;
   if (otherLandmarks) showAngles(0);  // every row again, in the new frame
-  if (entries.size() == shown_) return;
+  if (entries.size() == shown_) {
+    showNotes();
+    return;
+  }
   seatLabel_->clear();  // measured on an earlier bone state
   for (std::size_t i = shown_; i < entries.size(); ++i) {
     const CutLogEntry& e = entries[i];
@@ -121,6 +136,9 @@ void LogPanel::sync() {
   const std::size_t firstNew = shown_;
   shown_ = entries.size();
   showAngles(firstNew);
+  for (std::size_t i = firstNew; i < shown_; ++i)
+    table_->setItem(int(i), kNoteColumn, new QTableWidgetItem(QString::fromStdString(entries[i].note)));
+  notesShown_ = log->notesRevision();
   table_->scrollToBottom();
   std::vector<double> cumulative, ms;
   for (const CutLogEntry& e : entries) {
@@ -151,6 +169,52 @@ void LogPanel::showAngles(std::size_t first) {
       }
     table_->setItem(int(i), kAnglesColumn, new QTableWidgetItem(text));
   }
+}
+
+// Every row's note again when one has changed since they were shown (a row's note is all that can change).
+void LogPanel::showNotes() {
+  const LogNode* log = document_.firstOf<LogNode>();
+  if (!log || log->notesRevision() == notesShown_) return;
+  notesShown_ = log->notesRevision();
+  const auto& entries = log->entries();
+  for (std::size_t i = 0; i < shown_ && i < entries.size(); ++i) {
+    const QString note = QString::fromStdString(entries[i].note);
+    QTableWidgetItem* item = table_->item(int(i), kNoteColumn);
+    if (!item || item->text() != note) table_->setItem(int(i), kNoteColumn, new QTableWidgetItem(note));
+  }
+}
+
+bool LogPanel::annotateRow(int row, const QString& note) {
+  LogNode* log = document_.firstOf<LogNode>();
+  if (!log || row < 0 || std::size_t(row) >= log->size()) return false;
+  log->setNote(std::size_t(row), note.toStdString());
+  return true;
+}
+
+QString LogPanel::noteOfRow(int row) const {
+  const QTableWidgetItem* item = row >= 0 && row < table_->rowCount() ? table_->item(row, kNoteColumn) : nullptr;
+  return item ? item->text() : QString();
+}
+
+void LogPanel::annotateInteractive(int row) {
+  if (row < 0) row = table_->currentRow() >= 0 ? table_->currentRow() : table_->rowCount() - 1;
+  const LogNode* log = document_.firstOf<LogNode>();
+  if (!log || row < 0 || std::size_t(row) >= log->size()) {
+    QMessageBox::information(this, tr("Note"), tr("There is no cut to write a note on yet."));
+    return;
+  }
+  const NodeId logId = log->id();
+  const CutLogEntry& e = log->entries()[std::size_t(row)];
+  const std::size_t step = e.stepIndex;
+  const QString title = tr("Note on cut %1").arg(step);
+  const QString label = tr("Step %1: %L2 mm³ removed. Your note (shown in the report, kept in an exported path):")
+                            .arg(step)
+                            .arg(e.removedMm3, 0, 'f', 3);
+  bool ok = false;
+  const QString note = QInputDialog::getMultiLineText(this, title, label, QString::fromStdString(e.note), &ok);
+  // Cuts go on while the dialog is open; another bone brings another log, whose rows this note is not for.
+  const LogNode* now = document_.firstOf<LogNode>();
+  if (ok && now && now->id() == logId) annotateRow(row, note);
 }
 
 QString LogPanel::exportCsv(const QString& path, bool interactive) {

@@ -3,7 +3,8 @@
 // reamer, and the axis's version and inclination when the bone's landmarks are placed),
 // live plots of cumulative removed volume and cut time per step, CSV export, and on request the reamed
 // surface at the reamer's pose (how much of the cutting face is seated on bone, how far the bone stands off
-// the face's ideal sphere: modules/tools ReamedSurface.h). Follows the document's first LogNode, whichever
+// the face's ideal sphere: modules/tools ReamedSurface.h), and a note per row (an educator's annotation:
+// double-click a row or *Note…*; kept in the log, so saved, copied for a crash, exported). Follows the document's first LogNode, whichever
 // it is (a new bone brings a new log).
 #include <QDockWidget>
 #include <QTime>
@@ -26,12 +27,17 @@ class LogPanel : public QDockWidget {
   LogPanel(Document& document, QWidget* parent);
 
   int rowCount() const;
+  // Row `row`'s note becomes `note` (in the document's log); false when there is no such row.
+  Q_INVOKABLE bool annotateRow(int row, const QString& note);
+  Q_INVOKABLE QString noteOfRow(int row) const;  // as the table shows it
 
  public Q_SLOTS:
   // Writes the log as CSV; returns an error message, empty on success (also shown in a dialog if
   // `interactive`).
   QString exportCsv(const QString& path, bool interactive = false);
   void exportCsvInteractive();
+  // Asks for the note of `row` (the selected row, or the last, for -1) in a dialog.
+  void annotateInteractive(int row = -1);
   // Measures the first bone's surface against the first reamer's ideal face at its pose and shows the
   // result (or why there is none); returns the text shown. O(bone faces), on request only.
   QString measureSeat();
@@ -39,17 +45,21 @@ class LogPanel : public QDockWidget {
  private:
   void sync();
   void showAngles(std::size_t firstRow);
+  void showNotes();
   static constexpr int kAnglesColumn = 8;
+  static constexpr int kNoteColumn = 9;
 
   Document& document_;
   Subscription subscription_;
   NodeId logId_;
   ScapulaLandmarks anglesFrom_;  // the landmarks the angles column was computed with
   std::size_t shown_ = 0;
+  std::uint64_t notesShown_ = 0;  // the log's notesRevision the note column shows
   QTableWidget* table_ = nullptr;
   CutPlot* plot_ = nullptr;
   QPushButton* exportButton_ = nullptr;
   QPushButton* seatButton_ = nullptr;
+  QPushButton* noteButton_ = nullptr;
   QLabel* seatLabel_ = nullptr;
 };
 

@@ -32,6 +32,8 @@ struct CutLogEntry {
   std::string reamer;
   double reamerDiameterMm = 0;
   std::optional<double> reamerSphereRadiusMm;
+  // Free text an educator or surgeon attached to the step (the log dock's note column, a plan pose's "note").
+  std::string note;
 };
 
 }  // namespace reamsim

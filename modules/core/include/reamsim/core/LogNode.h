@@ -1,6 +1,7 @@
 #pragma once
 // Append-only cut log. Undo does not erase rows: the log records what was done, and each row names
-// the bone revision it produced (CutLogEntry::boneStateId).
+// the bone revision it produced (CutLogEntry::boneStateId). A row's note is the one thing that may change
+// after it is appended: an annotation, not a record of the step.
 #include <vector>
 
 #include "reamsim/core/CutLogEntry.h"
@@ -19,10 +20,15 @@ class LogNode : public Node {
   std::size_t size() const { return entries_.size(); }
   bool empty() const { return entries_.empty(); }
   const CutLogEntry& last() const { return entries_.back(); }  // precondition: !empty()
+  // Sets row `row`'s note (precondition: row < size()); reports Modified when it changes.
+  void setNote(std::size_t row, std::string note);
+  // Counts the notes' changes: a window compares it with the count at its last save (unsaved annotations).
+  std::uint64_t notesRevision() const { return notesRevision_; }
   double cumulativeMm3() const { return entries_.empty() ? 0.0 : entries_.back().cumulativeMm3; }
 
  private:
   std::vector<CutLogEntry> entries_;
+  std::uint64_t notesRevision_ = 0;
 };
 
 }  // namespace reamsim
