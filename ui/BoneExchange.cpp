@@ -5,6 +5,7 @@
 namespace reamsim::ui {
 
 void ReamSession::exchangeBone(BoneContent& other) {
+  const QuietPlanning quiet(*this);  // the landmarks go with their bone: not an edit
   cancelQueued();
   if (running_) watcher_.waitForFinished();  // its result is dropped: revisions never repeat (BoneHistory)
   {
@@ -22,6 +23,7 @@ void ReamSession::exchangeBone(BoneContent& other) {
 }
 
 void ReamSession::adoptHistory(BoneHistory history) {
+  const QuietPlanning quiet(*this);  // outlives the batch, whose report comes at its end
   Document::BatchScope batch(document_);  // the views never see the bone emptied between the two swaps
   BoneContent content;
   bone_->swapContent(content);

@@ -87,8 +87,9 @@ class MainWindow : public QMainWindow {
   // (never over the file it was opened from: that is the unrepaired original), else Save as.
   bool saveBone();
   const QString& savedPath() const { return savedPath_; }  // empty until Save as wrote this bone
-  // Changes since the bone was opened or last saved (the undo history is away from its saved point).
+  // Changes since the bone was opened or last saved: the bone, its landmarks and planned axis, the notes on its cuts.
   bool hasUnsavedChanges() const;
+  bool boneChangedSinceSave() const;  // the cut bone, not its landmarks or notes
   // Bones beside with cuts in their history whose state no save wrote (their names): Save writes the cut bone only.
   QStringList bonesBesideWithUnsavedCuts() const;
   // Bones replaced by a CT import (held by the undo history) with cuts no save wrote (their names).

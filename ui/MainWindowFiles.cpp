@@ -28,6 +28,7 @@
 #include "BonePlacement.h"
 #include "BoneCommands.h"
 #include "MainWindow.h"
+#include "PlanningCommand.h"
 #include "PluginHost.h"
 #include "WriteProgressDialog.h"
 #include "reamsim/ream/CutLogIO.h"
@@ -64,6 +65,7 @@ bool MainWindow::loadDefaultCase() {
     session_->plan()->setFeedDescription(plan.description);
     installBone(std::move(bone), tr("default scapula"), {});
     try {  // the case runs without them: version and inclination wait for landmarks placed by hand
+      const ReamSession::QuietPlanning quiet(*session_);  // they come with the bone: not an edit to undo
       session_->bone()->setLandmarks(loadDefaultLandmarks());
       savedPlanning_ = planningOf(*session_->bone());  // bundled: nothing to save
       updateTitle();
@@ -301,9 +303,20 @@ bool MainWindow::writeBoneFile(const QString& path) {
   return true;
 }
 
-// Cuts away from the saved point, or landmarks placed or notes written since (saved beside the bone).
+// The bone itself away from where it was opened or saved: anything but landmark edits (which the undo stack holds
+// too, PlanningCommand) between the stack's clean point and now. Undone back to it, the bone is as saved.
+bool MainWindow::boneChangedSinceSave() const {
+  const QUndoStack* undo = session_->undoStack();
+  if (undo->isClean()) return false;
+  if (undo->cleanIndex() < 0) return true;  // saved nowhere (a restored crash copy)
+  for (int i = std::min(undo->cleanIndex(), undo->index()); i < std::max(undo->cleanIndex(), undo->index()); ++i)
+    if (!dynamic_cast<const PlanningCommand*>(undo->command(i))) return true;
+  return false;
+}
+
+// The bone changed since it was saved, or its landmarks or the notes on its cuts (saved beside it).
 bool MainWindow::hasUnsavedChanges() const {
-  return !session_->undoStack()->isClean() || planningOf(*session_->bone()) != savedPlanning_ ||
+  return boneChangedSinceSave() || planningOf(*session_->bone()) != savedPlanning_ ||
          session_->log()->notesRevision() != savedNotesRevision_;
 }
 
@@ -318,6 +331,7 @@ void MainWindow::openLandmarksBeside(const QString& bonePath) {
   if (!QFileInfo::exists(file)) return;
   try {
     const BonePlanning planning = loadPlanning(file.toStdString());
+    const ReamSession::QuietPlanning quiet(*session_);  // saved with the bone: not an edit to undo
     applyPlanning(*session_->bone(), planning);
     savedPlanning_ = planning;
     updateTitle();
@@ -401,7 +415,7 @@ bool MainWindow::confirmDiscardChanges(const QString& action) {
   const QString name = boneName_.isEmpty() ? tr("The bone") : tr("The bone (%1)").arg(boneName_);
   const std::size_t cuts = session_->log()->entries().size();
   QStringList what;  // since it was opened or last saved
-  if (!session_->undoStack()->isClean()) what << tr("the bone has changed");
+  if (boneChangedSinceSave()) what << tr("the bone has changed");
   if (planningOf(*session_->bone()) != savedPlanning_) what << tr("its landmarks or planned axis have changed");
   if (session_->log()->notesRevision() != savedNotesRevision_) what << tr("notes on its cuts have changed");
   QMessageBox box(QMessageBox::Warning, tr("Unsaved changes"),

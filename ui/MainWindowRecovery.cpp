@@ -276,6 +276,7 @@ void MainWindow::offerRecovery() {
 void MainWindow::restoreRecoveredLandmarks(const RecoveredBone& found) {
   if (found.landmarksJson.isEmpty()) return;  // none placed, or a copy from before session 54
   try {
+    const ReamSession::QuietPlanning quiet(*session_);  // restored with the bone: not an edit to undo
     applyPlanning(*session_->bone(), parsePlanningJson(found.landmarksJson.toStdString(),
                                                         recovery_->dir().toStdString() + "/recovery.json"));
   } catch (const std::exception& e) {

@@ -10,6 +10,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 
 #include "CutCommand.h"
+#include "PlanningCommand.h"
 #include "PluginHost.h"
 #include "reamsim/ream/ReamStep.h"
 #include "reamsim/tools/ReamerFile.h"
@@ -26,11 +27,15 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
   placementRequests_ = document_.observeNode(reamer_->id(), [this] {
     if (const std::optional<Pose> pose = reamer_->takePlacementRequest()) moveReamer(*pose, false);
   });
+  planningEdits_ = document_.observeNode(bone_->id(), [this] { recordPlanningEdit(); });
   undo_.setUndoLimit(0);  // unlimited: the states share storage (see CutCommand)
   // Undo or redo (menu, keys, history view) stops a queued sequence: its remaining steps were planned on
   // the bone being left, and the step in flight is dropped (computed against the old bone).
   connect(&undo_, &QUndoStack::indexChanged, this, [this] {
-    if (pushingCut_) return;
+    if (pushingOwnCommand_) return;
+    // Only landmark edits undone or redone (a jump in the History dock may pass cuts too): the bone is as it was,
+    // and so are the path and the steps queued on it.
+    if (std::exchange(planningCommandRan_, false) && bone_->currentRevision() == pathRevision_) return;
     // The path goes on from a bone its steps did not leave (an undo, a redo, an exchanged bone; not a bone added
     // beside). Before its first step it simply starts from there.
     if (bone_->currentRevision() != pathRevision_) {
@@ -67,6 +72,7 @@ ReamSession::~ReamSession() {
 }
 
 void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose& start) {
+  const QuietPlanning quiet(*this);  // the new bone comes without landmarks: not an edit
   cancelQueued();
   if (running_) watcher_.waitForFinished();  // its result is dropped: the revision changes below
   {
@@ -113,6 +119,28 @@ void ReamSession::continueLog(std::vector<CutLogEntry> earlier, std::optional<do
     log_->append(std::move(e));
   }
   removedBefore_[bone_->history().entries().front().revision] = removedMm3.value_or(log_->cumulativeMm3());
+}
+
+ReamSession::QuietPlanning::~QuietPlanning() {
+  // Whatever changed meanwhile is where the undo stack now starts from, also when its report comes later (a
+  // batch still open around this scope).
+  if (--session_.planningQuiet_ == 0) session_.recordedPlanning_ = planningOf(*session_.bone_);
+}
+
+void ReamSession::recordPlanningEdit() {
+  const BonePlanning now = planningOf(*bone_);
+  if (now == recordedPlanning_) return;  // a cut, a name, a frame: not the planning
+  BonePlanning before = std::exchange(recordedPlanning_, now);
+  if (planningQuiet_ > 0) return;
+  pushingOwnCommand_ = true;  // our own push is not an undo
+  undo_.push(new PlanningCommand(*this, std::move(before), now));
+  pushingOwnCommand_ = false;
+}
+
+void ReamSession::restorePlanning(const BonePlanning& planning) {
+  planningCommandRan_ = true;  // the stack reports the index change once undo() or redo() has returned
+  const QuietPlanning quiet(*this);
+  applyPlanning(*bone_, planning);
 }
 
 double ReamSession::removedBeforeMm3() const {
@@ -424,9 +452,9 @@ void ReamSession::finished() {
     if (e.boneStateId != 0) {
       engine_->adopt(e.boneStateId);
       ++cuts_;
-      pushingCut_ = true;  // our own push is not an undo
+      pushingOwnCommand_ = true;  // our own push is not an undo
       undo_.push(new CutCommand(*bone_, e));
-      pushingCut_ = false;
+      pushingOwnCommand_ = false;
     }
     // The step put the reamer where it was computed; a newer user move is where it really is.
     if (latestUserPose_) reamer_->setPose(*latestUserPose_);

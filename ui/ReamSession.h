@@ -28,6 +28,7 @@
 #include "reamsim/core/ReamerNode.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/ream/ReamEngine.h"
+#include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/ui/PluginInterfaces.h"
 
 namespace reamsim::ui {
@@ -154,6 +155,23 @@ class ReamSession : public QObject {
   PathStart pathStart() const { return pathStart_; }
   void restartPath(PathStart start = PathStart::AsOpened);
 
+  // Edits of the bone's landmarks and planned axis (whoever makes them: the Planning dock, a click in the view)
+  // go on the undo stack as they reach the document (PlanningCommand). Landmarks that come with a bone are not
+  // edits: loadBone, exchangeBone and adoptHistory are quiet, and so is whatever runs while a QuietPlanning
+  // lives (the window applying the landmarks saved beside a bone it opens, or a crash copy's).
+  class QuietPlanning {
+   public:
+    explicit QuietPlanning(ReamSession& session) : session_(session) { ++session_.planningQuiet_; }
+    ~QuietPlanning();
+    QuietPlanning(const QuietPlanning&) = delete;
+    QuietPlanning& operator=(const QuietPlanning&) = delete;
+
+   private:
+    ReamSession& session_;
+  };
+  // Puts `planning` on the bone for an undo or redo of a PlanningCommand (not itself an edit).
+  void restorePlanning(const BonePlanning& planning);
+
   std::size_t cutsCommitted() const { return cuts_; }
   double lastMinDistanceMm() const { return lastMinDistance_; }
   // The bone's volume before its first logged cut (the log's cumulative volume is measured against it).
@@ -202,8 +220,13 @@ class ReamSession : public QObject {
   PlanNode* plan_ = nullptr;
   InteractionNode* interaction_ = nullptr;
   Subscription placementRequests_;  // a panel or device asking for the reamer somewhere: placed there
+  Subscription planningEdits_;      // the bone's landmarks or planned axis changed: an edit to record?
+  void recordPlanningEdit();
+  BonePlanning recordedPlanning_;   // the planning the undo stack knows the bone has
+  int planningQuiet_ = 0;
+  bool planningCommandRan_ = false;  // a PlanningCommand's undo or redo: the bone itself did not change
   QUndoStack undo_;
-  bool pushingCut_ = false;
+  bool pushingOwnCommand_ = false;
   double initialVolume_ = 0;
 
   std::unique_ptr<ReamEngine> engine_;

@@ -14,6 +14,7 @@
 #include <QFile>
 #include <QImage>
 #include <QTemporaryDir>
+#include <QUndoStack>
 #include <QtTest/QTest>
 #include <vtkCamera.h>
 #include <vtkRenderer.h>
@@ -236,6 +237,76 @@ TEST(GuiPlanning, LandmarksAreSavedBesideTheBoneAndOpenWithIt) {
   QFile kept(beside + ".unreadable");
   ASSERT_TRUE(kept.open(QIODevice::ReadOnly));
   EXPECT_EQ(kept.readAll().toStdString(), damaged);  // as it was
+}
+
+// A landmark edit is undone by Ctrl+Z like a cut, in the order they were made, and neither stops the steps
+// running nor counts as a change of the bone; landmarks that come with a bone are not edits.
+TEST(GuiPlanning, LandmarkEditsAreOnTheUndoStackBesideTheCuts) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  QUndoStack& undo = *s.undoStack();
+  EXPECT_EQ(undo.count(), 0);  // the bundled landmarks came with the bone
+  const ScapulaLandmarks bundled = s.bone()->landmarks();
+  cutOnce(s);
+  ASSERT_EQ(undo.count(), 1);
+  const std::uint64_t cut = s.bone()->currentRevision();
+  Vec3 centre = *bundled[ScapulaLandmark::GlenoidCentre];
+  centre.y += 2;
+  s.bone()->setLandmark(ScapulaLandmark::GlenoidCentre, centre);  // as a click in the view places it
+  ASSERT_EQ(undo.count(), 2);
+  EXPECT_EQ(undo.text(1), "Place the glenoid centre");
+  const Pose axis{centre, {0, -1, 0}, 0};
+  s.bone()->setPlannedAxis(axis);  // Aim
+  EXPECT_EQ(undo.text(2), "Plan the axis");
+  EXPECT_TRUE(w.hasUnsavedChanges());
+
+  w.action("undo")->trigger();  // the plan
+  EXPECT_FALSE(s.bone()->plannedAxis());
+  w.action("undo")->trigger();  // the landmark
+  EXPECT_EQ(s.bone()->landmarks(), bundled);
+  EXPECT_EQ(s.bone()->currentRevision(), cut);  // the cut stays
+  w.action("undo")->trigger();  // the cut
+  EXPECT_NE(s.bone()->currentRevision(), cut);
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  w.action("redo")->trigger();
+  w.action("redo")->trigger();
+  w.action("redo")->trigger();
+  EXPECT_EQ(s.bone()->currentRevision(), cut);
+  EXPECT_EQ(*s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre], centre);
+  ASSERT_TRUE(s.bone()->plannedAxis());
+
+  // Saved, then only landmark edits undone and redone: the bone itself is as saved; the title follows the landmarks.
+  QTemporaryDir dir;
+  ASSERT_TRUE(w.saveBoneAs(dir.filePath("bone.ply"))) << w.lastError().toStdString();
+  s.bone()->setPlannedAxis(std::nullopt);
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  EXPECT_FALSE(w.boneChangedSinceSave());
+  w.action("undo")->trigger();
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  EXPECT_FALSE(w.isWindowModified());
+
+  // A feed runs on while a landmark is placed, and while that is undone: neither interrupts the path.
+  s.restartPath(ReamSession::PathStart::Changed);  // the cut undone above interrupted the one before
+  const Pose seated = s.reamer()->pose();
+  s.runSteps({advancedAlongAxis(seated, 0.1), advancedAlongAxis(seated, 0.2), advancedAlongAxis(seated, 0.3),
+              advancedAlongAxis(seated, 0.4)});
+  ASSERT_TRUE(s.busy());
+  const std::size_t pathBefore = s.path().size();
+  s.bone()->setLandmark(ScapulaLandmark::InferiorAngle, *bundled[ScapulaLandmark::InferiorAngle] + Vec3{0, 0, 1});
+  w.action("undo")->trigger();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(s.path().size(), pathBefore + 4);  // every step ran
+  EXPECT_FALSE(s.pathInterrupted());
+  EXPECT_EQ(s.bone()->landmarks()[ScapulaLandmark::InferiorAngle], bundled[ScapulaLandmark::InferiorAngle]);
+
+  // Opening a bone with landmarks saved beside it: they are not an edit to undo.
+  w.openFile(dir.filePath("bone.ply"), true);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("bone.ply"); }, 60000)) << w.lastError().toStdString();
+  ASSERT_TRUE(s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre]);
+  EXPECT_EQ(undo.count(), 0);
+  EXPECT_FALSE(w.hasUnsavedChanges());
 }
 
 TEST(GuiPlanning, LandmarkFilesRoundTripAndADamagedOneIsNamed) {
