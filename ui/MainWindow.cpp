@@ -214,6 +214,17 @@ void MainWindow::buildMenus() {
   add(reamer, "run_plan", tr("Run a &plan…"), QKeySequence("Ctrl+Shift+P"), [this] { runPlanFile(); });
   add(reamer, "replay_plan", tr("&Replay a recorded path at its pace…"), {},
       [this] { runPlanFile({}, PlanPace::AsRecorded); });
+  QMenu* speeds = reamer->addMenu(tr("Replay s&peed"));
+  replaySpeeds_ = new QActionGroup(this);
+  for (double speed : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0}) {
+    QAction* a = speeds->addAction(speed == 1.0 ? tr("1× (as recorded)") : tr("%1×").arg(QLocale().toString(speed)));
+    a->setObjectName(QString("replay_speed_%1").arg(speed * 100));
+    a->setCheckable(true);
+    a->setData(speed);
+    replaySpeeds_->addAction(a);
+    connect(a, &QAction::triggered, this, [this, speed] { setReplaySpeed(speed); });
+  }
+  setReplaySpeed(persistent_ ? QSettings().value("replay_speed", 1.0).toDouble() : 1.0);
   reamer->addSeparator();
   add(reamer, "choose_reamer", tr("&Choose the reamer…"), QKeySequence("Ctrl+Shift+R"), [this] { chooseReamer(); });
   add(reamer, "choose_reamer_mesh", tr("Choose a reamer &mesh…"), {}, [this] { chooseReamerMesh(); })

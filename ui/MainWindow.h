@@ -18,6 +18,7 @@
 #include "reamsim/ream/ScapularFrame.h"
 
 class QAction;
+class QActionGroup;
 class QDialog;
 class QDoubleSpinBox;
 class QLabel;
@@ -45,7 +46,7 @@ struct ImportOutcome {
 };
 
 // How a plan's steps are run: as fast as they compute, or each timed pose at its recorded time (t_ms: a path
-// exported from a session); a plan without times cannot be replayed at its pace.
+// exported from a session) at the window's replay speed; a plan without times cannot be replayed at its pace.
 enum class PlanPace { AsFastAsComputed, AsRecorded };
 
 class MainWindow : public QMainWindow {
@@ -126,6 +127,9 @@ class MainWindow : public QMainWindow {
   // at (PlanPace). An empty path: the user picks the file. False (with a message naming the file and the
   // problem) when the plan cannot be run.
   bool runPlanFile(const QString& path = {}, PlanPace pace = PlanPace::AsFastAsComputed);
+  // How fast Replay a recorded path goes against the recorded pace (Reamer → Replay speed: ¼× to 8×; 1 as recorded).
+  void setReplaySpeed(double speed);
+  double replaySpeed() const { return replaySpeed_; }
   void showPluginsDialog();
   void showError(const QString& title, const QString& message);
   // CT import (MainWindowCtImport.cpp): the plugin's dialog for `path` (empty: the user picks one in
@@ -271,6 +275,8 @@ class MainWindow : public QMainWindow {
   // The log's notes (annotations) are saved with it (NAME.cut_log.csv): their count of changes at the last save
   // or open (LogNode::notesRevision), and in the crash-recovery copy kept.
   std::uint64_t savedNotesRevision_ = 0;
+  double replaySpeed_ = 1.0;
+  QActionGroup* replaySpeeds_ = nullptr;
   std::optional<std::uint64_t> copiedNotesRevision_;
   Subscription notesSubscription_;  // a note changed: the title...
   Subscription recoveryNotesSubscription_;  // ... and a crash copy  // those in the crash-recovery copy kept (none: no copy)

@@ -5,6 +5,7 @@
 #include <QDir>
 #include <QFileInfo>
 #include <QInputDialog>
+#include <QLocale>
 #include <QSettings>
 #include <QStatusBar>
 #include <algorithm>
@@ -176,12 +177,21 @@ bool MainWindow::runPlanFile(const QString& path, PlanPace pace) {
   // waiting goes (a queued feed, a move not yet computed, a ream to depth whose search is out).
   pendingDepth_.reset();
   session_->cancelQueued();
-  session_->runPlan(plan, paced);
-  statusBar()->showMessage((paced ? tr("Replaying %1 at its recorded pace: %Ln step(s)", "", int(poses.size()))
-                                  : tr("Running %1: %Ln step(s)", "", int(poses.size())))
-                               .arg(QFileInfo(file).fileName()),
-                           5000);
+  session_->runPlan(plan, paced ? replaySpeed_ : 0.0);
+  statusBar()->showMessage(
+      (paced ? tr("Replaying %1 at %2× its recorded pace: %Ln step(s)", "", int(poses.size()))
+                   .arg(QFileInfo(file).fileName(), QLocale().toString(replaySpeed_))
+             : tr("Running %1: %Ln step(s)", "", int(poses.size())).arg(QFileInfo(file).fileName())),
+      5000);
   return true;
+}
+
+void MainWindow::setReplaySpeed(double speed) {
+  if (!(speed >= 1.0 / 64 && speed <= 64)) return;  // a stored value gone wrong: the speed stays
+  replaySpeed_ = speed;
+  if (replaySpeeds_)
+    for (QAction* a : replaySpeeds_->actions()) a->setChecked(a->data().toDouble() == speed);
+  if (persistent_) QSettings().setValue("replay_speed", speed);
 }
 
 QString MainWindow::exportPath(const QString& file) {

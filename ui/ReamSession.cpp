@@ -228,7 +228,7 @@ void ReamSession::runSteps(const std::vector<Pose>& poses, const std::vector<boo
   startNext();
 }
 
-void ReamSession::runPlan(const ReamPlan& plan, bool atRecordedPace) {
+void ReamSession::runPlan(const ReamPlan& plan, double paceSpeed) {
   const std::vector<Pose> poses = plan.expandedPoses();
   if (!engine_ || poses.empty()) return;
   std::vector<bool> placed = plan.expandedPlacements();
@@ -239,9 +239,9 @@ void ReamSession::runPlan(const ReamPlan& plan, bool atRecordedPace) {
   queuePendingUserMove();
   for (std::size_t i = 0; i < poses.size(); ++i) {
     QueuedStep step{poses[i], std::nullopt, placed[i], notes[i]};
-    if (atRecordedPace && times[i]) {
+    if (paceSpeed > 0 && times[i]) {
       if (!firstTime) firstTime = times[i];
-      step.dueMs = *times[i] - *firstTime;
+      step.dueMs = (*times[i] - *firstTime) / paceSpeed;
     }
     queued_.push_back(std::move(step));
   }
@@ -322,9 +322,9 @@ void ReamSession::startNext() {
   if (!queued_.empty()) {
     if (const std::optional<double> due = queued_.front().dueMs) {
       if (!paceClock_.isValid()) paceClock_.start();  // the recorded path's first timed step: its time 0
-      const qint64 wait = static_cast<qint64>(std::ceil(*due)) - paceClock_.elapsed();
+      const double wait = std::ceil(*due - double(paceClock_.elapsed()));
       if (wait > 0) {  // busy meanwhile (the queue is not empty): a move by hand or Stop drops the rest
-        paceTimer_->start(static_cast<int>(std::min<qint64>(wait, std::numeric_limits<int>::max())));
+        paceTimer_->start(int(std::min(wait, double(std::numeric_limits<int>::max()))));  // longer: asked again
         return;
       }
     }

@@ -111,10 +111,11 @@ class ReamSession : public QObject {
   // The same with each step's placement given (`placed[i]`: nothing swept to poses[i]; a plan's `placed` poses).
   void runSteps(const std::vector<Pose>& poses, const std::vector<bool>& placed);
   // A plan's steps (ReamPlan::expandedPoses) with their placements and notes: a step's note goes to the log row
-  // it makes and is announced (noteReached). With `atRecordedPace` a pose with a time (t_ms) waits until that
-  // much time has passed since the plan's first timed pose ran, as it was recorded (a step that takes longer
-  // to compute delays the ones after it); the rest run as fast as they compute.
-  void runPlan(const ReamPlan& plan, bool atRecordedPace);
+  // it makes and is announced (noteReached). With a `paceSpeed` (> 0) a pose with a time (t_ms) waits until its
+  // time, divided by the speed, has passed since the plan's first timed pose ran: at 1 as it was recorded, at 2
+  // twice as fast (a step that takes longer to compute delays the ones after it). Without one (0), and for
+  // poses without a time, the steps run as fast as they compute.
+  void runPlan(const ReamPlan& plan, double paceSpeed = 0);
   // Queues a search for the first contact of the reamer advancing from `start` along its axis (up to
   // maxMm): run on the worker after the steps queued before it, against the bone they leave, on the
   // engine's own collision structure (no tree is built for it). Answered by contactSearched.

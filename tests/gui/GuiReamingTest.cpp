@@ -757,7 +757,7 @@ TEST(GuiReaming, ANotedPathReplaysAtItsRecordedPaceWithItsNotes) {
 
   // Stop while a step waits for its time: the rest is dropped, at once.
   ReamPlan slow = plan;
-  slow.poseTimesMs[3] = 600000.0;  // ten minutes in
+  slow.poseTimesMs[3] = 60000.0;  // a minute in
   const QString slowFile = dir.filePath("slow.json");
   writeTextFile(slowFile.toStdString(), planToJson(slow));
   s.loadBone(ImportedBone{loadDefaultBone().mesh, {}, {}, true}, "again", seated);
@@ -770,6 +770,19 @@ TEST(GuiReaming, ANotedPathReplaysAtItsRecordedPaceWithItsNotes) {
   ASSERT_TRUE(s.waitIdle(5000));
   EXPECT_LT(clock.elapsed(), 5000);
   EXPECT_EQ(s.log()->size(), 2u);
+
+  // At 64× the recorded pace the minute takes under a second, and not less.
+  s.loadBone(ImportedBone{loadDefaultBone().mesh, {}, {}, true}, "again", seated);
+  w.setReplaySpeed(64);
+  clock.restart();
+  ASSERT_TRUE(w.runPlanFile(slowFile, PlanPace::AsRecorded));
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_GE(double(clock.elapsed()), 60000.0 / 64 - 1.0);
+  EXPECT_EQ(s.log()->size(), 3u);
+  w.setReplaySpeed(1e-9);  // out of range: refused, the speed stays
+  EXPECT_EQ(w.replaySpeed(), 64.0);
+  w.action("replay_speed_100")->trigger();  // the menu's 1×
+  EXPECT_EQ(w.replaySpeed(), 1.0);
 
   // As fast as computed, the same file takes no pause; a plan without times has no pace to replay at.
   s.loadBone(ImportedBone{loadDefaultBone().mesh, {}, {}, true}, "again", seated);
