@@ -256,8 +256,8 @@ std::optional<Vec3> BoneView::boneSurfaceAt(double x, double y) const {
   const Vec3 origin{ends[0][0], ends[0][1], ends[0][2]};
   const Vec3 direction = Vec3{ends[1][0], ends[1][1], ends[1][2]} - origin;
   if (!(norm(direction) > 0)) return std::nullopt;
-  // The thesis's Moeller-Trumbore over every triangle: a click, not a loop (~10 ms at 400k faces).
-  const std::optional<MeshHit> hit = firstHit(bone.toMesh(), origin, normalized(direction));
+  // The thesis's Moeller-Trumbore over every live triangle, in place: a click, not a loop.
+  const std::optional<MeshHit> hit = firstHit(bone, origin, normalized(direction));
   if (!hit) return std::nullopt;
   return hit->point;
 }

@@ -84,12 +84,22 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   alertSubscription_ = session_->document().observeNode(session_->alerts()->id(), [this] { updateStatus(); });
   // The title's [*] marks unsaved changes: the undo history away from the point where the bone was opened
   // or last saved, or landmarks placed since.
-  connect(session_->undoStack(), &QUndoStack::cleanChanged, this, [this] { updateTitle(); });
+  // An undo or redo changes the bone before the stack's index moves, and a landmark edit on the stack is not a
+  // change of the bone: the title is asked again whenever the index has moved.
+  connect(session_->undoStack(), &QUndoStack::indexChanged, this, [this] {
+    if (isWindowModified() != hasUnsavedChanges()) updateTitle();
+  });
+  connect(session_->undoStack(), &QUndoStack::cleanChanged, this, [this] { updateTitle(); });  // a save, a restore
   landmarksTitleSubscription_ = session_->document().observeNode(session_->bone()->id(), [this] {
     if (isWindowModified() != hasUnsavedChanges()) updateTitle();
   });
   notesSubscription_ = session_->document().subscribe([this](const DocumentEvent& e) {
     if (e.id.kind() == NodeKind::Log && isWindowModified() != hasUnsavedChanges()) updateTitle();
+  });
+  connect(session_.get(), &ReamSession::planningEditNotRecorded, this, [this] {
+    statusBar()->showMessage(tr("The landmark edit is made but Undo cannot take it back: recording it would drop the "
+                                "undone steps that Redo can still bring back"),
+                             10000);
   });
   connect(session_.get(), &ReamSession::noteReached, this,
           [this](const QString& note) { statusBar()->showMessage(tr("Note: %1").arg(note), 10000); });
@@ -110,6 +120,8 @@ MainWindow::~MainWindow() {
   boneFrameSubscription_.reset();
   landmarksSubscription_.reset();
   landmarksTitleSubscription_.reset();
+  notesSubscription_.reset();
+  recoveryNotesSubscription_.reset();
   // The undo stack signals as it is destroyed with the session (cleanChanged): this window no longer listens.
   session_->undoStack()->disconnect(this);
   otherBones_.reset();

@@ -91,6 +91,7 @@ class MainWindow : public QMainWindow {
   // Changes since the bone was opened or last saved: the bone, its landmarks and planned axis, the notes on its cuts.
   bool hasUnsavedChanges() const;
   bool boneChangedSinceSave() const;  // the cut bone, not its landmarks or notes
+  bool notesChangedSinceSave() const;
   // Bones beside with cuts in their history whose state no save wrote (their names): Save writes the cut bone only.
   QStringList bonesBesideWithUnsavedCuts() const;
   // Bones replaced by a CT import (held by the undo history) with cuts no save wrote (their names).
@@ -274,7 +275,11 @@ class MainWindow : public QMainWindow {
   std::optional<BonePlanning> copiedPlanning_;
   // The log's notes (annotations) are saved with it (NAME.cut_log.csv): their count of changes at the last save
   // or open (LogNode::notesRevision), and in the crash-recovery copy kept.
-  std::uint64_t savedNotesRevision_ = 0;
+  std::optional<std::uint64_t> savedBoneRevision_;  // the cut bone's revision as opened or last saved; none: restored
+  struct SavedNotes {
+    NodeId log;
+    std::uint64_t revision = 0;
+  } savedNotes_;
   double replaySpeed_ = 1.0;
   QActionGroup* replaySpeeds_ = nullptr;
   std::optional<std::uint64_t> copiedNotesRevision_;

@@ -28,7 +28,6 @@
 #include "BonePlacement.h"
 #include "BoneCommands.h"
 #include "MainWindow.h"
-#include "PlanningCommand.h"
 #include "PluginHost.h"
 #include "WriteProgressDialog.h"
 #include "reamsim/ream/CutLogIO.h"
@@ -176,7 +175,8 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
   boneName_ = name;
   savedPath_.clear();  // another bone: Save asks where
   savedPlanning_ = planningOf(*session_->bone());  // none (loadBone clears them): the caller may bring some
-  savedNotesRevision_ = session_->log()->notesRevision();  // a new log
+  savedNotes_ = {session_->log()->id(), session_->log()->notesRevision()};  // a new log
+  savedBoneRevision_ = session_->bone()->currentRevision();  // as opened
   ++boneGeneration_;
   if (!recentPath.isEmpty()) addRecent(recentPath);
   updateTitle();
@@ -191,7 +191,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
   const QMetaObject::Connection watch =
       connect(session_->undoStack(), &QUndoStack::indexChanged, this, [&changedMeanwhile] { changedMeanwhile = true; });
   const std::string csv = cutLogCsv(session_->log()->entries());
-  const std::uint64_t notesRevision = session_->log()->notesRevision();
+  const SavedNotes notes{session_->log()->id(), session_->log()->notesRevision()};
   const BonePlanning planning = planningOf(*session_->bone());
   const bool written = writeBoneFile(path);
   disconnect(watch);
@@ -231,7 +231,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
     return false;
   }
   savedPlanning_ = planning;
-  savedNotesRevision_ = notesRevision;
+  savedNotes_ = notes;
   updateTitle();  // landmarks or notes alone changed: the undo stack's clean state did not move
   // Nor did the copy kept for a crash: written again (or removed, when nothing is left unsaved).
   if (recovery_ && !recoveryOfferPending_ && !recoveryTimer_.isActive()) recoveryTimer_.start();
@@ -242,6 +242,8 @@ bool MainWindow::saveBoneAs(const QString& path) {
     return true;
   }
   session_->undoStack()->setClean();
+  savedBoneRevision_ = session_->bone()->currentRevision();
+  updateTitle();  // the stack may have been clean already (only landmark edits since the last save)
   savedRevisions_.insert(session_->bone()->currentRevision());  // still saved if it is later moved beside
   statusBar()->showMessage(tr("Saved %1 and its cut log").arg(path), 5000);
   return true;
@@ -303,21 +305,22 @@ bool MainWindow::writeBoneFile(const QString& path) {
   return true;
 }
 
-// The bone itself away from where it was opened or saved: anything but landmark edits (which the undo stack holds
-// too, PlanningCommand) between the stack's clean point and now. Undone back to it, the bone is as saved.
+// The bone itself away from the state it was opened or saved in (revisions are never reused, so undone back to
+// it, it is as saved). Not the undo stack's clean point: landmark edits are on the stack too (PlanningCommand).
 bool MainWindow::boneChangedSinceSave() const {
-  const QUndoStack* undo = session_->undoStack();
-  if (undo->isClean()) return false;
-  if (undo->cleanIndex() < 0) return true;  // saved nowhere (a restored crash copy)
-  for (int i = std::min(undo->cleanIndex(), undo->index()); i < std::max(undo->cleanIndex(), undo->index()); ++i)
-    if (!dynamic_cast<const PlanningCommand*>(undo->command(i))) return true;
-  return false;
+  return !savedBoneRevision_ || session_->bone()->currentRevision() != *savedBoneRevision_;
 }
 
 // The bone changed since it was saved, or its landmarks or the notes on its cuts (saved beside it).
 bool MainWindow::hasUnsavedChanges() const {
   return boneChangedSinceSave() || planningOf(*session_->bone()) != savedPlanning_ ||
-         session_->log()->notesRevision() != savedNotesRevision_;
+         notesChangedSinceSave();
+}
+
+// A log other than the one saved (a new bone's) has changed only once a note was written on it.
+bool MainWindow::notesChangedSinceSave() const {
+  const LogNode& log = *session_->log();
+  return log.notesRevision() != (log.id() == savedNotes_.log ? savedNotes_.revision : 0);
 }
 
 // The mesh file's whole name, so that scapula.stl and scapula.ply beside it never share one.
@@ -417,7 +420,7 @@ bool MainWindow::confirmDiscardChanges(const QString& action) {
   QStringList what;  // since it was opened or last saved
   if (boneChangedSinceSave()) what << tr("the bone has changed");
   if (planningOf(*session_->bone()) != savedPlanning_) what << tr("its landmarks or planned axis have changed");
-  if (session_->log()->notesRevision() != savedNotesRevision_) what << tr("notes on its cuts have changed");
+  if (notesChangedSinceSave()) what << tr("notes on its cuts have changed");
   QMessageBox box(QMessageBox::Warning, tr("Unsaved changes"),
                   tr("%1 is not saved: %2 since it was opened or last saved (its cut log holds %3).")
                       .arg(name, what.join(tr("; ")), cuts == 1 ? tr("1 cut") : tr("%1 cuts").arg(cuts)),

@@ -215,8 +215,9 @@ QString MainWindow::exportPath(const QString& file) {
     const auto note = notes.find(path[i].stepIndex);
     plan.poseNotes.push_back(note == notes.end() ? std::string() : note->second);
     anyNote = anyNote || note != notes.end();
-    // The pace it was made at, from its first step (a clock set back meanwhile cannot make time go back).
-    const double sinceFirst = double(path[i].timeUnixMs - path.front().timeUnixMs);
+    // The pace it was made at, from its first step: a clock set back meanwhile cannot make time go back, and one
+    // moved on by days (a machine asleep) cannot take the time past what a plan may hold (PLAN_FORMAT.md).
+    const double sinceFirst = std::min(double(path[i].timeUnixMs - path.front().timeUnixMs), kMaxPlanTimeMs);
     plan.poseTimesMs.push_back(std::max(sinceFirst, i > 0 ? plan.poseTimesMs.back().value_or(0.0) : 0.0));
   }
   if (!anyNote) plan.poseNotes.clear();

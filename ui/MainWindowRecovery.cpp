@@ -244,6 +244,7 @@ void MainWindow::offerRecovery() {
   session_->moveReamer(startPoseFor(copied.bounds()));
   restoreBonesBeside(*found);
   session_->undoStack()->resetClean();  // saved nowhere but in the recovery copy
+  savedBoneRevision_.reset();
   // The log up to the crash goes back into the log panel. One that cannot be read is kept as a file for
   // the user (named in the message), never dropped.
   std::size_t logRows = 0;

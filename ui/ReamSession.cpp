@@ -132,6 +132,14 @@ void ReamSession::recordPlanningEdit() {
   if (now == recordedPlanning_) return;  // a cut, a name, a frame: not the planning
   BonePlanning before = std::exchange(recordedPlanning_, now);
   if (planningQuiet_ > 0) return;
+  // A push drops what could be redone. Landmark edits may go, undone cuts or bones must not (the bone's history
+  // would keep states the stack can no longer reach, and an undone CT import would be lost): the edit is then
+  // made but not recorded.
+  for (int i = undo_.index(); i < undo_.count(); ++i)
+    if (!dynamic_cast<const PlanningCommand*>(undo_.command(i))) {
+      Q_EMIT planningEditNotRecorded();
+      return;
+    }
   pushingOwnCommand_ = true;  // our own push is not an undo
   undo_.push(new PlanningCommand(*this, std::move(before), now));
   pushingOwnCommand_ = false;

@@ -198,6 +198,8 @@ class ReamSession : public QObject {
   void boneReplaced();
   void contactSearched(const ContactSearch& result);
   void noteReached(const QString& note);  // a plan's step with a note was committed
+  // A landmark edit was made while undone cuts or bones could be redone: it is not on the undo stack.
+  void planningEditNotRecorded();
 
  private:
   void startNext();

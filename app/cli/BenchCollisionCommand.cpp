@@ -536,6 +536,13 @@ int runBenchCollision(const std::vector<std::string>& args) {
     const auto thRay = timeEach(n, [&](std::size_t i) { (void)firstHit(mesh, rayOrigin[i], rayDir[i]); }, thesisBudget, 20);
     const auto thRayCulled = timeEach(n, [&](std::size_t i) { (void)firstHit(mesh, rayOrigin[i], rayDir[i], Culling::BackFaces); }, thesisBudget, 20);
     const auto thRayAll = timeEach(n, [&](std::size_t i) { (void)allHits(mesh, rayOrigin[i], rayDir[i]); }, thesisBudget, 20);
+    // A click on the bone in the view (BoneView::boneSurfaceAt): the brute force over the bone state in place,
+    // against the same over a mesh copy of the state (what the view did before session 55).
+    const auto pickInPlace = timeEach(n, [&](std::size_t i) { (void)firstHit(state, rayOrigin[i], rayDir[i]); }, thesisBudget, 20);
+    const auto pickWithCopy = timeEach(n, [&](std::size_t i) { (void)firstHit(state.toMesh(), rayOrigin[i], rayDir[i]); },
+                                       thesisBudget, 20);
+    queries["view_pick"] = summary(pickInPlace);
+    addComparison(queries["view_pick"], "speedup_vs_mesh_copy", pickInPlace, pickWithCopy, "with_mesh_copy");
     for (const char* k : {"overlap_any", "overlap_faces", "min_distance", "penetration_depth"})
       addComparison(queries[k], "speedup_vs_thesis", k == std::string("overlap_any") ? tOverlapAny
                                                      : k == std::string("overlap_faces") ? tOverlapAll

@@ -10,6 +10,7 @@
 #include <QLabel>
 #include <QLocale>
 #include <QPushButton>
+#include <QStatusBar>
 #include <QTableWidget>
 #include <QFile>
 #include <QImage>
@@ -300,6 +301,33 @@ TEST(GuiPlanning, LandmarkEditsAreOnTheUndoStackBesideTheCuts) {
   EXPECT_EQ(s.path().size(), pathBefore + 4);  // every step ran
   EXPECT_FALSE(s.pathInterrupted());
   EXPECT_EQ(s.bone()->landmarks()[ScapulaLandmark::InferiorAngle], bundled[ScapulaLandmark::InferiorAngle]);
+
+  // An edit while a cut can be redone is made but not recorded: the cut stays redoable.
+  cutOnce(s, 1.2);
+  const int commands = undo.count();
+  w.action("undo")->trigger();
+  ASSERT_TRUE(undo.canRedo());
+  s.bone()->setLandmark(ScapulaLandmark::TrigonumScapulae, *bundled[ScapulaLandmark::TrigonumScapulae] + Vec3{1, 0, 0});
+  EXPECT_EQ(undo.count(), commands);
+  EXPECT_TRUE(undo.canRedo());
+  EXPECT_TRUE(w.statusBar()->currentMessage().contains("Undo cannot take it back")) << w.statusBar()->currentMessage().toStdString();
+  w.action("redo")->trigger();
+  EXPECT_FALSE(undo.canRedo());
+  s.bone()->setLandmark(ScapulaLandmark::TrigonumScapulae, *bundled[ScapulaLandmark::TrigonumScapulae]);  // recorded again
+  EXPECT_EQ(undo.count(), commands + 1);
+
+  // The title follows the bone through undo and redo when landmark edits lie between the save and the cut.
+  ASSERT_TRUE(w.saveBoneAs(dir.filePath("bone.ply"))) << w.lastError().toStdString();
+  s.bone()->setPlannedAxis(std::nullopt);
+  s.bone()->setPlannedAxis(axis);  // as saved again
+  EXPECT_FALSE(w.isWindowModified());
+  cutOnce(s, 1.4);
+  EXPECT_TRUE(w.isWindowModified());
+  w.action("undo")->trigger();
+  EXPECT_FALSE(w.isWindowModified());
+  w.action("redo")->trigger();
+  EXPECT_TRUE(w.isWindowModified());
+  w.action("undo")->trigger();
 
   // Opening a bone with landmarks saved beside it: they are not an edit to undo.
   w.openFile(dir.filePath("bone.ply"), true);

@@ -131,6 +131,12 @@ TEST(CutLog, NotesReadBackAndLogsWithoutTheNoteColumnStillRead) {
   const std::vector<CutLogEntry> back = cutLogFromCsv(csv, "notes.csv");
   ASSERT_EQ(back.size(), 3u);
   for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(back[i].note, rows[i].note) << i;
+  // Through a Windows tool (every line break CRLF, also inside the quoted note): the same notes.
+  std::string crlf;
+  for (char ch : csv) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
+  const std::vector<CutLogEntry> windows = cutLogFromCsv(crlf, "notes_crlf.csv");
+  ASSERT_EQ(windows.size(), 3u);
+  for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(windows[i].note, rows[i].note) << i;
   const std::string json = cutLogJson(rows);
   EXPECT_NE(json.find("\"note\": \"Glenoid: 5° retroversion – corrected ✓\""), std::string::npos) << json;
   EXPECT_NE(json.find(R"("note": "line one, \"quoted\"\nline two\n")"), std::string::npos) << json;

@@ -25,6 +25,16 @@ std::optional<MeshHit> firstHit(const TriangleMesh& mesh, const Vec3& origin, co
   return best;
 }
 
+std::optional<MeshHit> firstHit(const BoneState& bone, const Vec3& origin, const Vec3& dir, Culling culling) {
+  detail::requireRay(origin, dir, "firstHit");
+  std::optional<MeshHit> best;
+  bone.forEachLiveTriangle([&](std::uint32_t slot, const Triangle& tri) {
+    const auto h = intersectRayTriangle(origin, dir, bone.vertex(tri[0]), bone.vertex(tri[1]), bone.vertex(tri[2]), culling);
+    if (h && (!best || h->t < best->t)) best = toMeshHit(*h, slot, origin, dir);
+  });
+  return best;
+}
+
 std::vector<MeshHit> allHits(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir, Culling culling) {
   detail::requireRay(origin, dir, "allHits");
   std::vector<MeshHit> raw;

@@ -46,6 +46,8 @@ std::vector<Record> records(const std::string& text, const std::string& file) {
           if (i + 1 < text.size() && text[i + 1] != ',' && text[i + 1] != '\n' && text[i + 1] != '\r')
             throw InputError(file, line, "a quoted field is followed by text before the next comma");
         }
+      } else if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') {
+        continue;  // a line break inside a field, as a Windows tool writes it: read as the writer's '\n'
       } else {
         if (c == '\n') ++line;
         field += c;

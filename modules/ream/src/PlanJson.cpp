@@ -28,7 +28,6 @@ Vec3 readVec3(const json& j, const std::string& where, const std::string& source
   return v;
 }
 
-constexpr double kMaxTimeMs = 1e9;  // 11.6 days: beyond any session, and exact in a double to the microsecond
 
 // What a pose of "poses" may carry besides where it is (docs/PLAN_FORMAT.md).
 struct PoseExtras {
@@ -64,7 +63,7 @@ Pose readPose(const json& j, const std::string& where, const std::string& source
   }
   if (j.contains("t_ms")) {
     const json& t = j["t_ms"];
-    if (!t.is_number() || !std::isfinite(t.get<double>()) || t.get<double>() < 0 || t.get<double>() > kMaxTimeMs)
+    if (!t.is_number() || !std::isfinite(t.get<double>()) || t.get<double>() < 0 || t.get<double>() > kMaxPlanTimeMs)
       throw InputError(source, where + ".t_ms must be a number of milliseconds from 0 to 1e9");
     extras->timeMs = t.get<double>();
   }

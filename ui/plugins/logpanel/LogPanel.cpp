@@ -101,10 +101,8 @@ void LogPanel::sync() {
   const bool otherLandmarks = !(landmarks == anglesFrom_);
   anglesFrom_ = landmarks;
   if (otherLandmarks) showAngles(0);  // every row again, in the new frame
-  if (entries.size() == shown_) {
-    showNotes();
-    return;
-  }
+  showNotes();  // of the rows shown (a note may change in the same event as rows are added)
+  if (entries.size() == shown_) return;
   seatLabel_->clear();  // measured on an earlier bone state
   for (std::size_t i = shown_; i < entries.size(); ++i) {
     const CutLogEntry& e = entries[i];

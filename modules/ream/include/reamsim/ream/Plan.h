@@ -15,6 +15,9 @@ struct FeedSpec {
   int count = 20;
 };
 
+// The largest "t_ms" a plan may hold (11.6 days: beyond any session).
+inline constexpr double kMaxPlanTimeMs = 1e9;
+
 struct ReamPlan {
   std::string reamer;                 // preset name or mesh path; empty = chosen on the command line
   std::optional<FeedSpec> feed;       // either a feed...
