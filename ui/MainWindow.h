@@ -286,7 +286,11 @@ class MainWindow : public QMainWindow {
   Subscription notesSubscription_;  // a note changed: the title...
   Subscription recoveryNotesSubscription_;  // ... and a crash copy  // those in the crash-recovery copy kept (none: no copy)
   QTimer recoveryTimer_;
-  QFutureWatcher<QString> recoveryWrite_;  // the error, empty when the copy was written
+  struct RecoveryWrite {
+    QString error;         // empty when the copy was written whole
+    bool written = false;  // the copy was written (perhaps without its undo history: `error` says)
+  };
+  QFutureWatcher<RecoveryWrite> recoveryWrite_;
   bool recoveryOfferPending_ = false;      // a found copy not yet answered: nothing is written or removed
   QString recoveredLogPath_;
 };

@@ -54,13 +54,16 @@ void MainWindow::enableRecovery(const QString& dir, int delayMs) {
   recoveryNotesSubscription_ = session_->document().subscribe([this, schedule](const DocumentEvent& e) {
     if (e.id.kind() == NodeKind::Log && copiedNotesRevision_ != session_->log()->notesRevision()) schedule();
   });
-  connect(&recoveryWrite_, &QFutureWatcher<QString>::finished, this, [this] {
-    const QString error = recoveryWrite_.result();
-    if (!error.isEmpty()) {
-      copiedPlanning_.reset();
-      copiedNotesRevision_.reset();  // not in a copy: the next change of the planning writes one again
-      statusBar()->showMessage(tr("No crash-recovery copy: %1").arg(error), 10000);
+  connect(&recoveryWrite_, &QFutureWatcher<RecoveryWrite>::finished, this, [this] {
+    const RecoveryWrite result = recoveryWrite_.result();
+    if (result.error.isEmpty()) return;
+    if (result.written) {  // the bone, its log and landmarks are in it; only the undo steps are not
+      statusBar()->showMessage(tr("Crash-recovery copy written without its undo history: %1").arg(result.error), 10000);
+      return;
     }
+    copiedPlanning_.reset();
+    copiedNotesRevision_.reset();  // not in a copy: the next change of the planning writes one again
+    statusBar()->showMessage(tr("No crash-recovery copy: %1").arg(result.error), 10000);
   });
   if (recovery_->found()) {
     recoveryOfferPending_ = true;
@@ -126,7 +129,7 @@ void MainWindow::writeRecoveryCopy() {
   std::unique_ptr<HistoryJournalWriter>* journal = &journal_;  // the worker's alone while it runs
   recoveryWrite_.setFuture(QtConcurrent::run(
       [writer, files, frame, state = std::move(state), csv = std::move(csv), besideCopies = std::move(besideCopies),
-       journal, entries = std::move(entries), description = std::move(description)]() mutable -> QString {
+       journal, entries = std::move(entries), description = std::move(description)]() mutable -> RecoveryWrite {
         // Without its history the copy still holds the bone: a journal that cannot be written is reported, not
         // a reason to keep no copy.
         QString historyError;
@@ -147,12 +150,13 @@ void MainWindow::writeRecoveryCopy() {
             writer->exportMesh(besideCopies[i].state.toMesh(), files->nextBesidePath(int(i)).toStdString(),
                                besideCopies[i].frame);
         } catch (const std::exception& e) {
-          return QString::fromStdString(e.what());
+          return RecoveryWrite{QString::fromStdString(e.what()), false};
         }
         files->commit(description, error);
-        if (error.isEmpty() && !historyError.isEmpty())
-          error = QObject::tr("the undo history is not in the copy (%1)").arg(historyError);
-        return error;
+        if (!error.isEmpty()) return RecoveryWrite{error, false};
+        if (!historyError.isEmpty())
+          return RecoveryWrite{QObject::tr("the undo history is not in the copy (%1)").arg(historyError), true};
+        return RecoveryWrite{{}, true};
       }));
 }
 

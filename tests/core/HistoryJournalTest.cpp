@@ -223,6 +223,20 @@ TEST(HistoryJournal, AChainInTheWrongOrderOrAnotherFileIsRefusedNamingTheFile) {
   }
   EXPECT_THROW(readHistoryJournal(other.path + ".missing", revisionsOf(h), 0), InputError);
   EXPECT_THROW(HistoryJournalWriter{other.path}, InputError);  // not ours: not appended to
+  // A folder where the journal goes (it opens as a stream on Linux and fails only when read): named, as InputError.
+  const std::string folder = other.path + ".d";
+  ASSERT_TRUE(std::filesystem::create_directory(folder));
+  for (int reader = 0; reader < 2; ++reader) try {
+      if (reader)
+        readHistoryJournal(folder, revisionsOf(h), 0);
+      else
+        HistoryJournalWriter{folder};
+      ADD_FAILURE() << "a folder was taken for a journal";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), folder);
+      EXPECT_NE(std::string(e.what()).find("is a folder"), std::string::npos) << e.what();
+    }
+  std::filesystem::remove(folder);
 }
 
 // Damage inside records, with the checksum made to match (what a checksum cannot catch): every read either

@@ -143,6 +143,39 @@ TEST(GuiRecovery, ANoteWrittenAfterASaveIsCopiedAndComesBack) {
   EXPECT_EQ(f.session().log()->entries()[0].note, note);
 }
 
+// The undo history's journal cannot be written (here a folder stands where the file goes; a full disk does the
+// same): the copy is still written with the bone and its log, the message says the history is not in it, and
+// after a crash the bone comes back, with its history from the copy's state on.
+TEST(GuiRecovery, AJournalThatCannotBeWrittenLeavesACopyWithoutTheHistory) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  double volume = 0;
+  {
+    GuiFixture crashed;
+    MainWindow& w = *crashed.window;
+    w.enableRecovery(dir.filePath("recovery"), 0);
+    const std::uint64_t first = crashed.session().bone()->history().entries().front().revision;
+    ASSERT_TRUE(QDir().mkpath(w.recovery()->historyPath(first)));
+    cutOnce(crashed.session());
+    const std::optional<RecoveredBone> copy = settledCopy(w);
+    ASSERT_TRUE(copy);
+    EXPECT_TRUE(copy->historyRevisions.empty());
+    EXPECT_TRUE(w.statusBar()->currentMessage().contains("the undo history is not in the copy"))
+        << w.statusBar()->currentMessage().toStdString();
+    EXPECT_TRUE(w.statusBar()->currentMessage().contains(w.recovery()->historyPath(first)))
+        << w.statusBar()->currentMessage().toStdString();
+    volume = crashed.session().bone()->current().volume();
+  }  // gone without a close, as in a crash
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
+  EXPECT_NEAR(f.session().bone()->current().volume(), volume, 1e-6 * volume);
+  EXPECT_EQ(f.session().log()->size(), 1u);
+  EXPECT_TRUE(w.hasUnsavedChanges());
+}
+
 TEST(GuiRecovery, ACopyLeftBehindIsOfferedAndRestoresTheBone) {
   REAMSIM_REQUIRE_DISPLAY();
   QTemporaryDir dir;

@@ -197,10 +197,18 @@ std::vector<Indexed> indexRecords(const std::string& file, const std::string& da
 
 // The file's bytes; with `missingIsEmpty`, none for a file that is not there (a journal about to be started).
 std::string readWhole(const std::string& path, bool missingIsEmpty = false) {
+  std::error_code ec;
+  // A folder opens as a stream on Linux and fails only when read, with the standard library's own exception.
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a folder, not a history journal");
   std::ifstream in(path, std::ios::binary);
-  if (!in && missingIsEmpty && !std::filesystem::exists(path)) return {};
+  if (!in && missingIsEmpty && !std::filesystem::exists(path, ec)) return {};
   if (!in) throw InputError(path, "cannot open the history journal");
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string data;
+  try {
+    data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::exception& e) {  // a read error the stream reports by throwing (libstdc++'s underflow)
+    throw InputError(path, std::string("cannot read the history journal: ") + e.what());
+  }
   if (in.bad()) throw InputError(path, "cannot read the history journal");
   return data;
 }
