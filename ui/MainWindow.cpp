@@ -101,6 +101,7 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
                                 "undone steps that Redo can still bring back"),
                              10000);
   });
+  connect(session_.get(), &ReamSession::removalPreviewed, this, &MainWindow::removalPreviewed);
   connect(session_.get(), &ReamSession::noteReached, this,
           [this](const QString& note) { statusBar()->showMessage(tr("Note: %1").arg(note), 10000); });
   updateStatus();
@@ -223,6 +224,8 @@ void MainWindow::buildMenus() {
   add(reamer, "ream_to_depth", tr("Ream to &depth below first contact…"), QKeySequence("Ctrl+D"),
       [this] { askReamToDepth(); });
   add(reamer, "feed_by", tr("&Feed along the axis by…"), QKeySequence("Ctrl+F"), [this] { askFeedBy(); });
+  add(reamer, "preview_ream_to_depth", tr("Pre&view ream to depth…"), QKeySequence("Ctrl+Shift+D"),
+      [this] { askPreviewReamToDepth(); });
   add(reamer, "run_plan", tr("Run a &plan…"), QKeySequence("Ctrl+Shift+P"), [this] { runPlanFile(); });
   add(reamer, "replay_plan", tr("&Replay a recorded path at its pace…"), {},
       [this] { runPlanFile({}, PlanPace::AsRecorded); });
@@ -241,7 +244,10 @@ void MainWindow::buildMenus() {
   add(reamer, "choose_reamer", tr("&Choose the reamer…"), QKeySequence("Ctrl+Shift+R"), [this] { chooseReamer(); });
   add(reamer, "choose_reamer_mesh", tr("Choose a reamer &mesh…"), {}, [this] { chooseReamerMesh(); })
       ->setEnabled(plugins_.meshImport() != nullptr);
-  add(reamer, "stop", tr("&Stop steps"), QKeySequence("Esc"), [this] { session_->cancelQueued(); });
+  add(reamer, "stop", tr("&Stop steps"), QKeySequence("Esc"), [this] {
+    session_->cancelQueued();
+    session_->cancelPreview();
+  });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   add(help, "plugins", tr("&Plugins…"), {}, [this] { showPluginsDialog(); });

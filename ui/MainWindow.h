@@ -128,6 +128,12 @@ class MainWindow : public QMainWindow {
   // at (PlanPace). An empty path: the user picks the file. False (with a message naming the file and the
   // problem) when the plan cannot be run.
   bool runPlanFile(const QString& path = {}, PlanPace pace = PlanPace::AsFastAsComputed);
+  // How much bone "ream to depth" of depthMm from the reamer's pose would remove, computed on a copy of the bone
+  // (ReamSession::previewReamToDepth) and shown with a *Ream it* button; Stop (Esc) stops it. The answer's
+  // text is also lastPreviewText().
+  void previewReamToDepth(double depthMm);
+  void askPreviewReamToDepth();
+  const QString& lastPreviewText() const { return lastPreviewText_; }
   // How fast Replay a recorded path goes against the recorded pace (Reamer → Replay speed: ¼× to 8×; 1 as recorded).
   void setReplaySpeed(double speed);
   double replaySpeed() const { return replaySpeed_; }
@@ -281,6 +287,8 @@ class MainWindow : public QMainWindow {
     std::uint64_t revision = 0;
   } savedNotes_;
   double replaySpeed_ = 1.0;
+  QString lastPreviewText_;
+  void removalPreviewed(const RemovalPreviewAnswer& answer);
   QActionGroup* replaySpeeds_ = nullptr;
   std::optional<std::uint64_t> copiedNotesRevision_;
   Subscription notesSubscription_;  // a note changed: the title...

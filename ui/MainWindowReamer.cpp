@@ -6,6 +6,8 @@
 #include <QFileInfo>
 #include <QInputDialog>
 #include <QLocale>
+#include <QMessageBox>
+#include <QPushButton>
 #include <QSettings>
 #include <QStatusBar>
 #include <algorithm>
@@ -300,6 +302,64 @@ void MainWindow::askReamToDepth() {
                                                    .arg(feedStep_->value()),
                                                1.0, 0.01, 50.0, 2, &ok);
   if (ok) reamToDepth(depth);
+}
+
+void MainWindow::askPreviewReamToDepth() {
+  bool ok = false;
+  const double depth = QInputDialog::getDouble(this, tr("Preview ream to depth"),
+                                               tr("How much bone would reaming to this depth below the first contact "
+                                                  "along the reamer axis remove (mm, in feed steps of %1 mm)? The bone "
+                                                  "is not cut.")
+                                                   .arg(feedStep_->value()),
+                                               1.0, 0.01, 50.0, 2, &ok);
+  if (ok) previewReamToDepth(depth);
+}
+
+void MainWindow::previewReamToDepth(double depthMm) {
+  lastPreviewText_.clear();
+  statusBar()->showMessage(tr("Computing what reaming %L1 mm would remove, on a copy of the bone (Esc stops)…")
+                               .arg(depthMm, 0, 'f', 2));
+  session_->previewReamToDepth(targetPose(), depthMm, feedStep_->value());
+}
+
+void MainWindow::removalPreviewed(const RemovalPreviewAnswer& a) {
+  using Outcome = RemovalPreviewAnswer::Outcome;
+  statusBar()->clearMessage();
+  if (a.outcome == Outcome::Cancelled) {
+    statusBar()->showMessage(tr("Preview stopped"), 5000);
+    return;
+  }
+  if (a.outcome == Outcome::Failed) {
+    lastPreviewText_ = a.error;
+    return showError(tr("Preview ream to depth"), a.error);
+  }
+  const RemovalPreview& p = a.preview;
+  QLocale shown;
+  if (!p.approachMm) {
+    lastPreviewText_ = tr("The reamer meets no bone within %L1 mm along its axis: reaming to depth would remove nothing.")
+                           .arg(ReamSession::kPreviewReachMm);
+  } else {
+    lastPreviewText_ =
+        tr("Reaming %1 mm below the first contact (%2 mm ahead of the reamer along its axis) would remove %3 mm³ of "
+           "bone in %4 step(s), %5 of them cutting; the bone would have %6 faces.")
+            .arg(shown.toString(a.depthMm, 'f', 2), shown.toString(*p.approachMm, 'f', 2),
+                 shown.toString(p.removedMm3, 'f', 1), shown.toString(qulonglong(p.steps)),
+                 shown.toString(qulonglong(p.cuts)), shown.toString(qulonglong(p.facesAfter)));
+  }
+  const bool stale = a.outcome == Outcome::Stale;
+  auto* box = new QMessageBox(QMessageBox::Information, tr("Preview ream to depth"), lastPreviewText_, QMessageBox::Close, this);
+  box->setObjectName("RemovalPreviewDialog");
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->setInformativeText(stale ? tr("Computed on the bone as it was when asked; it has changed since. Preview again "
+                                     "for the bone as it is.")
+                                : tr("Computed on a copy: the bone is not cut."));
+  if (p.approachMm && !stale) {
+    QPushButton* ream = box->addButton(tr("Ream it"), QMessageBox::AcceptRole);
+    ream->setObjectName("ReamIt");
+    const double depth = a.depthMm;
+    connect(ream, &QPushButton::clicked, this, [this, depth] { reamToDepth(depth); });
+  }
+  box->open();
 }
 
 void MainWindow::askFeedBy() {

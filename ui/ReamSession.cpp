@@ -18,6 +18,8 @@
 namespace reamsim::ui {
 
 ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(parent), plugins_(plugins) {
+  qRegisterMetaType<RemovalPreviewAnswer>();
+  qRegisterMetaType<RemovalPreviewAnswer>("RemovalPreviewAnswer");  // as the signal names it
   bone_ = &document_.create<BoneNode>("Bone");
   reamer_ = &document_.create<ReamerNode>("Reamer");
   plan_ = &document_.create<PlanNode>("Plan");
@@ -48,6 +50,12 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
     if (!queued_.empty() || running_) cancelQueued();
   });
   connect(&watcher_, &QFutureWatcher<StepResult>::finished, this, &ReamSession::finished);
+  connect(&previewWatcher_, &QFutureWatcher<RemovalPreviewAnswer>::finished, this, [this] {
+    RemovalPreviewAnswer answer = previewWatcher_.result();
+    if (answer.outcome == RemovalPreviewAnswer::Outcome::Computed && previewRevision_ != bone_->currentRevision())
+      answer.outcome = RemovalPreviewAnswer::Outcome::Stale;
+    Q_EMIT removalPreviewed(answer);
+  });
   paceTimer_ = new QTimer(this);
   paceTimer_->setSingleShot(true);
   connect(paceTimer_, &QTimer::timeout, this, [this] { startNext(); });
@@ -69,11 +77,15 @@ ReamSession::~ReamSession() {
   if (control_) control_->stop = true;  // a long swing stops at its next Boolean
   if (running_) watcher_.waitForFinished();  // the job uses engine_
   watcher_.disconnect(this);
+  if (previewControl_) previewControl_->stop = true;
+  previewWatcher_.disconnect(this);
+  if (previewWatcher_.isRunning()) previewWatcher_.waitForFinished();  // it reads the plugins
 }
 
 void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose& start) {
   const QuietPlanning quiet(*this);  // the new bone comes without landmarks: not an edit
   cancelQueued();
+  cancelPreview();  // asked of the bone that goes
   if (running_) watcher_.waitForFinished();  // its result is dropped: the revision changes below
   {
     Document::BatchScope batch(document_);
@@ -172,7 +184,11 @@ void ReamSession::takeReamer(const ReamerSpec& spec, std::shared_ptr<const Trian
   pendingReamer_.reset();
   reamer_->setSpec(spec);
   reamer_->setCuttingVolume(std::move(cuttingVolume));
-  rebuildEngine();
+  if (!engine_) return rebuildEngine();
+  // The engine keeps the bone's tree and the cutter's exact coordinates; answers computed for the reamer before
+  // are told apart by the generation, as after a rebuild.
+  engine_->setReamer(reamer_->cuttingVolume(), reamer_->spec());
+  ++engineGeneration_;
 }
 
 void ReamSession::rebuildEngine() {
@@ -257,6 +273,52 @@ void ReamSession::runPlan(const ReamPlan& plan, double paceSpeed) {
   sequenceTotal_ += static_cast<int>(poses.size());
   Q_EMIT progress(sequenceDone_, sequenceTotal_);
   startNext();
+}
+
+void ReamSession::previewReamToDepth(const Pose& start, double depthMm, double stepMm) {
+  RemovalPreviewAnswer refused;
+  refused.start = start;
+  refused.depthMm = depthMm;
+  const CollisionInterface* collision = plugins_.collision();
+  const CsgInterface* csg = plugins_.csg();
+  if (!collision || !csg || !bone_->cuttable() || !reamer_->cuttingVolume() || bone_->current().empty()) {
+    refused.error = tr("Nothing can be cut here: %1").arg(cuttingStatus());
+    Q_EMIT removalPreviewed(refused);
+    return;
+  }
+  if (!(depthMm > 0) || !(stepMm > 0)) {
+    refused.error = tr("The depth and the feed step must be positive.");
+    Q_EMIT removalPreviewed(refused);
+    return;
+  }
+  if (previewWatcher_.isRunning()) {  // the new question replaces it: its answer comes first, Cancelled
+    previewControl_->stop = true;
+    previewWatcher_.waitForFinished();
+  }
+  previewControl_ = std::make_shared<StepControl>();
+  previewRevision_ = bone_->currentRevision();
+  previewWatcher_.setFuture(QtConcurrent::run(
+      [collision, cut = csg->cutBackendFactory(), volume = reamer_->cuttingVolume(), spec = reamer_->spec(),
+       bone = bone_->current(), control = previewControl_, start, depthMm, stepMm]() -> RemovalPreviewAnswer {
+        RemovalPreviewAnswer a;
+        a.start = start;
+        a.depthMm = depthMm;
+        try {
+          ReamEngine engine(volume, collision->createContactBackend(), cut, spec);
+          a.preview = reamsim::previewReamToDepth(engine, bone, start, depthMm, stepMm, kPreviewReachMm, control.get());
+          a.outcome = RemovalPreviewAnswer::Outcome::Computed;
+        } catch (const ReamCancelled&) {
+          a.outcome = RemovalPreviewAnswer::Outcome::Cancelled;
+        } catch (const std::exception& e) {
+          a.outcome = RemovalPreviewAnswer::Outcome::Failed;
+          a.error = QString::fromStdString(e.what());
+        }
+        return a;
+      }));
+}
+
+void ReamSession::cancelPreview() {
+  if (previewControl_) previewControl_->stop = true;
 }
 
 void ReamSession::queuePendingUserMove() {

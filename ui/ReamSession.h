@@ -28,6 +28,7 @@
 #include "reamsim/core/ReamerNode.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/ream/ReamEngine.h"
+#include "reamsim/ream/RemovalPreview.h"
 #include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/ui/PluginInterfaces.h"
 
@@ -57,6 +58,21 @@ struct StepResult {
   bool cancelled = false;  // stopped between the Booleans of a swept turn: nothing was computed
   std::uint64_t revision = 0;  // the bone revision the step started from
   double computeMs = 0;
+};
+
+// The answer to ReamSession::previewReamToDepth.
+struct RemovalPreviewAnswer {
+  enum class Outcome {
+    Computed,   // preview: what the steps would remove from the bone as it was asked on
+    Stale,      // computed, but the bone changed meanwhile (a cut, an undo): not what it is now
+    Cancelled,  // stopped (cancelPreview: Stop, a new bone)
+    Failed,     // error says why (no cutting engine, a Boolean that failed)
+  };
+  Outcome outcome = Outcome::Failed;
+  RemovalPreview preview;
+  Pose start;
+  double depthMm = 0;
+  QString error;
 };
 
 class ReamSession : public QObject {
@@ -120,6 +136,14 @@ class ReamSession : public QObject {
   // maxMm): run on the worker after the steps queued before it, against the bone they leave, on the
   // engine's own collision structure (no tree is built for it). Answered by contactSearched.
   void searchContactAlongAxis(const Pose& start, double maxMm);
+  // What "ream to depth" from `start` (reamToDepthPoses: to the first contact along its axis, then feed steps
+  // of stepMm down to depthMm below it) would remove, computed on a copy of the bone by an engine of its own on
+  // another worker: the document, the session's engine and its steps are untouched, and the user may go on
+  // meanwhile. Answered by removalPreviewed. One at a time: asked again while one runs, that one is stopped.
+  void previewReamToDepth(const Pose& start, double depthMm, double stepMm);
+  void cancelPreview();  // the running preview stops at its next Boolean and answers Cancelled
+  static constexpr double kPreviewReachMm = 100;  // how far along its axis a preview looks for the first contact
+  bool previewRunning() const { return previewWatcher_.isRunning(); }
   // Drops the queued steps and stops the running one between two of its Booleans (a long swing is a chain
   // of them): a stopped step leaves the bone as it was and the reamer where that step started.
   void cancelQueued();
@@ -198,6 +222,7 @@ class ReamSession : public QObject {
   void boneReplaced();
   void contactSearched(const ContactSearch& result);
   void noteReached(const QString& note);  // a plan's step with a note was committed
+  void removalPreviewed(const RemovalPreviewAnswer& answer);
   // A landmark edit was made while undone cuts or bones could be redone: it is not on the undo stack.
   void planningEditNotRecorded();
 
@@ -235,6 +260,9 @@ class ReamSession : public QObject {
   std::unique_ptr<ReamEngine> engine_;
   std::uint64_t engineGeneration_ = 0;  // counts rebuildEngine calls
   QFutureWatcher<StepResult> watcher_;
+  QFutureWatcher<RemovalPreviewAnswer> previewWatcher_;
+  std::shared_ptr<StepControl> previewControl_;
+  std::uint64_t previewRevision_ = 0;  // the bone revision the running preview was asked on
   bool running_ = false;
   void takeReamer(const ReamerSpec& spec, std::shared_ptr<const TriangleMesh> cuttingVolume);
   struct PendingReamer {
@@ -278,3 +306,6 @@ class ReamSession : public QObject {
 };
 
 }  // namespace reamsim::ui
+
+// Carried in QVariant by QSignalSpy (tests) and queued connections.
+Q_DECLARE_METATYPE(reamsim::ui::RemovalPreviewAnswer)

@@ -699,6 +699,48 @@ TEST(GuiReaming, TheReamersPathExportsAsAPlanThatReplaysTheSession) {
   EXPECT_TRUE(w.exportPath(file).contains("no step")) << w.exportPath(file).toStdString();
 }
 
+// Preview: how much bone a ream to depth would take, computed on a copy while the bone stays as it is; *Ream it*
+// then removes that much; Stop stops a preview.
+TEST(GuiReaming, APreviewSaysWhatReamToDepthWillRemoveAndCutsNothing) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  ASSERT_TRUE(s.waitIdle(60000));
+  const std::uint64_t revision = s.bone()->currentRevision();
+  const double volume = s.bone()->current().volume();
+  const int commands = s.undoStack()->count();
+  QSignalSpy answers(&s, &ReamSession::removalPreviewed);
+  w.previewReamToDepth(1.5);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return answers.count() == 1; }, 60000));
+  const auto answer = answers.at(0).at(0).value<RemovalPreviewAnswer>();
+  ASSERT_EQ(int(answer.outcome), int(RemovalPreviewAnswer::Outcome::Computed)) << answer.error.toStdString();
+  ASSERT_TRUE(answer.preview.approachMm);
+  const double predicted = answer.preview.removedMm3;
+  EXPECT_GT(predicted, 100.0);
+  EXPECT_EQ(s.bone()->currentRevision(), revision);  // nothing cut, logged or put on the undo stack
+  EXPECT_TRUE(s.log()->empty());
+  EXPECT_EQ(s.undoStack()->count(), commands);
+  EXPECT_TRUE(w.lastPreviewText().contains(QLocale().toString(predicted, 'f', 1) + " mm³")) << w.lastPreviewText().toStdString();
+  QMessageBox* box = nullptr;
+  ASSERT_TRUE(QTest::qWaitFor([&] { return (box = w.findChild<QMessageBox*>("RemovalPreviewDialog")) != nullptr; }, 5000));
+  auto* ream = box->findChild<QPushButton*>("ReamIt");
+  ASSERT_NE(ream, nullptr);
+  ream->click();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !s.log()->empty() && !s.busy(); }, 60000));
+  ASSERT_TRUE(s.waitIdle(60000));
+  const double removed = volume - s.bone()->current().volume();
+  EXPECT_NEAR(removed, predicted, 1e-6 * predicted);  // what the preview said, cut for real
+
+  // Stop stops a preview: answered Cancelled, the bone untouched.
+  const std::uint64_t cut = s.bone()->currentRevision();
+  w.previewReamToDepth(3.0);
+  w.action("stop")->trigger();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return answers.count() == 2; }, 60000));
+  EXPECT_EQ(answers.at(1).at(0).value<RemovalPreviewAnswer>().outcome, RemovalPreviewAnswer::Outcome::Cancelled);
+  EXPECT_EQ(s.bone()->currentRevision(), cut);
+}
+
 // An educator's session: notes written on cuts go into the exported path with the time of every step; replayed at
 // its recorded pace on the bone as opened, each step waits for its time, the notes come back on the replay's
 // log rows and are announced, and the replay cuts as the session did. Stop drops the steps still waiting.

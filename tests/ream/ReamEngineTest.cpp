@@ -11,6 +11,11 @@
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/Approach.h"
 #include "reamsim/ream/ReamStep.h"
+#include "reamsim/ream/DefaultCase.h"
+#include "reamsim/ream/LocalCutBackend.h"
+#include "reamsim/ream/Plan.h"
+#include "reamsim/tools/ReamerGeometry.h"
+#include "reamsim/tools/ReamerPresets.h"
 #include "reamsim/tools/Primitives.h"
 
 namespace reamsim {
@@ -177,6 +182,40 @@ TEST(ReamEngine, ContactSearchAlongTheAxisFollowsTheBone) {
   EXPECT_GT(search(tilted, "tilted, into the hole's side").value_or(-1), tiltedBefore);
   ASSERT_TRUE(s.bone->undo());
   EXPECT_NEAR(search(at(3.0), "after an undo").value_or(-1), 3.5, 1e-6);
+}
+
+// Another reamer on the same engine (sequential reaming with growing sizes, ReamEngine::setReamer): the next cut is
+// the new reamer's, as a fresh engine computes it on the same bone; the engine's tree and cutter are kept.
+TEST(ReamEngine, AnotherReamerOnTheSameEngineCutsAsAFreshEngine) {
+  const ReamerSpec small = loadPreset("glenoid-36-R30", reamerPresetsPath());
+  const ReamerSpec large = loadPreset("glenoid-40-R32", reamerPresetsPath());
+  auto smallVolume = std::make_shared<const TriangleMesh>(buildCuttingSolid(small));
+  auto largeVolume = std::make_shared<const TriangleMesh>(buildCuttingSolid(large));
+  const Pose start = loadPlan(defaultPlanPath()).feed->start;
+  const BoneState bone = BoneState::fromMesh(loadDefaultBone().mesh);
+  ReamEngine engine(smallVolume, makeBvhContactBackend(), localCutBackendFactory(), small);
+  const double approach = *engine.advanceToContactMm(bone, 1, start, 100);
+  const Pose first = advancedAlongAxis(start, approach + 0.5);
+  const ReamComputation c1 = engine.compute(bone, 1, first, 0);
+  ASSERT_TRUE(c1.cut.changed && c1.next);
+  const BoneState seated = *c1.next;
+  engine.adopt(2);
+
+  engine.setReamer(largeVolume, large);
+  const Pose second = advancedAlongAxis(start, approach + 0.8);
+  const ReamComputation c2 = engine.compute(seated, 2, second, 0.3, &first);
+  ReamEngine fresh(largeVolume, makeBvhContactBackend(), localCutBackendFactory(), large);
+  const ReamComputation f2 = fresh.compute(seated, 2, second, 0.3, &first);
+  ASSERT_TRUE(c2.cut.changed && f2.cut.changed);
+  EXPECT_NEAR(c2.cut.removedMm3, f2.cut.removedMm3, 1e-6 * f2.cut.removedMm3);
+  EXPECT_EQ(c2.next->liveTriangleCount(), f2.next->liveTriangleCount());
+  ASSERT_TRUE(c2.reamer);
+  EXPECT_EQ(c2.reamer->name, "glenoid-40-R32");
+  // The larger reamer's cut, not the smaller one's (which would take less of the rim).
+  ReamEngine smallFresh(smallVolume, makeBvhContactBackend(), localCutBackendFactory(), small);
+  const ReamComputation s2 = smallFresh.compute(seated, 2, second, 0.3, &first);
+  EXPECT_GT(c2.cut.removedMm3, s2.cut.removedMm3 * 1.05);
+  EXPECT_THROW(engine.setReamer(nullptr, large), std::invalid_argument);
 }
 
 }  // namespace

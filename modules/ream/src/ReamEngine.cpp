@@ -41,12 +41,27 @@ ReamEngine::ReamEngine(std::shared_ptr<const TriangleMesh> cuttingVolumeLocal, s
       spec_(std::move(spec)),
       contact_(std::move(contact)),
       cutFactory_(std::move(cut)) {
+  deriveFromReamer();
+}
+
+void ReamEngine::deriveFromReamer() {
   if (!cuttingVolume_) throw std::invalid_argument("the reamer has no cutting volume");
   localFaceVertices_ = forwardFacingVertices(*cuttingVolume_);
   convexSolid_ = isConvexSolid(*cuttingVolume_);
   const Bounds local = computeBounds(*cuttingVolume_);
   axialLength_ = local.max.z - local.min.z;  // reamer-local: the feed axis is +z
+  solidRadius_ = 0;
   for (const Vec3& p : cuttingVolume_->vertices) solidRadius_ = std::max(solidRadius_, norm(p));
+}
+
+void ReamEngine::setReamer(std::shared_ptr<const TriangleMesh> cuttingVolumeLocal, std::optional<ReamerSpec> spec) {
+  if (!cuttingVolumeLocal) throw std::invalid_argument("the reamer has no cutting volume");
+  cuttingVolume_ = std::move(cuttingVolumeLocal);
+  spec_ = std::move(spec);
+  deriveFromReamer();
+  // The contact engine takes the new volume from the next query's input (it is another object); the cutter goes
+  // on from its exact coordinates with the new tool.
+  if (cutter_) cutter_->setCuttingSolid(*cuttingVolume_);
 }
 
 ReamEngine::~ReamEngine() = default;

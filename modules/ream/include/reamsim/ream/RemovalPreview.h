@@ -1,0 +1,31 @@
+#pragma once
+// How much bone a "ream to depth" would take, computed on a copy of the bone before anything is cut: a surgeon
+// compares depths, axes and reamers by what each removes, and the document is never touched.
+#include <cstddef>
+#include <optional>
+
+#include "reamsim/core/BoneState.h"
+#include "reamsim/core/Pose.h"
+#include "reamsim/ream/ReamEngine.h"
+
+namespace reamsim {
+
+struct RemovalPreview {
+  std::optional<double> approachMm;  // how far the reamer advances from `start` before it first touches the bone
+  double depthMm = 0;                // below that contact, as asked
+  double removedMm3 = 0;             // V(bone) − V(bone after the steps)
+  std::size_t steps = 0, cuts = 0;   // the steps (the move to the contact, then the feed steps) and those that cut
+  std::size_t facesAfter = 0;
+  BoneState after;                   // the bone as the steps would leave it
+};
+
+// Runs "ream to depth" (reamToDepthPoses: the move to the first contact within reachMm along start's axis, then
+// feed steps of at most stepMm down to depthMm below it, each swept from the one before, the first from `start`)
+// on `engine` against `bone`, as the reaming loop would, without a document. `engine` must be one of its own
+// (its structures follow the copy; the session's engine is not to be used). No contact within reach: approachMm
+// is unset and nothing is removed. `control` stops it between Booleans (ReamCancelled). Preconditions checked
+// first: depthMm and stepMm positive and finite, reachMm positive, an engine that can collide and cut.
+RemovalPreview previewReamToDepth(ReamEngine& engine, const BoneState& bone, const Pose& start, double depthMm,
+                                  double stepMm, double reachMm, StepControl* control = nullptr);
+
+}  // namespace reamsim

@@ -1,0 +1,41 @@
+#include "reamsim/ream/RemovalPreview.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "reamsim/ream/Approach.h"
+
+namespace reamsim {
+
+RemovalPreview previewReamToDepth(ReamEngine& engine, const BoneState& bone, const Pose& start, double depthMm,
+                                  double stepMm, double reachMm, StepControl* control) {
+  if (!(depthMm > 0) || !std::isfinite(depthMm)) throw std::invalid_argument("previewReamToDepth: the depth must be positive");
+  if (!(stepMm > 0) || !std::isfinite(stepMm)) throw std::invalid_argument("previewReamToDepth: the step must be positive");
+  if (!(reachMm > 0)) throw std::invalid_argument("previewReamToDepth: the reach must be positive");
+  if (!engine.canCollide() || !engine.canCut())
+    throw std::invalid_argument("previewReamToDepth: the engine cannot collide and cut");
+  // Revisions of the copy's own states: the engine only matches them with what it computed.
+  std::uint64_t revision = 1;
+  RemovalPreview out;
+  out.depthMm = depthMm;
+  out.after = bone;
+  out.approachMm = engine.advanceToContactMm(bone, revision, start, reachMm);
+  if (out.approachMm) {
+    Pose from = start;
+    for (const Pose& pose : reamToDepthPoses(start, *out.approachMm, depthMm, stepMm)) {
+      const ReamComputation step = engine.compute(out.after, revision, pose, norm(pose.tip - from.tip), &from, control);
+      ++out.steps;
+      if (step.cut.changed && step.next) {
+        out.after = *step.next;
+        engine.adopt(++revision);
+        ++out.cuts;
+      }
+      from = pose;
+    }
+  }
+  out.removedMm3 = bone.volume() - out.after.volume();
+  out.facesAfter = out.after.liveTriangleCount();
+  return out;
+}
+
+}  // namespace reamsim
