@@ -125,4 +125,16 @@ inline void cutOnce(ReamSession& s, double depthMm = 0.5) {
   ASSERT_EQ(s.cutsCommitted(), before + 1);
 }
 
+// Writes `note` on the log dock's row `row` as its Note… does (LogPanel::annotateRow, a slot of the plugin's
+// dock); false when the dock has no such row.
+inline bool annotateRow(QWidget& window, int row, const QString& note) {
+  QObject* panel = window.findChild<QObject*>("LogPanel");
+  bool annotated = false;
+  EXPECT_NE(panel, nullptr);
+  if (panel)
+    EXPECT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, row),
+                                          Q_ARG(QString, note)));
+  return annotated;
+}
+
 }  // namespace reamsim::ui::test

@@ -756,12 +756,9 @@ TEST(GuiReaming, ANotedPathReplaysAtItsRecordedPaceWithItsNotes) {
   s.runSteps({advancedAlongAxis(seated, 0.2), advancedAlongAxis(seated, 0.4)});
   ASSERT_TRUE(s.waitIdle(60000));
   ASSERT_EQ(s.log()->size(), 3u);
-  auto* panel = w.findChild<QDockWidget*>("LogPanel");
-  ASSERT_NE(panel, nullptr);
   const QString first = QString::fromUtf8("seated: 0.5 mm, \"listen\" for the rim"), last = "final depth";
-  bool annotated = false;
-  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, 0), Q_ARG(QString, first)));
-  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, 2), Q_ARG(QString, last)));
+  ASSERT_TRUE(annotateRow(w, 0, first));
+  ASSERT_TRUE(annotateRow(w, 2, last));
 
   const QString file = dir.filePath("session.json");
   ASSERT_TRUE(w.exportPath(file).isEmpty());

@@ -54,6 +54,14 @@ void restoreExpectingAMessage(MainWindow& w, const QTemporaryDir& dir) {
   EXPECT_TRUE(w.windowTitle().contains("(recovered)"));
 }
 
+// Restores the copy in `w` (answering Restore) and waits for the title to say so.
+void restoreCopy(MainWindow& w, const QTemporaryDir& dir) {
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  w.enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
+  EXPECT_EQ(answers.seen(), 1);
+}
+
 // The bone's shape 200 mm along x: a second bone that does not meet the first.
 TriangleMesh movedAside(const BoneState& bone) {
   TriangleMesh m = bone.toMesh();
@@ -135,10 +143,7 @@ TEST(GuiRecovery, ANoteWrittenAfterASaveIsCopiedAndComesBack) {
     EXPECT_EQ(rows[0].note, note);
   }  // gone without a close, as in a crash
   GuiFixture f;
-  MainWindow& w = *f.window;
-  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
-  w.enableRecovery(dir.filePath("recovery"), 0);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
+  restoreCopy(*f.window, dir);
   ASSERT_EQ(f.session().log()->size(), 1u);
   EXPECT_EQ(f.session().log()->entries()[0].note, note);
 }
@@ -168,9 +173,7 @@ TEST(GuiRecovery, AJournalThatCannotBeWrittenLeavesACopyWithoutTheHistory) {
   }  // gone without a close, as in a crash
   GuiFixture f;
   MainWindow& w = *f.window;
-  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
-  w.enableRecovery(dir.filePath("recovery"), 0);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return w.windowTitle().contains("(recovered)"); }, 30000)) << w.lastError().toStdString();
+  restoreCopy(w, dir);
   EXPECT_NEAR(f.session().bone()->current().volume(), volume, 1e-6 * volume);
   EXPECT_EQ(f.session().log()->size(), 1u);
   EXPECT_TRUE(w.hasUnsavedChanges());

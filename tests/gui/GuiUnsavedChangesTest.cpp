@@ -275,28 +275,22 @@ TEST(GuiUnsavedChanges, ANoteOnACutIsSavedWithTheLog) {
   ASSERT_FALSE(w.isWindowModified());
   auto* panel = w.findChild<QDockWidget*>("LogPanel");
   ASSERT_NE(panel, nullptr);
-  bool annotated = false;
   const QString note = QString::fromUtf8("rim reached, \"stop\" here\nnext: 2° more retroversion");
-  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, 0),
-                                        Q_ARG(QString, note)));
-  EXPECT_TRUE(annotated);
+  EXPECT_TRUE(annotateRow(w, 0, note));
   QString shown;
   ASSERT_TRUE(QMetaObject::invokeMethod(panel, "noteOfRow", Q_RETURN_ARG(QString, shown), Q_ARG(int, 0)));
   EXPECT_EQ(shown, note);  // the table follows the document
   EXPECT_EQ(s.log()->entries()[0].note, note.toStdString());
   EXPECT_TRUE(w.hasUnsavedChanges());
   EXPECT_TRUE(w.isWindowModified());
-  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, 1),
-                                        Q_ARG(QString, note)));
-  EXPECT_FALSE(annotated);  // no such row
+  EXPECT_FALSE(annotateRow(w, 1, note));  // no such row
   ASSERT_TRUE(w.saveBoneAs(out.filePath("bone.ply"))) << w.lastError().toStdString();
   EXPECT_FALSE(w.isWindowModified());
   const std::vector<CutLogEntry> saved = readCutLogCsv(out.filePath("bone.cut_log.csv").toStdString());
   ASSERT_EQ(saved.size(), 1u);
   EXPECT_EQ(saved[0].note, note.toStdString());
   // Changed after the save: asked about on close (Cancel keeps the window).
-  ASSERT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, 0),
-                                        Q_ARG(QString, QString("changed"))));
+  EXPECT_TRUE(annotateRow(w, 0, "changed"));
   EXPECT_TRUE(w.isWindowModified());
   QString text;
   EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Cancel, &text)}, 1));
