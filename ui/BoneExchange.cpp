@@ -7,6 +7,7 @@ namespace reamsim::ui {
 void ReamSession::exchangeBone(BoneContent& other) {
   const QuietPlanning quiet(*this);  // the landmarks go with their bone: not an edit
   cancelQueued();
+  cancelPreview();  // asked of the bone that goes
   if (running_) watcher_.waitForFinished();  // its result is dropped: revisions never repeat (BoneHistory)
   {
     Document::BatchScope batch(document_);

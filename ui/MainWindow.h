@@ -289,6 +289,7 @@ class MainWindow : public QMainWindow {
   double replaySpeed_ = 1.0;
   QString lastPreviewText_;
   void removalPreviewed(const RemovalPreviewAnswer& answer);
+  bool previewStillHolds(const RemovalPreviewAnswer& answer) const;
   QActionGroup* replaySpeeds_ = nullptr;
   std::optional<std::uint64_t> copiedNotesRevision_;
   Subscription notesSubscription_;  // a note changed: the title...

@@ -346,20 +346,33 @@ void MainWindow::removalPreviewed(const RemovalPreviewAnswer& a) {
                  shown.toString(p.removedMm3, 'f', 1), shown.toString(qulonglong(p.steps)),
                  shown.toString(qulonglong(p.cuts)), shown.toString(qulonglong(p.facesAfter)));
   }
-  const bool stale = a.outcome == Outcome::Stale;
+  const bool stale = a.outcome == Outcome::Stale || !previewStillHolds(a);
   auto* box = new QMessageBox(QMessageBox::Information, tr("Preview ream to depth"), lastPreviewText_, QMessageBox::Close, this);
   box->setObjectName("RemovalPreviewDialog");
   box->setAttribute(Qt::WA_DeleteOnClose);
-  box->setInformativeText(stale ? tr("Computed on the bone as it was when asked; it has changed since. Preview again "
-                                     "for the bone as it is.")
+  box->setInformativeText(stale ? tr("Computed for the bone, the reamer and its pose as they were when asked; one "
+                                     "of them has changed since. Preview again for them as they are.")
                                 : tr("Computed on a copy: the bone is not cut."));
   if (p.approachMm && !stale) {
     QPushButton* ream = box->addButton(tr("Ream it"), QMessageBox::AcceptRole);
     ream->setObjectName("ReamIt");
-    const double depth = a.depthMm;
-    connect(ream, &QPushButton::clicked, this, [this, depth] { reamToDepth(depth); });
+    // Checked again at the click: the box waits (and steps may run) while it is open.
+    connect(ream, &QPushButton::clicked, this, [this, a] {
+      if (!previewStillHolds(a))
+        return showError(tr("Preview ream to depth"), tr("The bone, the reamer or its pose has changed since the "
+                                                         "preview: nothing was cut. Preview again."));
+      reamToDepth(a.depthMm);
+    });
   }
   box->open();
+}
+
+// What a preview was computed for is still what Ream to depth would ream: the bone (its revision), the reamer (the
+// session's engine generation), where the reamer is going and the feed step.
+bool MainWindow::previewStillHolds(const RemovalPreviewAnswer& a) const {
+  const Pose now = targetPose();
+  return a.revision == session_->bone()->currentRevision() && a.generation == session_->engineGeneration() &&
+         now.tip == a.start.tip && now.axis == a.start.axis && feedStep_->value() == a.stepMm && !session_->busy();
 }
 
 void MainWindow::askFeedBy() {

@@ -50,9 +50,11 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
     if (!queued_.empty() || running_) cancelQueued();
   });
   connect(&watcher_, &QFutureWatcher<StepResult>::finished, this, &ReamSession::finished);
+  previewPool_.setMaxThreadCount(1);
   connect(&previewWatcher_, &QFutureWatcher<RemovalPreviewAnswer>::finished, this, [this] {
     RemovalPreviewAnswer answer = previewWatcher_.result();
-    if (answer.outcome == RemovalPreviewAnswer::Outcome::Computed && previewRevision_ != bone_->currentRevision())
+    if (answer.outcome == RemovalPreviewAnswer::Outcome::Computed &&
+        (answer.revision != bone_->currentRevision() || answer.generation != engineGeneration_))
       answer.outcome = RemovalPreviewAnswer::Outcome::Stale;
     Q_EMIT removalPreviewed(answer);
   });
@@ -79,7 +81,7 @@ ReamSession::~ReamSession() {
   watcher_.disconnect(this);
   if (previewControl_) previewControl_->stop = true;
   previewWatcher_.disconnect(this);
-  if (previewWatcher_.isRunning()) previewWatcher_.waitForFinished();  // it reads the plugins
+  previewPool_.waitForDone();  // it reads the plugins (a stopped preview ends at its next check)
 }
 
 void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose& start) {
@@ -279,6 +281,7 @@ void ReamSession::previewReamToDepth(const Pose& start, double depthMm, double s
   RemovalPreviewAnswer refused;
   refused.start = start;
   refused.depthMm = depthMm;
+  refused.stepMm = stepMm;
   const CollisionInterface* collision = plugins_.collision();
   const CsgInterface* csg = plugins_.csg();
   if (!collision || !csg || !bone_->cuttable() || !reamer_->cuttingVolume() || bone_->current().empty()) {
@@ -291,21 +294,24 @@ void ReamSession::previewReamToDepth(const Pose& start, double depthMm, double s
     Q_EMIT removalPreviewed(refused);
     return;
   }
-  if (previewWatcher_.isRunning()) {  // the new question replaces it: its answer comes first, Cancelled
-    previewControl_->stop = true;
-    previewWatcher_.waitForFinished();
-  }
+  // A preview still running is stopped, not waited for: it ends at its next check on the preview's own thread,
+  // before this one starts there, and the watcher hears this one only.
+  if (previewControl_) previewControl_->stop = true;
   previewControl_ = std::make_shared<StepControl>();
-  previewRevision_ = bone_->currentRevision();
+  RemovalPreviewAnswer asked = refused;
+  asked.revision = bone_->currentRevision();
+  asked.generation = engineGeneration_;
   previewWatcher_.setFuture(QtConcurrent::run(
-      [collision, cut = csg->cutBackendFactory(), volume = reamer_->cuttingVolume(), spec = reamer_->spec(),
-       bone = bone_->current(), control = previewControl_, start, depthMm, stepMm]() -> RemovalPreviewAnswer {
-        RemovalPreviewAnswer a;
-        a.start = start;
-        a.depthMm = depthMm;
+      &previewPool_, [collision, cut = csg->cutBackendFactory(), volume = reamer_->cuttingVolume(), spec = reamer_->spec(),
+                      bone = bone_->current(), control = previewControl_, asked]() -> RemovalPreviewAnswer {
+        RemovalPreviewAnswer a = asked;
+        const Pose start = a.start;
+        const double depthMm = a.depthMm, stepMm = a.stepMm;
         try {
+          if (control->stop) throw ReamCancelled();  // before building an engine for nothing
           ReamEngine engine(volume, collision->createContactBackend(), cut, spec);
           a.preview = reamsim::previewReamToDepth(engine, bone, start, depthMm, stepMm, kPreviewReachMm, control.get());
+          a.preview.after = BoneState{};  // the future keeps its result until the next preview: not a whole bone
           a.outcome = RemovalPreviewAnswer::Outcome::Computed;
         } catch (const ReamCancelled&) {
           a.outcome = RemovalPreviewAnswer::Outcome::Cancelled;

@@ -11,6 +11,7 @@
 #include <QFutureWatcher>
 #include <QObject>
 #include <QString>
+#include <QThreadPool>
 #include <QTimer>
 #include <QUndoStack>
 #include <deque>
@@ -69,9 +70,12 @@ struct RemovalPreviewAnswer {
     Failed,     // error says why (no cutting engine, a Boolean that failed)
   };
   Outcome outcome = Outcome::Failed;
-  RemovalPreview preview;
+  RemovalPreview preview;  // its `after` is not kept: the answer would hold a whole bone
+  // What it was asked for: the reamer's pose and the feed step, on the bone's revision with the session's engine
+  // generation (another reamer counts one up). The window checks them again before it reams (*Ream it*).
   Pose start;
-  double depthMm = 0;
+  double depthMm = 0, stepMm = 0;
+  std::uint64_t revision = 0, generation = 0;
   QString error;
 };
 
@@ -139,11 +143,14 @@ class ReamSession : public QObject {
   // What "ream to depth" from `start` (reamToDepthPoses: to the first contact along its axis, then feed steps
   // of stepMm down to depthMm below it) would remove, computed on a copy of the bone by an engine of its own on
   // another worker: the document, the session's engine and its steps are untouched, and the user may go on
-  // meanwhile. Answered by removalPreviewed. One at a time: asked again while one runs, that one is stopped.
+  // meanwhile. Answered by removalPreviewed; Stale when the bone or the reamer changed meanwhile. It runs on a
+  // thread of its own (previewPool_), so the session's steps never wait behind it. Asked again while one runs,
+  // that one is stopped and only the new one answers.
   void previewReamToDepth(const Pose& start, double depthMm, double stepMm);
   void cancelPreview();  // the running preview stops at its next Boolean and answers Cancelled
   static constexpr double kPreviewReachMm = 100;  // how far along its axis a preview looks for the first contact
   bool previewRunning() const { return previewWatcher_.isRunning(); }
+  std::uint64_t engineGeneration() const { return engineGeneration_; }
   // Drops the queued steps and stops the running one between two of its Booleans (a long swing is a chain
   // of them): a stopped step leaves the bone as it was and the reamer where that step started.
   void cancelQueued();
@@ -262,7 +269,7 @@ class ReamSession : public QObject {
   QFutureWatcher<StepResult> watcher_;
   QFutureWatcher<RemovalPreviewAnswer> previewWatcher_;
   std::shared_ptr<StepControl> previewControl_;
-  std::uint64_t previewRevision_ = 0;  // the bone revision the running preview was asked on
+  QThreadPool previewPool_;  // one thread: a preview never takes the steps' or the saves' threads
   bool running_ = false;
   void takeReamer(const ReamerSpec& spec, std::shared_ptr<const TriangleMesh> cuttingVolume);
   struct PendingReamer {

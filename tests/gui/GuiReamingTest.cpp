@@ -739,6 +739,24 @@ TEST(GuiReaming, APreviewSaysWhatReamToDepthWillRemoveAndCutsNothing) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return answers.count() == 2; }, 60000));
   EXPECT_EQ(answers.at(1).at(0).value<RemovalPreviewAnswer>().outcome, RemovalPreviewAnswer::Outcome::Cancelled);
   EXPECT_EQ(s.bone()->currentRevision(), cut);
+
+  // The reamer moved after the preview: *Ream it* cuts nothing and says why.
+  w.previewReamToDepth(0.5);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return answers.count() == 3; }, 60000));
+  QPushButton* stale = nullptr;
+  ASSERT_TRUE(QTest::qWaitFor([&] {
+    for (QPushButton* b : w.findChildren<QPushButton*>("ReamIt")) stale = b;
+    return stale && stale->isVisible();
+  }, 5000));
+  s.moveReamer(advancedAlongAxis(s.reamer()->pose(), -2.0), false);
+  ASSERT_TRUE(s.waitIdle(60000));
+  const std::size_t rows = s.log()->size();
+  const std::uint64_t moved = s.bone()->currentRevision();
+  stale->click();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(s.log()->size(), rows);
+  EXPECT_EQ(s.bone()->currentRevision(), moved);
+  EXPECT_TRUE(w.lastError().contains("changed since the preview")) << w.lastError().toStdString();
 }
 
 // An educator's session: notes written on cuts go into the exported path with the time of every step; replayed at

@@ -1,5 +1,6 @@
 #include "reamsim/ream/RemovalPreview.h"
 
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -14,8 +15,14 @@ RemovalPreview previewReamToDepth(ReamEngine& engine, const BoneState& bone, con
   if (!(reachMm > 0)) throw std::invalid_argument("previewReamToDepth: the reach must be positive");
   if (!engine.canCollide() || !engine.canCut())
     throw std::invalid_argument("previewReamToDepth: the engine cannot collide and cut");
-  // Revisions of the copy's own states: the engine only matches them with what it computed.
-  std::uint64_t revision = 1;
+  // Revisions of the copy's own states, a block of its own for every call: an engine given another bone under a
+  // revision it has seen would take it for the bone it holds. Far above the documents' (BoneHistory counts up from 1).
+  static std::atomic<std::uint64_t> nextBlock{std::uint64_t(1) << 62};
+  std::uint64_t revision = nextBlock.fetch_add(std::uint64_t(1) << 32);
+  const auto stopAsked = [control] {
+    if (control && control->stop) throw ReamCancelled();
+  };
+  stopAsked();
   RemovalPreview out;
   out.depthMm = depthMm;
   out.after = bone;
@@ -23,6 +30,7 @@ RemovalPreview previewReamToDepth(ReamEngine& engine, const BoneState& bone, con
   if (out.approachMm) {
     Pose from = start;
     for (const Pose& pose : reamToDepthPoses(start, *out.approachMm, depthMm, stepMm)) {
+      stopAsked();  // also where a step would make no Boolean
       const ReamComputation step = engine.compute(out.after, revision, pose, norm(pose.tip - from.tip), &from, control);
       ++out.steps;
       if (step.cut.changed && step.next) {

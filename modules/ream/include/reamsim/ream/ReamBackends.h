@@ -24,7 +24,9 @@ struct ContactInput {
   std::uint64_t revision;        // changes whenever `bone` does: engines that keep a structure resync on it
   const TriangleMesh* boneMesh;  // `bone` as a plain mesh when the backend needsMesh() (O(bone) to make), else null
   const Bounds& boneBounds;
-  const std::shared_ptr<const TriangleMesh>& cuttingVolumeLocal;  // reamer-local, the same object every call
+  // Reamer-local; the same object every call until the reamer changes (ReamEngine::setReamer), when it is another
+  // object: backends that derive a model from it key that on the object.
+  const std::shared_ptr<const TriangleMesh>& cuttingVolumeLocal;
   const ReamerSpec* reamerSpec;  // the spec the volume was built from, when known (null: a solid alone)
   const RigidTransform& pose;    // reamer-local -> bone
   const TriangleMesh& tool;      // the cutting volume placed at `pose`

@@ -23,7 +23,8 @@ struct RemovalPreview {
 // feed steps of at most stepMm down to depthMm below it, each swept from the one before, the first from `start`)
 // on `engine` against `bone`, as the reaming loop would, without a document. `engine` must be one of its own
 // (its structures follow the copy; the session's engine is not to be used). No contact within reach: approachMm
-// is unset and nothing is removed. `control` stops it between Booleans (ReamCancelled). Preconditions checked
+// is unset and nothing is removed. `control` stops it before the search, between steps and between Booleans
+// (ReamCancelled). Each call numbers its states apart, so one engine may be given different bones. Preconditions checked
 // first: depthMm and stepMm positive and finite, reachMm positive, an engine that can collide and cut.
 RemovalPreview previewReamToDepth(ReamEngine& engine, const BoneState& bone, const Pose& start, double depthMm,
                                   double stepMm, double reachMm, StepControl* control = nullptr);
