@@ -102,12 +102,6 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
                              10000);
   });
   connect(session_.get(), &ReamSession::removalPreviewed, this, &MainWindow::removalPreviewed);
-  connect(session_.get(), &ReamSession::placedClearOfBone, this, [this](double mm) {
-    statusBar()->showMessage(tr("The reamer is placed %L1 mm further out along its axis than asked: there it would "
-                                "have cut the bone")
-                                 .arg(mm, 0, 'f', 1),
-                             10000);
-  });
   connect(session_.get(), &ReamSession::noteReached, this,
           [this](const QString& note) { statusBar()->showMessage(tr("Note: %1").arg(note), 10000); });
   updateStatus();

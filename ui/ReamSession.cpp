@@ -27,12 +27,7 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
   alerts_ = &document_.create<AlertNode>("Alerts");
   interaction_ = &document_.create<InteractionNode>("Interaction");
   placementRequests_ = document_.observeNode(reamer_->id(), [this] {
-    if (const auto request = reamer_->takePlacementRequest()) {
-      if (request->clearOfBone)
-        placeClearOfBone(request->pose);
-      else
-        moveReamer(request->pose, false);
-    }
+    if (const std::optional<Pose> pose = reamer_->takePlacementRequest()) moveReamer(*pose, false);
   });
   planningEdits_ = document_.observeNode(bone_->id(), [this] { recordPlanningEdit(); });
   undo_.setUndoLimit(0);  // unlimited: the states share storage (see CutCommand)
@@ -218,7 +213,6 @@ QString ReamSession::cuttingStatus() const {
 }
 
 void ReamSession::moveReamer(const Pose& pose, bool moved) {
-  searchPlaces_ = false;  // a move by hand wins over a placement still searching for room
   reamer_->setPose(pose);  // the view follows at once; the step itself is computed on the worker
   if (!engine_) return;
   if (!queued_.empty()) {  // a move by hand interrupts a feed sequence
@@ -352,18 +346,6 @@ void ReamSession::searchContactAlongAxis(const Pose& start, double maxMm) {
   startNext();
 }
 
-// A contact search along the axis from kClearBackOffMm behind the pose, on the worker like Ream to depth's; its
-// answer places the reamer (answerSearch) at the pose or, where the reamer would meet the bone first, short of it.
-void ReamSession::placeClearOfBone(const Pose& pose) {
-  if (!engine_) return moveReamer(pose, false);
-  reamer_->setPose(pose);  // shown at once, as a move by hand; moved back if the bone is in the way
-  if (!queued_.empty() || running_) cancelQueued();  // a placement interrupts a sequence, as a move by hand
-  latestUserPose_.reset();
-  queued_.push_back({advancedAlongAxis(pose, -kClearBackOffMm), kClearBackOffMm});
-  queued_.back().clearPlacement = true;
-  startNext();
-}
-
 void ReamSession::clearQueue() {
   const bool searchQueued =
       std::any_of(queued_.begin(), queued_.end(), [](const QueuedStep& q) { return q.searchMm.has_value(); });
@@ -374,7 +356,6 @@ void ReamSession::clearQueue() {
 
 void ReamSession::cancelQueued() {
   if (running_ && control_) control_->stop = true;
-  searchPlaces_ = false;  // a placement waiting for its search is dropped too
   clearQueue();
   latestUserPose_.reset();
   waitingForFrame_ = false;
@@ -427,7 +408,6 @@ void ReamSession::startNext() {
     queued_.pop_front();
     runningNote_ = next.note;
     if (next.searchMm) {
-      searchPlaces_ = next.clearPlacement;
       startSearch(next.pose, *next.searchMm);
       return;
     }
@@ -455,7 +435,6 @@ void ReamSession::startNext() {
 // A contact search runs on the worker like a step (one job at a time: the engine's structures are not shared
 // between threads) but moves nothing and commits nothing.
 void ReamSession::startSearch(const Pose& start, double maxMm) {
-  searchStart_ = start;
   control_.reset();
   runOnWorker([start, maxMm](ReamEngine& engine, const BoneState& state, std::uint64_t revision, StepResult& r) {
     r.searchMm = maxMm;
@@ -500,22 +479,7 @@ void ReamSession::answerSearch(const StepResult& r) {
   } else {
     answer.outcome = ContactSearch::Outcome::NoneInReach;
   }
-  if (std::exchange(searchPlaces_, false)) return placeAfterClearSearch(answer);
   Q_EMIT contactSearched(answer);
-}
-
-void ReamSession::placeAfterClearSearch(const ContactSearch& a) {
-  const Pose asked = advancedAlongAxis(searchStart_, kClearBackOffMm);
-  if (a.outcome == ContactSearch::Outcome::Dropped) return;  // the bone or the reamer changed: asked again if wanted
-  // The reamer would meet the bone before it got where it was asked: placed short of the contact, clear of it.
-  // Touching already at the search's start (a bone all along the axis) leaves nothing clear to find: as asked.
-  if (a.outcome == ContactSearch::Outcome::Found && a.approachMm < kClearBackOffMm && a.approachMm > kClearMarginMm) {
-    const double back = kClearBackOffMm - (a.approachMm - kClearMarginMm);
-    moveReamer(advancedAlongAxis(asked, -back), false);
-    Q_EMIT placedClearOfBone(back);
-    return;
-  }
-  moveReamer(asked, false);
 }
 
 void ReamSession::finished() {

@@ -229,9 +229,6 @@ class ReamSession : public QObject {
   void boneReplaced();
   void contactSearched(const ContactSearch& result);
   void noteReached(const QString& note);  // a plan's step with a note was committed
-  // A placement asked clear of the bone went `furtherOutMm` further out along its axis than asked: where it was
-  // asked the reamer would have cut the bone.
-  void placedClearOfBone(double furtherOutMm);
   void removalPreviewed(const RemovalPreviewAnswer& answer);
   // A landmark edit was made while undone cuts or bones could be redone: it is not on the undo stack.
   void planningEditNotRecorded();
@@ -243,14 +240,6 @@ class ReamSession : public QObject {
   void clearQueue();  // drops the queued steps; a queued contact search is answered Dropped
   void queuePendingUserMove();  // the move by hand not yet computed goes to the queue's end
   void startSearch(const Pose& start, double maxMm);
-  // A placement asked clear of the bone (ReamerNode::requestPlacement): a contact search along the axis first,
-  // whose answer places the reamer as asked or short of the bone (placeAfterClearSearch).
-  void placeClearOfBone(const Pose& pose);
-  void placeAfterClearSearch(const ContactSearch& answer);
-  Pose searchStart_;            // where the running search starts
-  bool searchPlaces_ = false;   // the running search's answer is a placement's, not the window's
-  static constexpr double kClearBackOffMm = 100;  // how far behind the asked pose the search starts
-  static constexpr double kClearMarginMm = 0.5;   // how far short of the contact the reamer is placed
   // Runs `job` on the worker against the current bone, timed; an exception becomes the result's error
   // (ReamCancelled: cancelled). One job at a time: the engine is not shared between threads.
   using WorkerJob = std::function<void(ReamEngine&, const BoneState&, std::uint64_t revision, StepResult&)>;
@@ -294,7 +283,6 @@ class ReamSession : public QObject {
     bool placed = false;             // placed there (nothing swept), not a travel from the step before
     std::string note;                // a plan's note for the step
     std::optional<double> dueMs;     // paced: not started before paceClock_ has reached it
-    bool clearPlacement = false;     // a search whose answer places the reamer (placeClearOfBone)
   };
   QElapsedTimer paceClock_;  // started when a paced plan is queued
   QTimer* paceTimer_ = nullptr;  // wakes the queue when the next paced step is due

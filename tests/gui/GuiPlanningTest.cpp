@@ -61,44 +61,6 @@ QPoint widgetPointOf(BoneView& view, const Vec3& p) {
   return QPoint(int(std::lround(d[0] / ratio)), int(std::lround((view.height() * ratio - d[1]) / ratio)));
 }
 
-// Aim places the reamer clear of the bone: asked with its tip on the glenoid centre (where the cap would cut
-// into the glenoid), it goes back along its axis until clear, cuts nothing and says so; the same pose placed as a
-// plain placement cuts.
-TEST(GuiPlanning, AimPlacesTheReamerClearOfTheBone) {
-  REAMSIM_REQUIRE_DISPLAY();
-  GuiFixture f;
-  MainWindow& w = *f.window;
-  ReamSession& s = f.session();
-  QDockWidget* dock = planningDock(w);
-  ASSERT_NE(dock, nullptr);
-  ASSERT_TRUE(s.waitIdle(60000));
-  auto* clearance = part<QDoubleSpinBox>(dock, "AimClearance");
-  ASSERT_NE(clearance, nullptr);
-  clearance->setValue(0);
-  const std::uint64_t revision = s.bone()->currentRevision();
-  QTest::mouseClick(part<QPushButton>(dock, "AimReamer"), Qt::LeftButton);
-  ASSERT_TRUE(s.waitIdle(60000));
-  EXPECT_EQ(s.bone()->currentRevision(), revision);  // nothing cut
-  EXPECT_TRUE(s.log()->empty());
-  const Vec3 centre = *s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre];
-  const Pose placed = s.reamer()->pose();
-  const double out = norm(placed.tip - centre);
-  EXPECT_GT(out, 0.5);  // further out than the asked 0 mm
-  EXPECT_NEAR(dot(placed.tip - centre, placed.axis), -out, 1e-6);  // on the aimed axis, behind the centre
-  EXPECT_TRUE(w.statusBar()->currentMessage().contains("further out")) << w.statusBar()->currentMessage().toStdString();
-  EXPECT_FALSE(*advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), placed, 5) < 0.25)
-      << "placed short of the contact";
-  // Half a millimetre short of it: a feed of 1 mm reaches the bone.
-  EXPECT_LT(*advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), placed, 5), 1.0);
-
-  // The asked pose as a plain placement cuts the glenoid: what Aim avoided.
-  Pose asked = placed;
-  asked.tip = centre;
-  s.reamer()->requestPlacement(asked);
-  ASSERT_TRUE(s.waitIdle(60000));
-  EXPECT_NE(s.bone()->currentRevision(), revision);
-}
-
 TEST(GuiPlanning, TheDockReadsTheReamerAxisAndAimsTheReamer) {
   REAMSIM_REQUIRE_DISPLAY();
   GuiFixture f;
