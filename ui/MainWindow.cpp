@@ -247,6 +247,7 @@ void MainWindow::buildMenus() {
   add(reamer, "stop", tr("&Stop steps"), QKeySequence("Esc"), [this] {
     session_->cancelQueued();
     session_->cancelPreview();
+    pendingDepth_.reset();  // a ream to depth whose search is running: its answer must not start the feed
   });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));

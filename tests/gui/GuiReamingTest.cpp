@@ -121,6 +121,26 @@ TEST(GuiReaming, MeasureSeatReportsTheReamedSurfaceAtThePose) {
   EXPECT_TRUE(label->text().isEmpty()) << label->text().toStdString();
 }
 
+// Stop right after Ream to depth, while its contact search runs: the search's answer starts no feed.
+TEST(GuiReaming, StopDuringReamToDepthsSearchStartsNoFeed) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  ASSERT_TRUE(s.waitIdle(60000));
+  const std::uint64_t revision = s.bone()->currentRevision();
+  w.reamToDepth(1.0);
+  w.action("stop")->trigger();  // before the event loop has delivered the search's answer
+  ASSERT_TRUE(s.waitIdle(60000));
+  QTest::qWait(100);
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(s.bone()->currentRevision(), revision);
+  EXPECT_TRUE(s.log()->empty());
+  // Asked again, it reams.
+  w.reamToDepth(1.0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !s.log()->empty() && !s.busy(); }, 60000));
+}
+
 TEST(GuiReaming, ReamToDepthWithNoBoneAheadSaysSo) {
   REAMSIM_REQUIRE_DISPLAY();
   GuiFixture f;
