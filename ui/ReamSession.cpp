@@ -247,9 +247,15 @@ void ReamSession::runSteps(const std::vector<Pose>& poses, bool placeFirst) {
 
 void ReamSession::runSteps(const std::vector<Pose>& poses, const std::vector<bool>& placed) {
   if (!engine_ || poses.empty()) return;
+  std::vector<QueuedStep> steps;
+  for (std::size_t i = 0; i < poses.size(); ++i) steps.push_back({poses[i], std::nullopt, i < placed.size() && placed[i]});
+  queueSequence(std::move(steps));
+}
+
+void ReamSession::queueSequence(std::vector<QueuedStep> steps) {
   queuePendingUserMove();  // keep the order: the pending move by hand first
-  for (std::size_t i = 0; i < poses.size(); ++i) queued_.push_back({poses[i], std::nullopt, i < placed.size() && placed[i]});
-  sequenceTotal_ += static_cast<int>(poses.size());
+  sequenceTotal_ += static_cast<int>(steps.size());
+  for (QueuedStep& s : steps) queued_.push_back(std::move(s));
   Q_EMIT progress(sequenceDone_, sequenceTotal_);
   startNext();
 }
@@ -262,43 +268,37 @@ void ReamSession::runPlan(const ReamPlan& plan, double paceSpeed) {
   const std::vector<std::string> notes = plan.expandedNotes();
   const std::vector<std::optional<double>> times = plan.expandedTimesMs();
   std::optional<double> firstTime;
-  queuePendingUserMove();
+  std::vector<QueuedStep> steps;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     QueuedStep step{poses[i], std::nullopt, placed[i], notes[i]};
     if (paceSpeed > 0 && times[i]) {
       if (!firstTime) firstTime = times[i];
       step.dueMs = (*times[i] - *firstTime) / paceSpeed;
     }
-    queued_.push_back(std::move(step));
+    steps.push_back(std::move(step));
   }
   paceClock_.invalidate();  // started by the first paced step (after the steps queued before it)
-  sequenceTotal_ += static_cast<int>(poses.size());
-  Q_EMIT progress(sequenceDone_, sequenceTotal_);
-  startNext();
+  queueSequence(std::move(steps));
 }
 
 void ReamSession::previewReamToDepth(const Pose& start, double depthMm, double stepMm) {
-  RemovalPreviewAnswer refused;
-  refused.start = start;
-  refused.depthMm = depthMm;
-  refused.stepMm = stepMm;
+  RemovalPreviewAnswer asked;  // outcome Failed until computed
+  asked.start = start;
+  asked.depthMm = depthMm;
+  asked.stepMm = stepMm;
+  const auto refuse = [&](const QString& why) {
+    asked.error = why;
+    Q_EMIT removalPreviewed(asked);
+  };
   const CollisionInterface* collision = plugins_.collision();
   const CsgInterface* csg = plugins_.csg();
-  if (!collision || !csg || !bone_->cuttable() || !reamer_->cuttingVolume() || bone_->current().empty()) {
-    refused.error = tr("Nothing can be cut here: %1").arg(cuttingStatus());
-    Q_EMIT removalPreviewed(refused);
-    return;
-  }
-  if (!(depthMm > 0) || !(stepMm > 0)) {
-    refused.error = tr("The depth and the feed step must be positive.");
-    Q_EMIT removalPreviewed(refused);
-    return;
-  }
+  if (!collision || !csg || !bone_->cuttable() || !reamer_->cuttingVolume() || bone_->current().empty())
+    return refuse(tr("Nothing can be cut here: %1").arg(cuttingStatus()));
+  if (!(depthMm > 0) || !(stepMm > 0)) return refuse(tr("The depth and the feed step must be positive."));
   // A preview still running is stopped, not waited for: it ends at its next check on the preview's own thread,
   // before this one starts there, and the watcher hears this one only.
   if (previewControl_) previewControl_->stop = true;
   previewControl_ = std::make_shared<StepControl>();
-  RemovalPreviewAnswer asked = refused;
   asked.revision = bone_->currentRevision();
   asked.generation = engineGeneration_;
   previewWatcher_.setFuture(QtConcurrent::run(
@@ -516,9 +516,8 @@ void ReamSession::finished() {
     CommitOptions options;
     options.logEveryStep = false;  // the GUI's log lists cuts
     options.initialVolumeMm3 = initialVolumeMm3();
-    const std::size_t rowsBefore = log_->size();
+    options.note = runningNote_;  // a plan's note, on the row if the step makes one
     const CutLogEntry e = commitReamStep(document_, *bone_, *reamer_, *log_, alerts_, r.computation, steps_++, options);
-    if (!runningNote_.empty() && log_->size() > rowsBefore) log_->setNote(log_->size() - 1, runningNote_);
     if (runningStep_) {
       runningStep_->stepIndex = e.stepIndex;
       runningStep_->timeUnixMs = e.timeUnixMs;

@@ -149,7 +149,6 @@ class ReamSession : public QObject {
   void previewReamToDepth(const Pose& start, double depthMm, double stepMm);
   void cancelPreview();  // the running preview stops at its next Boolean and answers Cancelled
   static constexpr double kPreviewReachMm = 100;  // how far along its axis a preview looks for the first contact
-  bool previewRunning() const { return previewWatcher_.isRunning(); }
   std::uint64_t engineGeneration() const { return engineGeneration_; }
   // Drops the queued steps and stops the running one between two of its Booleans (a long swing is a chain
   // of them): a stopped step leaves the bone as it was and the reamer where that step started.
@@ -284,6 +283,8 @@ class ReamSession : public QObject {
     std::string note;                // a plan's note for the step
     std::optional<double> dueMs;     // paced: not started before paceClock_ has reached it
   };
+  // A sequence's steps to the queue's end (after the pending move by hand), counted for progress, and started.
+  void queueSequence(std::vector<QueuedStep> steps);
   QElapsedTimer paceClock_;  // started when a paced plan is queued
   QTimer* paceTimer_ = nullptr;  // wakes the queue when the next paced step is due
   std::string runningNote_;

@@ -144,9 +144,7 @@ int runReam(const std::vector<std::string>& args) {
   const std::vector<std::string> notes = plan.expandedNotes();
   for (std::size_t i = 0; i < planNode.poses().size(); ++i) {
     const Pose& pose = planNode.poses()[i];
-    const std::size_t rowsBefore = log.size();
-    const ReamStepOutcome step = controller.moveTo(pose, placements[i]);
-    if (!notes[i].empty() && log.size() > rowsBefore) log.setNote(log.size() - 1, notes[i]);  // the step's row
+    const ReamStepOutcome step = controller.moveTo(pose, placements[i], notes[i]);
     worstBookkeeping = std::max(worstBookkeeping, step.volumeBookkeepingError / std::max(1.0, step.cut.removedMm3));
     if (step.cut.changed) cutTimes.push_back(step.entry.cutMs);
     if (a.has("check") && step.cut.changed) {

@@ -87,6 +87,14 @@ std::vector<Pose> ReamPlan::expandedPoses() const {
   return out;
 }
 
+// Per-pose values of `poses` (empty: none) laid beside expandedPoses(): the feed's steps get T{}.
+template <class T>
+std::vector<T> ReamPlan::besideExpandedPoses(const std::vector<T>& perPose) const {
+  std::vector<T> out((feed ? std::size_t(feed->count) : 0) + poses.size());
+  std::copy(perPose.begin(), perPose.begin() + std::min(perPose.size(), poses.size()), out.end() - poses.size());
+  return out;
+}
+
 std::vector<bool> ReamPlan::expandedPlacements() const {
   std::vector<bool> out(feed ? std::size_t(feed->count) : 0, false);
   const std::size_t first = out.size();
@@ -96,20 +104,9 @@ std::vector<bool> ReamPlan::expandedPlacements() const {
   return out;
 }
 
-std::vector<std::string> ReamPlan::expandedNotes() const {
-  std::vector<std::string> out(feed ? std::size_t(feed->count) : 0);
-  out.resize(out.size() + poses.size());
-  std::copy(poseNotes.begin(), poseNotes.begin() + std::min(poseNotes.size(), poses.size()), out.end() - poses.size());
-  return out;
-}
+std::vector<std::string> ReamPlan::expandedNotes() const { return besideExpandedPoses(poseNotes); }
 
-std::vector<std::optional<double>> ReamPlan::expandedTimesMs() const {
-  std::vector<std::optional<double>> out(feed ? std::size_t(feed->count) : 0);
-  out.resize(out.size() + poses.size());
-  std::copy(poseTimesMs.begin(), poseTimesMs.begin() + std::min(poseTimesMs.size(), poses.size()),
-            out.end() - poses.size());
-  return out;
-}
+std::vector<std::optional<double>> ReamPlan::expandedTimesMs() const { return besideExpandedPoses(poseTimesMs); }
 
 bool ReamPlan::hasTimes() const {
   return std::any_of(poseTimesMs.begin(), poseTimesMs.end(), [](const std::optional<double>& t) { return t.has_value(); });

@@ -18,7 +18,7 @@ ReamController::ReamController(Document& document, BoneNode& bone, ReamerNode& r
 
 ReamController::~ReamController() = default;
 
-ReamStepOutcome ReamController::moveTo(const Pose& pose, bool placed) {
+ReamStepOutcome ReamController::moveTo(const Pose& pose, bool placed, const std::string& note) {
   // A plan is a path: each step moves from the previous pose, and a sideways move cuts what it sweeps.
   if (placed) previous_.reset();
   const double stepMm = previous_ ? norm(pose.tip - previous_->tip) : 0.0;
@@ -33,7 +33,9 @@ ReamStepOutcome ReamController::moveTo(const Pose& pose, bool placed) {
   out.sweepCuts = c.sweepCuts;
   out.times = c.times;
   const auto commitStart = std::chrono::steady_clock::now();
-  out.entry = commitReamStep(document_, bone_, reamer_, log_, alerts_, c, steps_++);
+  CommitOptions options;
+  options.note = note;
+  out.entry = commitReamStep(document_, bone_, reamer_, log_, alerts_, c, steps_++, options);
   if (out.entry.boneStateId != 0) engine_.adopt(out.entry.boneStateId);
   out.commitMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - commitStart).count();
   return out;

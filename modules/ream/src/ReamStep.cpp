@@ -19,6 +19,7 @@ CutLogEntry commitReamStep(Document& document, BoneNode& bone, ReamerNode& reame
                      std::chrono::system_clock::now().time_since_epoch())
                      .count();
   e.pose = c.pose;
+  e.note = options.note;
   // The reamer the step was computed with (the node's may have changed since, e.g. while it ran).
   const ReamerSpec& used = c.reamer ? *c.reamer : reamer.spec();
   e.reamer = used.name;

@@ -40,6 +40,10 @@ struct ReamPlan {
   std::vector<std::optional<double>> expandedTimesMs() const;
   bool hasTimes() const;  // some pose has a time: the plan can be replayed at its recorded pace
   double maxStepMm() const;                 // largest tip displacement between consecutive poses
+
+ private:
+  template <class T>
+  std::vector<T> besideExpandedPoses(const std::vector<T>& perPose) const;
 };
 
 // Throws reamsim::InputError naming the file and the problem.

@@ -36,8 +36,8 @@ class ReamController {
   ~ReamController();
 
   // A step to `pose`: a move from the previous step's pose (what it sweeps is cut), or with `placed` a
-  // placement (nothing swept to it, as the first step always is).
-  ReamStepOutcome moveTo(const Pose& pose, bool placed = false);
+  // placement (nothing swept to it, as the first step always is). `note` goes on the step's log row.
+  ReamStepOutcome moveTo(const Pose& pose, bool placed = false, const std::string& note = {});
 
   // Invariants of the current bone as the engine holds it (exact and rounded coordinates); costly.
   BoneInvariants checkBone() const;

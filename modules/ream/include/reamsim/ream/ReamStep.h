@@ -18,6 +18,7 @@ struct CommitOptions {
   // Set: cumulative = this − the bone's volume after the step, i.e. what is missing from the bone as it
   // now stands, so cuts the user undid are not counted (the GUI). Unset: running sum of the log.
   std::optional<double> initialVolumeMm3;
+  std::string note;  // the step's log row is written with it (a plan pose's note)
 };
 
 // Precondition: bone.currentRevision() == computation.baseRevision (throws std::logic_error otherwise,
