@@ -199,9 +199,16 @@ class MainWindow : public QMainWindow {
   void openLandmarksBeside(const QString& bonePath);
   QString keepInRestored(const QString& file) const;  // a copy in recovery/restored/ named <time>_<name>
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
-  // The bone's mesh only, on a worker with a progress dialog (Cancel); errors in a dialog; does not mark it
-  // saved. True when written.
-  bool writeBoneFile(const QString& path);
+  // The bone's mesh only (with `facts` in its comments), on a worker with a progress dialog (Cancel); errors in
+  // a dialog; does not mark it saved. True when written.
+  bool writeBoneFile(const QString& path, const BoneFileFacts& facts);
+  static QString cutLogPathBeside(const QString& bonePath);  // NAME.cut_log.csv beside NAME.ply
+  // A bone opened from a file brings the cut log saved beside it (MainWindowFiles.cpp).
+  // `saved`: the facts the bone's file holds (none in a file no save by ReamSim wrote). Returns the rows listed.
+  std::size_t openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved);
+  // A file of the user's beside the bone that a save would replace but that could not be read when the bone was
+  // opened: moved aside to NAME.unreadable (.2, .3, … when taken) instead. Throws std::runtime_error.
+  static void moveAsideUnreadable(const QString& file);
   void importFinished();
   void showImportProgress(double fraction, const QString& stage);
   void updateStatus();
@@ -278,10 +285,11 @@ class MainWindow : public QMainWindow {
   Subscription landmarksTitleSubscription_;  // ... and marks the title
   BonePlanning savedPlanning_;   // the cut bone's landmarks and planned axis as opened or last saved (NAME.landmarks.json)
   QString unreadablePlanningFile_;  // the landmarks beside the bone that could not be read when it was opened
+  QString unreadableCutLogFile_;    // the same for its cut log (or one that is not the log saved with the bone)
   std::optional<BonePlanning> copiedPlanning_;
-  // The log's notes (annotations) are saved with it (NAME.cut_log.csv): their count of changes at the last save
-  // or open (LogNode::notesRevision), and in the crash-recovery copy kept.
   std::optional<std::uint64_t> savedBoneRevision_;  // the cut bone's revision as opened or last saved; none: restored
+  // The log's notes (annotations) are saved with it (NAME.cut_log.csv): their count of changes at the last save
+  // or open (LogNode::notesRevision), and in the crash-recovery copy kept (copiedNotesRevision_; none: no copy).
   struct SavedNotes {
     NodeId log;
     std::uint64_t revision = 0;
@@ -293,7 +301,7 @@ class MainWindow : public QMainWindow {
   QActionGroup* replaySpeeds_ = nullptr;
   std::optional<std::uint64_t> copiedNotesRevision_;
   Subscription notesSubscription_;  // a note changed: the title...
-  Subscription recoveryNotesSubscription_;  // ... and a crash copy  // those in the crash-recovery copy kept (none: no copy)
+  Subscription recoveryNotesSubscription_;  // ... and a crash copy
   QTimer recoveryTimer_;
   struct RecoveryWrite {
     QString error;         // empty when the copy was written whole

@@ -154,15 +154,19 @@ void MainWindow::importFinished() {
   try {
     if (!session_->reamer()->cuttingVolume()) session_->setReamer(loadPreset(kDefaultReamerPreset, reamerPresetsPath()));
     const Bounds b = BoneState::fromMesh(out.bone.mesh).bounds();
+    const BoneFileFacts saved{out.bone.frame, out.bone.removedMm3, out.bone.cutLogRows};
     session_->plan()->setPoses({});
     installBone(std::move(out.bone), QFileInfo(importPath_).fileName(), importPath_);
     openLandmarksBeside(importPath_);
+    const std::size_t logRows = openCutLogBeside(importPath_, saved);
     session_->moveReamer(startPoseFor(b));
+    statusBar()->showMessage(logRows == 0   ? tr("Opened %1").arg(importPath_)
+                             : logRows == 1 ? tr("Opened %1 with its cut log (1 step)").arg(importPath_)
+                                            : tr("Opened %1 with its cut log (%2 steps)").arg(importPath_).arg(logRows),
+                             8000);
   } catch (const std::exception& e) {  // e.g. the reamer presets file is missing or broken
     showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), QString::fromStdString(e.what()));
-    return;
   }
-  statusBar()->showMessage(tr("Opened %1").arg(importPath_), 5000);
 }
 
 void MainWindow::installBone(ImportedBone bone, const QString& name, const QString& recentPath) {
@@ -193,7 +197,12 @@ bool MainWindow::saveBoneAs(const QString& path) {
   const std::string csv = cutLogCsv(session_->log()->entries());
   const SavedNotes notes{session_->log()->id(), session_->log()->notesRevision()};
   const BonePlanning planning = planningOf(*session_->bone());
-  const bool written = writeBoneFile(path);
+  // What reopening the bone needs to continue this log: the volume removed before this state (undone cuts not
+  // counted) and the log's length, to tell it from another log put beside the bone later.
+  const BoneFileFacts facts{session_->bone()->patientFrame(),
+                            session_->initialVolumeMm3() - session_->bone()->current().volume(),
+                            session_->log()->entries().size()};
+  const bool written = writeBoneFile(path, facts);
   disconnect(watch);
   if (!written) return false;
   if (generation != boneGeneration_) {  // an import finished meanwhile: the file holds the bone that was there
@@ -201,9 +210,12 @@ bool MainWindow::saveBoneAs(const QString& path) {
                              "and it is not saved.").arg(path));
     return false;
   }
-  const QFileInfo info(path);
-  const QString logPath = info.dir().filePath(info.completeBaseName() + ".cut_log.csv");
+  const QString logPath = cutLogPathBeside(path);
   try {
+    if (logPath == unreadableCutLogFile_ && QFileInfo::exists(logPath)) {
+      moveAsideUnreadable(logPath);
+      unreadableCutLogFile_.clear();
+    }
     writeTextFile(logPath.toStdString(), csv);
   } catch (const std::exception& e) {
     // The bone is written but its log is not: the work is not saved yet (closing asks again).
@@ -216,10 +228,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
     // A file there that could not be read when the bone was opened is the user's to look at: kept aside, never
     // replaced or removed.
     if (landmarksPath == unreadablePlanningFile_ && QFileInfo::exists(landmarksPath)) {
-      QString aside = landmarksPath + ".unreadable";
-      for (int n = 2; QFileInfo::exists(aside); ++n) aside = landmarksPath + ".unreadable." + QString::number(n);
-      if (!QFile::rename(landmarksPath, aside))
-        throw std::runtime_error(landmarksPath.toStdString() + ": cannot move the unreadable file aside");
+      moveAsideUnreadable(landmarksPath);
       unreadablePlanningFile_.clear();
     }
     if (planning != BonePlanning{})
@@ -254,7 +263,7 @@ bool MainWindow::saveBone() { return savedPath_.isEmpty() ? saveBoneAndCutLogInt
 // Encoding and writing a bone take 0.2 s at 405k faces and seconds at millions (a CT bone repaired at 0.5 mm
 // has 17 million): done on a worker, with a window-modal dialog that shows how far it is and can cancel,
 // while this waits in a local event loop (the window keeps painting). Cancel keeps the file that was there.
-bool MainWindow::writeBoneFile(const QString& path) {
+bool MainWindow::writeBoneFile(const QString& path, const BoneFileFacts& facts) {
   if (!plugins_.meshImport()) {
     showError(tr("Save"), tr("Cannot save %1: no mesh import plugin is loaded (Help → Plugins).").arg(path));
     return false;
@@ -269,7 +278,6 @@ bool MainWindow::writeBoneFile(const QString& path) {
   };
   const MeshImportInterface* writer = plugins_.meshImport();
   BoneState state = session_->bone()->current();  // an immutable value, cheap to copy
-  const PatientFrame frame = session_->bone()->patientFrame();
   const QString name = QFileInfo(path).fileName();
   WriteProgressDialog dialog(tr("Saving %1").arg(name), this);
   dialog.show();  // before the worker starts, so that a Cancel at once is heard at its first check
@@ -279,10 +287,10 @@ bool MainWindow::writeBoneFile(const QString& path) {
   QEventLoop wait;
   QFutureWatcher<Outcome> watcher;
   connect(&watcher, &QFutureWatcher<Outcome>::finished, &wait, &QEventLoop::quit);
-  watcher.setFuture(QtConcurrent::run([writer, state = std::move(state), file = path.toStdString(), frame, progress] {
+  watcher.setFuture(QtConcurrent::run([writer, state = std::move(state), file = path.toStdString(), facts, progress] {
     Outcome out;
     try {
-      writer->exportMesh(state.toMesh(), file, frame, progress);
+      writer->exportMesh(state.toMesh(), file, facts, progress);
     } catch (const WriteCancelled&) {
       out.cancelled = true;
     } catch (const std::exception& e) {
@@ -344,6 +352,48 @@ void MainWindow::openLandmarksBeside(const QString& bonePath) {
               tr("%1\n\nThe bone opens without landmarks; the file stays as it is (a save moves it aside to %2).")
                   .arg(QString::fromStdString(e.what()), QFileInfo(file).fileName() + ".unreadable"));
   }
+}
+
+QString MainWindow::cutLogPathBeside(const QString& bonePath) {
+  const QFileInfo info(bonePath);
+  return info.dir().filePath(info.completeBaseName() + ".cut_log.csv");
+}
+
+void MainWindow::moveAsideUnreadable(const QString& file) {
+  QString aside = file + ".unreadable";
+  for (int n = 2; QFileInfo::exists(aside); ++n) aside = file + ".unreadable." + QString::number(n);
+  if (!QFile::rename(file, aside)) throw std::runtime_error(file.toStdString() + ": cannot move the unreadable file aside");
+}
+
+// A bone opened from a file brings the cut log saved beside it (NAME.cut_log.csv), if any: the log panel lists
+// its rows with their notes, new steps continue its numbering, and the cumulative volume goes on from what had
+// been removed when the bone was saved (the bone file's `removed_mm3`; without it, a file saved before session
+// 56, the log's last cumulative volume). A log that cannot be read, or whose length is not the one the bone's
+// save recorded (another log, or the bone replaced since), is named in a dialog; the bone opens without it and
+// a save moves the file aside instead of replacing it.
+std::size_t MainWindow::openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved) {
+  const QString file = cutLogPathBeside(bonePath);
+  unreadableCutLogFile_.clear();
+  if (!QFileInfo::exists(file)) return 0;
+  std::vector<CutLogEntry> rows;
+  try {
+    rows = readCutLogCsv(file.toStdString());
+    if (saved.cutLogRows && *saved.cutLogRows != rows.size())
+      throw std::runtime_error(file.toStdString() + ": " + std::to_string(rows.size()) + " rows, but " +
+                               QFileInfo(bonePath).fileName().toStdString() + " was saved with a log of " +
+                               std::to_string(*saved.cutLogRows) + ": not the log saved with this bone");
+  } catch (const std::exception& e) {
+    unreadableCutLogFile_ = file;
+    showError(tr("Cut log not read"),
+              tr("%1\n\nThe bone opens without its cut log; the file stays as it is (a save moves it aside to %2).")
+                  .arg(QString::fromStdString(e.what()), QFileInfo(file).fileName() + ".unreadable"));
+    return 0;
+  }
+  const std::size_t count = rows.size();
+  session_->continueLog(std::move(rows), saved.removedMm3);
+  savedNotes_ = {session_->log()->id(), session_->log()->notesRevision()};  // as saved
+  updateTitle();
+  return count;
 }
 
 // A bone that is not the cut one holds work no save wrote: cuts in its history, or a crash copy restored, and

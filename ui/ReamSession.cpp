@@ -248,7 +248,7 @@ void ReamSession::runSteps(const std::vector<Pose>& poses, bool placeFirst) {
 void ReamSession::runSteps(const std::vector<Pose>& poses, const std::vector<bool>& placed) {
   if (!engine_ || poses.empty()) return;
   std::vector<QueuedStep> steps;
-  for (std::size_t i = 0; i < poses.size(); ++i) steps.push_back({poses[i], std::nullopt, i < placed.size() && placed[i]});
+  for (std::size_t i = 0; i < poses.size(); ++i) steps.push_back({poses[i], std::nullopt, i < placed.size() && placed[i], {}, std::nullopt});
   queueSequence(std::move(steps));
 }
 
@@ -270,7 +270,7 @@ void ReamSession::runPlan(const ReamPlan& plan, double paceSpeed) {
   std::optional<double> firstTime;
   std::vector<QueuedStep> steps;
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    QueuedStep step{poses[i], std::nullopt, placed[i], notes[i]};
+    QueuedStep step{poses[i], std::nullopt, placed[i], notes[i], std::nullopt};
     if (paceSpeed > 0 && times[i]) {
       if (!firstTime) firstTime = times[i];
       step.dueMs = (*times[i] - *firstTime) / paceSpeed;
@@ -329,7 +329,7 @@ void ReamSession::cancelPreview() {
 
 void ReamSession::queuePendingUserMove() {
   if (!latestUserPose_) return;
-  queued_.push_back({*latestUserPose_, std::nullopt, !latestUserMoved_});  // a placement stays one (Aim)
+  queued_.push_back({*latestUserPose_, std::nullopt, !latestUserMoved_, {}, std::nullopt});  // a placement stays one (Aim)
   latestUserPose_.reset();
 }
 
@@ -342,7 +342,7 @@ void ReamSession::searchContactAlongAxis(const Pose& start, double maxMm) {
     return;
   }
   queuePendingUserMove();  // keep the order: the pending move by hand first
-  queued_.push_back({start, maxMm});
+  queued_.push_back({start, maxMm, false, {}, std::nullopt});
   startNext();
 }
 

@@ -108,14 +108,14 @@ inline bool closeAnswering(QWidget& w, std::deque<ModalAnswers::Answer> answers,
   return closed;
 }
 
-// One more cut: the reamer placed `depthMm` past where it first touches the glenoid from the default plan's
-// start (deeper than any cut before, or nothing is cut).
 // The same pose to the last bit (a pose put back, not recomputed).
 inline bool samePose(const Pose& a, const Pose& b) {
   return a.tip.x == b.tip.x && a.tip.y == b.tip.y && a.tip.z == b.tip.z && a.axis.x == b.axis.x && a.axis.y == b.axis.y &&
          a.axis.z == b.axis.z && a.rollDeg == b.rollDeg;
 }
 
+// One more cut: the reamer placed `depthMm` past where it first touches the glenoid from the default plan's
+// start (deeper than any cut before, or nothing is cut).
 inline void cutOnce(ReamSession& s, double depthMm = 0.5) {
   const std::size_t before = s.cutsCommitted();
   const Pose start = s.plan()->poses().front();
@@ -131,9 +131,10 @@ inline bool annotateRow(QWidget& window, int row, const QString& note) {
   QObject* panel = window.findChild<QObject*>("LogPanel");
   bool annotated = false;
   EXPECT_NE(panel, nullptr);
-  if (panel)
+  if (panel) {
     EXPECT_TRUE(QMetaObject::invokeMethod(panel, "annotateRow", Q_RETURN_ARG(bool, annotated), Q_ARG(int, row),
                                           Q_ARG(QString, note)));
+  }
   return annotated;
 }
 

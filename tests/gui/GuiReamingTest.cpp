@@ -35,6 +35,14 @@
 namespace reamsim::ui::test {
 namespace {
 
+// The bundled bone as the window opens it: cuttable, no frame, no file facts.
+ImportedBone boneAsOpened() {
+  ImportedBone bone;
+  bone.mesh = loadDefaultBone().mesh;
+  bone.cuttable = true;
+  return bone;
+}
+
 // `start` advanced along its axis to `mm` past where the reamer first touches the bone.
 Pose pastFirstContact(ReamSession& s, const Pose& start, double mm) {
   return advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + mm);
@@ -837,7 +845,7 @@ TEST(GuiReaming, ANotedPathReplaysAtItsRecordedPaceWithItsNotes) {
   slow.poseTimesMs[3] = 60000.0;  // a minute in
   const QString slowFile = dir.filePath("slow.json");
   writeTextFile(slowFile.toStdString(), planToJson(slow));
-  s.loadBone(ImportedBone{loadDefaultBone().mesh, {}, {}, true}, "again", seated);
+  s.loadBone(boneAsOpened(), "again", seated);
   ASSERT_TRUE(w.runPlanFile(slowFile, PlanPace::AsRecorded));
   for (int i = 0; i < 600 && s.log()->size() < 2; ++i) QTest::qWait(50);
   ASSERT_EQ(s.log()->size(), 2u);
@@ -849,7 +857,7 @@ TEST(GuiReaming, ANotedPathReplaysAtItsRecordedPaceWithItsNotes) {
   EXPECT_EQ(s.log()->size(), 2u);
 
   // At 64× the recorded pace the minute takes under a second, and not less.
-  s.loadBone(ImportedBone{loadDefaultBone().mesh, {}, {}, true}, "again", seated);
+  s.loadBone(boneAsOpened(), "again", seated);
   w.setReplaySpeed(64);
   clock.restart();
   ASSERT_TRUE(w.runPlanFile(slowFile, PlanPace::AsRecorded));
@@ -862,7 +870,7 @@ TEST(GuiReaming, ANotedPathReplaysAtItsRecordedPaceWithItsNotes) {
   EXPECT_EQ(w.replaySpeed(), 1.0);
 
   // As fast as computed, the same file takes no pause; a plan without times has no pace to replay at.
-  s.loadBone(ImportedBone{loadDefaultBone().mesh, {}, {}, true}, "again", seated);
+  s.loadBone(boneAsOpened(), "again", seated);
   ASSERT_TRUE(w.runPlanFile(slowFile));
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_EQ(s.log()->size(), 3u);

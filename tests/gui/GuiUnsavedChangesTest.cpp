@@ -299,6 +299,79 @@ TEST(GuiUnsavedChanges, ANoteOnACutIsSavedWithTheLog) {
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
 }
 
+// A saved bone opens with the cut log saved beside it: its rows and notes in the log, new cuts numbered after
+// them and their cumulative volume going on from what had been removed at the save (a cut undone before the
+// save not counted). A log beside that is not the one saved with the bone, or cannot be read, is named; the
+// bone opens without it, and a save keeps that file aside instead of replacing it.
+TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const Pose start = s.plan()->poses().front();  // opening a file clears the plan
+  const double original = s.bone()->current().volume();
+  cutOnce(s);
+  cutOnce(s, 0.8);
+  cutOnce(s, 1.1);
+  ASSERT_TRUE(annotateRow(w, 1, "second cut: rim reached"));
+  s.undoStack()->undo();  // the third cut: its row stays in the log, its volume is not removed
+  ASSERT_TRUE(s.waitIdle(60000));
+  const double removedAtSave = original - s.bone()->current().volume();
+  ASSERT_GT(removedAtSave, 0);
+  ASSERT_GT(s.log()->cumulativeMm3(), removedAtSave + 1e-3);  // the undone cut's row says more
+  QTemporaryDir dir;
+  const QString bonePath = dir.filePath("reamed.ply");
+  ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  const std::vector<std::string> comments = readMesh(bonePath.toStdString()).comments;
+  EXPECT_NE(std::find(comments.begin(), comments.end(), "reamsim cut_log_rows 3"), comments.end());
+
+  w.openFile(bonePath);
+  w.waitImport();
+  ASSERT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  ASSERT_EQ(s.log()->size(), 3u);
+  EXPECT_EQ(s.log()->entries()[1].note, "second cut: rim reached");
+  EXPECT_FALSE(w.hasUnsavedChanges());  // the log as saved
+  EXPECT_NEAR(s.initialVolumeMm3(), original, 1e-6 * original);
+  // One more cut continues the log: numbered after the saved rows, cumulative from what the saved bone lacked.
+  const double opened = s.bone()->current().volume();
+  s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.4));
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.log()->size(), 4u);
+  const CutLogEntry& next = s.log()->entries().back();
+  EXPECT_GT(next.stepIndex, s.log()->entries()[2].stepIndex);
+  ASSERT_GT(next.removedMm3, 0);
+  EXPECT_NEAR(next.removedMm3, opened - s.bone()->current().volume(), 1e-9 * original);
+  EXPECT_NEAR(next.cumulativeMm3, removedAtSave + next.removedMm3, 1e-9 * original);
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  ASSERT_EQ(readCutLogCsv(dir.filePath("reamed.cut_log.csv").toStdString()).size(), 4u);
+
+  // Another log put beside the bone (here: the saved one less a row) is not taken for it.
+  const QString logPath = dir.filePath("reamed.cut_log.csv");
+  std::vector<CutLogEntry> shorter = readCutLogCsv(logPath.toStdString());
+  shorter.pop_back();
+  const std::string other = cutLogCsv(shorter);
+  writeTextFile(logPath.toStdString(), other);
+  w.openFile(bonePath);
+  w.waitImport();
+  EXPECT_TRUE(w.lastError().contains("reamed.cut_log.csv: 3 rows")) << w.lastError().toStdString();
+  EXPECT_TRUE(w.lastError().contains("not the log saved with this bone")) << w.lastError().toStdString();
+  EXPECT_EQ(s.log()->size(), 0u);
+  ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  QFile kept(logPath + ".unreadable");
+  ASSERT_TRUE(kept.open(QIODevice::ReadOnly));
+  EXPECT_EQ(kept.readAll().toStdString(), other);  // as it was
+  EXPECT_TRUE(readCutLogCsv(logPath.toStdString()).empty());  // the log of the bone as now opened: no cuts
+
+  // A log that cannot be read is named with its line; the bone opens without it.
+  writeTextFile(logPath.toStdString(), other.substr(0, other.find('\n')) + "\n1,yesterday\n");  // the header, then no row
+  w.openFile(bonePath);
+  w.waitImport();
+  EXPECT_TRUE(w.lastError().contains(logPath + ":2: 2 fields")) << w.lastError().toStdString();
+  EXPECT_EQ(s.log()->size(), 0u);
+  EXPECT_EQ(s.bone()->current().volume(), s.bone()->history().entries().front().state.volume());  // the bone opened
+}
+
 // As a user writes one: a double-click on the cut's row opens the note dialog with the note so far; OK writes
 // it, Cancel leaves it.
 TEST(GuiUnsavedChanges, ADoubleClickOnACutWritesItsNote) {

@@ -1,5 +1,8 @@
 #include "MeshImportPlugin.h"
 
+#include <charconv>
+#include <cmath>
+
 #include "reamsim/mesh/MeshIO.h"
 #include "reamsim/mesh/Repair.h"
 #include "reamsim/mesh/Validation.h"
@@ -7,14 +10,32 @@
 namespace reamsim::ui {
 namespace {
 
-// The PLY comment lines ReamSim writes to keep the bone's patient frame (docs/CT_IMPORT.md).
-constexpr const char* kFrameComment = "reamsim patient_frame ";
+// The comment lines ReamSim writes to keep a bone's facts (BoneFileFacts; docs/CT_IMPORT.md, docs/GUI.md).
+constexpr std::string_view kFrameComment = "reamsim patient_frame ";
+constexpr std::string_view kRemovedComment = "reamsim removed_mm3 ";
+constexpr std::string_view kCutLogRowsComment = "reamsim cut_log_rows ";
 
-PatientFrame frameFromComments(const std::vector<std::string>& comments) {
+// The text after `prefix` in the first comment that starts with it.
+std::optional<std::string_view> factText(const std::vector<std::string>& comments, std::string_view prefix) {
   for (const std::string& c : comments)
-    if (c.rfind(kFrameComment, 0) == 0)
-      if (auto f = parsePatientFrame(c.substr(std::string(kFrameComment).size()))) return *f;
-  return PatientFrame::Unspecified;
+    if (std::string_view(c).substr(0, prefix.size()) == prefix) return std::string_view(c).substr(prefix.size());
+  return std::nullopt;
+}
+
+// Whole text as a number (from_chars: the same in every locale); anything else is not a fact ReamSim wrote.
+template <class T>
+std::optional<T> number(std::optional<std::string_view> text) {
+  if (!text) return std::nullopt;
+  T value{};
+  const auto [end, ec] = std::from_chars(text->data(), text->data() + text->size(), value);
+  if (ec != std::errc() || end != text->data() + text->size()) return std::nullopt;
+  return value;
+}
+
+std::string numberText(double value) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 17);
+  return std::string(buf, r.ptr);
 }
 
 }  // namespace
@@ -35,7 +56,11 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, 
   LoadedMesh loaded = readMesh(path);
   ImportedBone out;
   out.source = path;
-  out.frame = frameFromComments(loaded.comments);
+  if (const auto frame = factText(loaded.comments, kFrameComment))
+    out.frame = parsePatientFrame(*frame).value_or(PatientFrame::Unspecified);
+  if (const auto removed = number<double>(factText(loaded.comments, kRemovedComment)); removed && std::isfinite(*removed))
+    out.removedMm3 = *removed;
+  out.cutLogRows = number<std::size_t>(factText(loaded.comments, kCutLogRowsComment));
   for (const std::string& n : loaded.notes) out.report += "note: " + n + "\n";
   if (out.frame != PatientFrame::Unspecified)
     out.report += std::string("patient frame from the file: ") + toString(out.frame) + "\n";
@@ -71,11 +96,14 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, 
   return out;
 }
 
-void MeshImportPlugin::exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame,
+void MeshImportPlugin::exportMesh(const TriangleMesh& mesh, const std::string& path, const BoneFileFacts& facts,
                                   const ProgressCallback& progress) const {
   WriteOptions o;
   o.progress = progress;
-  if (frame != PatientFrame::Unspecified) o.comments.push_back(kFrameComment + std::string(toString(frame)));
+  if (facts.frame != PatientFrame::Unspecified)
+    o.comments.push_back(std::string(kFrameComment) + std::string(toString(facts.frame)));
+  if (facts.removedMm3) o.comments.push_back(std::string(kRemovedComment) + numberText(*facts.removedMm3));
+  if (facts.cutLogRows) o.comments.push_back(std::string(kCutLogRowsComment) + std::to_string(*facts.cutLogRows));
   writeMesh(mesh, path, o);
 }
 

@@ -15,7 +15,7 @@ class MeshImportPlugin : public QObject, public MeshImportInterface {
   QStringList nameFilters() const override;
   QStringList extensions() const override;
   ImportedBone importBone(const std::string& path, bool repair, const RepairProgress& progress = {}) const override;
-  void exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame,
+  void exportMesh(const TriangleMesh& mesh, const std::string& path, const BoneFileFacts& facts,
                   const ProgressCallback& progress = {}) const override;
 };
 

@@ -10,6 +10,7 @@
 #include <QtPlugin>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "reamsim/core/PatientFrame.h"
@@ -35,6 +36,20 @@ struct ImportedBone {
   bool cuttable = false;                          // closed, outward, free of self-intersections
   PatientFrame frame = PatientFrame::Unspecified;  // convention of the coordinates (kept in the BoneNode)
   std::string source;                             // where it came from, in words (kept in the BoneNode)
+  // What a save by ReamSim recorded in the file (BoneFileFacts), unset in any other file.
+  std::optional<double> removedMm3;
+  std::optional<std::size_t> cutLogRows;
+};
+
+// What ReamSim keeps in a bone file beside the surface, where the format has room (its comments; every format
+// ReamSim writes has some, docs/FORMATS.md): the patient frame of the coordinates and, written by a save, the
+// bone removed before this state (the cut log's cumulative volume at it: cuts undone before the save are not
+// counted) and how many rows the cut log saved beside it has, so that reopening the bone continues that log
+// and can tell a log beside it that is not the one saved with it.
+struct BoneFileFacts {
+  PatientFrame frame = PatientFrame::Unspecified;
+  std::optional<double> removedMm3;
+  std::optional<std::size_t> cutLogRows;
 };
 
 class MeshImportInterface {
@@ -42,14 +57,14 @@ class MeshImportInterface {
   virtual ~MeshImportInterface() = default;
   virtual QStringList nameFilters() const = 0;  // for file dialogs, e.g. "Meshes (*.stl *.ply)"
   virtual QStringList extensions() const = 0;   // lower case, without dot
-  // Runs on a worker thread. Throws reamsim::InputError naming the file and the problem. The frame is
-  // read back where the format keeps it (PLY written by ReamSim), else Unspecified. `progress` follows the
+  // Runs on a worker thread. Throws reamsim::InputError naming the file and the problem. The facts a
+  // ReamSim writer stored (BoneFileFacts) are read back; in other files the frame is Unspecified. `progress` follows the
   // repair (minutes for a large dirty mesh) and stops it by returning false (RepairCancelled is thrown).
   virtual ImportedBone importBone(const std::string& path, bool repair, const RepairProgress& progress = {}) const = 0;
-  // Format from the extension; throws reamsim::InputError. `frame` is stored where the format allows (PLY).
+  // Format from the extension; throws reamsim::InputError. `facts` go into the file's comments.
   // May run on a worker thread. The file is replaced whole or not at all; `progress` hears the fraction
   // done and stops the write by returning false (reamsim::WriteCancelled; the file there is unchanged).
-  virtual void exportMesh(const TriangleMesh& mesh, const std::string& path, PatientFrame frame,
+  virtual void exportMesh(const TriangleMesh& mesh, const std::string& path, const BoneFileFacts& facts,
                           const ProgressCallback& progress = {}) const = 0;
 };
 
@@ -99,7 +114,7 @@ class PanelInterface {
 
 // 1.1: ImportedBone carries the patient frame and source; exportMesh takes the frame.
 // 1.2: exportMesh takes a progress callback that can stop the write.
-#define ReamSimMeshImport_iid "org.reamsim.MeshImportInterface/1.2"
+#define ReamSimMeshImport_iid "org.reamsim.MeshImportInterface/1.3"
 #define ReamSimCollision_iid "org.reamsim.CollisionInterface/1.0"
 #define ReamSimCsg_iid "org.reamsim.CsgInterface/1.0"
 #define ReamSimPanel_iid "org.reamsim.PanelInterface/1.0"
