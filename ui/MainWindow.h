@@ -293,7 +293,9 @@ class MainWindow : public QMainWindow {
   struct SavedNotes {
     NodeId log;
     std::uint64_t revision = 0;
+    std::vector<std::string> notes;  // by row, as saved (an edit undone back to them is no change)
   } savedNotes_;
+  static SavedNotes notesOf(const LogNode& log);
   double replaySpeed_ = 1.0;
   QString lastPreviewText_;
   void removalPreviewed(const RemovalPreviewAnswer& answer);

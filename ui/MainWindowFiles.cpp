@@ -179,7 +179,7 @@ void MainWindow::installBone(ImportedBone bone, const QString& name, const QStri
   boneName_ = name;
   savedPath_.clear();  // another bone: Save asks where
   savedPlanning_ = planningOf(*session_->bone());  // none (loadBone clears them): the caller may bring some
-  savedNotes_ = {session_->log()->id(), session_->log()->notesRevision()};  // a new log
+  savedNotes_ = {session_->log()->id(), session_->log()->notesRevision(), {}};  // a new log
   savedBoneRevision_ = session_->bone()->currentRevision();  // as opened
   ++boneGeneration_;
   if (!recentPath.isEmpty()) addRecent(recentPath);
@@ -195,7 +195,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
   const QMetaObject::Connection watch =
       connect(session_->undoStack(), &QUndoStack::indexChanged, this, [&changedMeanwhile] { changedMeanwhile = true; });
   const std::string csv = cutLogCsv(session_->log()->entries());
-  const SavedNotes notes{session_->log()->id(), session_->log()->notesRevision()};
+  const SavedNotes notes = notesOf(*session_->log());
   const BonePlanning planning = planningOf(*session_->bone());
   // What reopening the bone needs to continue this log: the volume removed before this state (undone cuts not
   // counted) and the log's length, to tell it from another log put beside the bone later.
@@ -325,10 +325,23 @@ bool MainWindow::hasUnsavedChanges() const {
          notesChangedSinceSave();
 }
 
-// A log other than the one saved (a new bone's) has changed only once a note was written on it.
+// A log other than the one saved (a new bone's) has changed only once a note was written on it; then, notes
+// written and undone (NoteCommand) back to what was saved are no change. A row added since the save is compared
+// with no note (a plan's note on it, part of its cut, then counts too: the cut is unsaved work anyway).
 bool MainWindow::notesChangedSinceSave() const {
   const LogNode& log = *session_->log();
-  return log.notesRevision() != (log.id() == savedNotes_.log ? savedNotes_.revision : 0);
+  const bool savedLog = log.id() == savedNotes_.log;
+  if (log.notesRevision() == (savedLog ? savedNotes_.revision : 0)) return false;  // none written since
+  const std::vector<CutLogEntry>& rows = log.entries();
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (rows[i].note != (savedLog && i < savedNotes_.notes.size() ? savedNotes_.notes[i] : std::string())) return true;
+  return false;
+}
+
+MainWindow::SavedNotes MainWindow::notesOf(const LogNode& log) {
+  SavedNotes out{log.id(), log.notesRevision(), {}};
+  for (const CutLogEntry& e : log.entries()) out.notes.push_back(e.note);
+  return out;
 }
 
 // The mesh file's whole name, so that scapula.stl and scapula.ply beside it never share one.
@@ -391,7 +404,7 @@ std::size_t MainWindow::openCutLogBeside(const QString& bonePath, const BoneFile
   }
   const std::size_t count = rows.size();
   session_->continueLog(std::move(rows), saved.removedMm3);
-  savedNotes_ = {session_->log()->id(), session_->log()->notesRevision()};  // as saved
+  savedNotes_ = notesOf(*session_->log());  // as saved
   updateTitle();
   return count;
 }

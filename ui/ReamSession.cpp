@@ -10,6 +10,7 @@
 #include <QtConcurrent/QtConcurrentRun>
 
 #include "CutCommand.h"
+#include "NoteCommand.h"
 #include "PlanningCommand.h"
 #include "PluginHost.h"
 #include "reamsim/ream/ReamStep.h"
@@ -30,14 +31,15 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
     if (const std::optional<Pose> pose = reamer_->takePlacementRequest()) moveReamer(*pose, false);
   });
   planningEdits_ = document_.observeNode(bone_->id(), [this] { recordPlanningEdit(); });
+  watchLog();
   undo_.setUndoLimit(0);  // unlimited: the states share storage (see CutCommand)
   // Undo or redo (menu, keys, history view) stops a queued sequence: its remaining steps were planned on
   // the bone being left, and the step in flight is dropped (computed against the old bone).
   connect(&undo_, &QUndoStack::indexChanged, this, [this] {
     if (pushingOwnCommand_) return;
-    // Only landmark edits undone or redone (a jump in the History dock may pass cuts too): the bone is as it was,
-    // and so are the path and the steps queued on it.
-    if (std::exchange(planningCommandRan_, false) && bone_->currentRevision() == pathRevision_) return;
+    // Only landmark edits or notes undone or redone (a jump in the History dock may pass cuts too): the bone is as
+    // it was, and so are the path and the steps queued on it.
+    if (std::exchange(annotationCommandRan_, false) && bone_->currentRevision() == pathRevision_) return;
     // The path goes on from a bone its steps did not leave (an undo, a redo, an exchanged bone; not a bone added
     // beside). Before its first step it simply starts from there.
     if (bone_->currentRevision() != pathRevision_) {
@@ -98,6 +100,7 @@ void ReamSession::loadBone(ImportedBone b, const QString& sourceName, const Pose
     bone_->setCuttable(b.cuttable);
     document_.remove(log_->id());  // the log is append-only: a new bone gets a new one
     log_ = &document_.create<LogNode>("Log");
+    watchLog();
     alerts_->clear();
     bone_->setLandmarks({});  // another bone: the points and the plan were on the one before
     bone_->setPlannedAxis(std::nullopt);
@@ -146,23 +149,63 @@ void ReamSession::recordPlanningEdit() {
   if (now == recordedPlanning_) return;  // a cut, a name, a frame: not the planning
   BonePlanning before = std::exchange(recordedPlanning_, now);
   if (planningQuiet_ > 0) return;
-  // A push drops what could be redone. Landmark edits may go, undone cuts or bones must not (the bone's history
-  // would keep states the stack can no longer reach, and an undone CT import would be lost): the edit is then
-  // made but not recorded.
-  for (int i = undo_.index(); i < undo_.count(); ++i)
-    if (!dynamic_cast<const PlanningCommand*>(undo_.command(i))) {
-      Q_EMIT planningEditNotRecorded();
-      return;
-    }
+  if (!redoHoldsOnlyAnnotations()) {  // made, but not recorded
+    Q_EMIT editNotRecorded(tr("landmark edit"));
+    return;
+  }
   pushingOwnCommand_ = true;  // our own push is not an undo
   undo_.push(new PlanningCommand(*this, std::move(before), now));
   pushingOwnCommand_ = false;
 }
 
+bool ReamSession::redoHoldsOnlyAnnotations() const {
+  for (int i = undo_.index(); i < undo_.count(); ++i)
+    if (!dynamic_cast<const PlanningCommand*>(undo_.command(i)) && !dynamic_cast<const NoteCommand*>(undo_.command(i)))
+      return false;
+  return true;
+}
+
 void ReamSession::restorePlanning(const BonePlanning& planning) {
-  planningCommandRan_ = true;  // the stack reports the index change once undo() or redo() has returned
+  annotationCommandRan_ = true;  // the stack reports the index change once undo() or redo() has returned
   const QuietPlanning quiet(*this);
   applyPlanning(*bone_, planning);
+}
+
+void ReamSession::watchLog() {
+  recordedNotes_.clear();
+  for (const CutLogEntry& e : log_->entries()) recordedNotes_.push_back(e.note);
+  noteEdits_ = document_.observeNode(log_->id(), [this] { recordNoteEdits(); });
+}
+
+void ReamSession::recordNoteEdits() {
+  struct Edit {
+    std::size_t row;
+    std::string before;
+  };
+  std::vector<Edit> edits;
+  const std::vector<CutLogEntry>& rows = log_->entries();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (i >= recordedNotes_.size())
+      recordedNotes_.push_back(rows[i].note);  // a new row: its note (a plan's) came with its step
+    else if (rows[i].note != recordedNotes_[i])
+      edits.push_back({i, std::exchange(recordedNotes_[i], rows[i].note)});
+  }
+  if (edits.empty()) return;
+  if (!redoHoldsOnlyAnnotations()) {  // made, but not recorded
+    Q_EMIT editNotRecorded(tr("note"));
+    return;
+  }
+  pushingOwnCommand_ = true;  // our own push is not an undo
+  for (Edit& e : edits)
+    undo_.push(new NoteCommand(*this, log_->id(), e.row, rows[e.row].stepIndex, std::move(e.before), rows[e.row].note));
+  pushingOwnCommand_ = false;
+}
+
+void ReamSession::restoreNote(NodeId log, std::size_t row, const std::string& note) {
+  if (log != log_->id() || row >= log_->size()) return;  // another bone's log (loadBone clears the stack)
+  annotationCommandRan_ = true;
+  recordedNotes_.at(row) = note;  // known to the stack already: not an edit
+  log_->setNote(row, note);
 }
 
 double ReamSession::removedBeforeMm3() const {

@@ -202,6 +202,10 @@ class ReamSession : public QObject {
   };
   // Puts `planning` on the bone for an undo or redo of a PlanningCommand (not itself an edit).
   void restorePlanning(const BonePlanning& planning);
+  // Puts `note` on row `row` of the log `log` (when it is still the session's) for an undo or redo of a
+  // NoteCommand (not itself an edit). Notes written on the log's rows go on the undo stack as they reach the
+  // document, as landmark edits do.
+  void restoreNote(NodeId log, std::size_t row, const std::string& note);
 
   std::size_t cutsCommitted() const { return cuts_; }
   double lastMinDistanceMm() const { return lastMinDistance_; }
@@ -229,8 +233,9 @@ class ReamSession : public QObject {
   void contactSearched(const ContactSearch& result);
   void noteReached(const QString& note);  // a plan's step with a note was committed
   void removalPreviewed(const RemovalPreviewAnswer& answer);
-  // A landmark edit was made while undone cuts or bones could be redone: it is not on the undo stack.
-  void planningEditNotRecorded();
+  // A landmark edit or a note ("landmark edit", "note") was made while undone cuts or bones could be redone:
+  // it is not on the undo stack.
+  void editNotRecorded(const QString& what);
 
  private:
   void startNext();
@@ -258,7 +263,16 @@ class ReamSession : public QObject {
   void recordPlanningEdit();
   BonePlanning recordedPlanning_;   // the planning the undo stack knows the bone has
   int planningQuiet_ = 0;
-  bool planningCommandRan_ = false;  // a PlanningCommand's undo or redo: the bone itself did not change
+  // A PlanningCommand's or NoteCommand's undo or redo: the bone itself did not change.
+  bool annotationCommandRan_ = false;
+  // Whether an edit of the landmarks or a note may go on the stack: a push drops what could be redone, which
+  // may be other such edits but not undone cuts or bones (the bone's history would keep states the stack no
+  // longer reaches, and an undone CT import would be lost).
+  bool redoHoldsOnlyAnnotations() const;
+  Subscription noteEdits_;                // the log changed: a note written to record?
+  std::vector<std::string> recordedNotes_;  // the notes the undo stack knows the log's rows have
+  void watchLog();                        // after the log node is made: follows its notes
+  void recordNoteEdits();
   QUndoStack undo_;
   bool pushingOwnCommand_ = false;
   double initialVolume_ = 0;
