@@ -204,8 +204,9 @@ class MainWindow : public QMainWindow {
   bool writeBoneFile(const QString& path, const BoneFileFacts& facts);
   static QString cutLogPathBeside(const QString& bonePath);  // NAME.cut_log.csv beside NAME.ply
   // A bone opened from a file brings the cut log saved beside it (MainWindowFiles.cpp).
-  // `saved`: the facts the bone's file holds (none in a file no save by ReamSim wrote). Returns the rows listed.
-  std::size_t openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved);
+  // `saved`: the facts the bone's file holds (none in a file no save by ReamSim wrote). Returns what the status
+  // bar adds to "Opened …".
+  QString openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved);
   // A file of the user's beside the bone that a save would replace but that could not be read when the bone was
   // opened: moved aside to NAME.unreadable (.2, .3, … when taken) instead. Throws std::runtime_error.
   static void moveAsideUnreadable(const QString& file);

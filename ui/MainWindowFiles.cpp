@@ -154,16 +154,13 @@ void MainWindow::importFinished() {
   try {
     if (!session_->reamer()->cuttingVolume()) session_->setReamer(loadPreset(kDefaultReamerPreset, reamerPresetsPath()));
     const Bounds b = BoneState::fromMesh(out.bone.mesh).bounds();
-    const BoneFileFacts saved{out.bone.frame, out.bone.removedMm3, out.bone.cutLogRows};
+    const BoneFileFacts saved{out.bone.frame, out.bone.removedMm3, out.bone.cutLogRows, out.bone.cutLogLastMs};
     session_->plan()->setPoses({});
     installBone(std::move(out.bone), QFileInfo(importPath_).fileName(), importPath_);
     openLandmarksBeside(importPath_);
-    const std::size_t logRows = openCutLogBeside(importPath_, saved);
+    const QString withLog = openCutLogBeside(importPath_, saved);
     session_->moveReamer(startPoseFor(b));
-    statusBar()->showMessage(logRows == 0   ? tr("Opened %1").arg(importPath_)
-                             : logRows == 1 ? tr("Opened %1 with its cut log (1 step)").arg(importPath_)
-                                            : tr("Opened %1 with its cut log (%2 steps)").arg(importPath_).arg(logRows),
-                             8000);
+    statusBar()->showMessage(tr("Opened %1").arg(importPath_) + withLog, withLog.isEmpty() ? 5000 : 15000);
   } catch (const std::exception& e) {  // e.g. the reamer presets file is missing or broken
     showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), QString::fromStdString(e.what()));
   }
@@ -199,9 +196,10 @@ bool MainWindow::saveBoneAs(const QString& path) {
   const BonePlanning planning = planningOf(*session_->bone());
   // What reopening the bone needs to continue this log: the volume removed before this state (undone cuts not
   // counted) and the log's length, to tell it from another log put beside the bone later.
+  const std::vector<CutLogEntry>& rows = session_->log()->entries();
   const BoneFileFacts facts{session_->bone()->patientFrame(),
-                            session_->initialVolumeMm3() - session_->bone()->current().volume(),
-                            session_->log()->entries().size()};
+                            session_->initialVolumeMm3() - session_->bone()->current().volume(), rows.size(),
+                            rows.empty() ? 0 : rows.back().timeUnixMs};
   const bool written = writeBoneFile(path, facts);
   disconnect(watch);
   if (!written) return false;
@@ -378,35 +376,53 @@ void MainWindow::moveAsideUnreadable(const QString& file) {
   if (!QFile::rename(file, aside)) throw std::runtime_error(file.toStdString() + ": cannot move the unreadable file aside");
 }
 
-// A bone opened from a file brings the cut log saved beside it (NAME.cut_log.csv), if any: the log panel lists
-// its rows with their notes, new steps continue its numbering, and the cumulative volume goes on from what had
-// been removed when the bone was saved (the bone file's `removed_mm3`; without it, a file saved before session
-// 56, the log's last cumulative volume). A log that cannot be read, or whose length is not the one the bone's
-// save recorded (another log, or the bone replaced since), is named in a dialog; the bone opens without it and
-// a save moves the file aside instead of replacing it.
-std::size_t MainWindow::openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved) {
+// A bone opened from a file its Save wrote brings the cut log saved beside it (NAME.cut_log.csv): the log panel
+// lists its rows with their notes, new steps continue its numbering, and the cumulative volume goes on from what
+// had been removed when the bone was saved (the file's `removed_mm3`). Only a file whose save recorded the log
+// (`cut_log`) takes one: a raw scan beside a reamed save of the same name never does. A log that cannot be read,
+// or is not the one saved (another number of rows or another last time: another save's, or the bone replaced
+// since), or is missing, is named in a dialog; the bone opens without it, and a save moves a file there aside
+// instead of replacing it. Returns what the status bar adds to "Opened …" (empty without a log).
+QString MainWindow::openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved) {
+  const auto rowsText = [](std::size_t n) { return std::to_string(n) + (n == 1 ? " row" : " rows"); };
   const QString file = cutLogPathBeside(bonePath);
   unreadableCutLogFile_.clear();
-  if (!QFileInfo::exists(file)) return 0;
+  if (!saved.cutLogRows) return {};  // not a bone a Save wrote (or saved before session 56)
+  const std::string bone = QFileInfo(bonePath).fileName().toStdString();
   std::vector<CutLogEntry> rows;
   try {
+    if (!QFileInfo::exists(file)) {
+      if (*saved.cutLogRows == 0) return {};
+      throw std::runtime_error(file.toStdString() + ": not found; " + bone + " was saved with its cut log there (" +
+                               rowsText(*saved.cutLogRows) + ")");
+    }
     rows = readCutLogCsv(file.toStdString());
-    if (saved.cutLogRows && *saved.cutLogRows != rows.size())
-      throw std::runtime_error(file.toStdString() + ": " + std::to_string(rows.size()) + " rows, but " +
-                               QFileInfo(bonePath).fileName().toStdString() + " was saved with a log of " +
-                               std::to_string(*saved.cutLogRows) + ": not the log saved with this bone");
+    if (rows.size() != *saved.cutLogRows || (!rows.empty() && rows.back().timeUnixMs != saved.cutLogLastMs))
+      throw std::runtime_error(file.toStdString() + ": not the cut log saved with " + bone + " (" +
+                               rowsText(rows.size()) + ", the last at " +
+                               (rows.empty() ? std::string("-") : std::to_string(rows.back().timeUnixMs)) +
+                               " ms; saved: " + rowsText(*saved.cutLogRows) + ", the last at " +
+                               std::to_string(saved.cutLogLastMs) + " ms)");
   } catch (const std::exception& e) {
-    unreadableCutLogFile_ = file;
+    const bool there = QFileInfo::exists(file);
+    if (there) unreadableCutLogFile_ = file;
     showError(tr("Cut log not read"),
-              tr("%1\n\nThe bone opens without its cut log; the file stays as it is (a save moves it aside to %2).")
-                  .arg(QString::fromStdString(e.what()), QFileInfo(file).fileName() + ".unreadable"));
-    return 0;
+              there ? tr("%1\n\nThe bone opens without its cut log; the file stays as it is (a save moves it aside to "
+                         "%2).").arg(QString::fromStdString(e.what()), QFileInfo(file).fileName() + ".unreadable")
+                    : tr("%1\n\nThe bone opens without its cut log.").arg(QString::fromStdString(e.what())));
+    return {};
   }
+  if (rows.empty()) return {};
   const std::size_t count = rows.size();
-  session_->continueLog(std::move(rows), saved.removedMm3);
+  session_->continueLog(std::move(rows), saved.removedMm3);  // without it: from the last row's cumulative volume
   savedNotes_ = notesOf(*session_->log());  // as saved
   updateTitle();
-  return count;
+  const QString steps = count == 1 ? tr("1 step") : tr("%1 steps").arg(count);
+  if (saved.removedMm3) return tr(" with its cut log (%1)").arg(steps);
+  // A binary STL's header had no room for it: the log's last row is the best left (too high by any cut
+  // undone before the save).
+  return tr(" with its cut log (%1; the file has no room for the volume removed at the save: the cumulative "
+            "volume goes on from the log's last row)").arg(steps);
 }
 
 // A bone that is not the cut one holds work no save wrote: cuts in its history, or a crash copy restored, and

@@ -84,9 +84,10 @@ int runExport(const std::vector<std::string>& args) {
     LoadedMesh m = loadPositional(a, "MESH");
     printNotes(m, a.positionals()[0]);
     mesh = std::move(m.mesh);
-    // ReamSim's own metadata (the patient frame) goes on into the new file where its format has room.
+    // The patient frame goes on into the new file where its format has room. What a save recorded of the cut log
+    // beside the file (`reamsim cut_log`, `reamsim removed_mm3`) does not: no log is beside the export.
     for (std::string& c : m.comments)
-      if (c.rfind("reamsim ", 0) == 0) w.comments.push_back(std::move(c));
+      if (c.rfind("reamsim patient_frame ", 0) == 0) w.comments.push_back(std::move(c));
   }
   if (a.has("repair")) {
     RepairOptions options;

@@ -128,10 +128,12 @@ TEST(Cli, ExportConvertsBetweenFormats) {
   EXPECT_EQ(run("export default --out /nonexistent-dir/x.stl").exitCode, 4);
 }
 
-// ReamSim's own comments (the patient frame) go on into the converted file; another program's do not.
+// ReamSim's patient frame goes on into the converted file; another program's comments do not, nor what a save
+// recorded of the cut log beside the file (no log is beside the export).
 TEST(Cli, ExportKeepsThePatientFrame) {
   const fs::path in = scratch("framed.ply");
   std::ofstream(in) << "ply\nformat ascii 1.0\ncomment made by hand\ncomment reamsim patient_frame RAS\n"
+                       "comment reamsim cut_log 3 1764781234567\ncomment reamsim removed_mm3 12.5\n"
                        "element vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
                        "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
                        "0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";

@@ -378,7 +378,9 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   const QString bonePath = dir.filePath("reamed.ply");
   ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
   const std::vector<std::string> comments = readMesh(bonePath.toStdString()).comments;
-  EXPECT_NE(std::find(comments.begin(), comments.end(), "reamsim cut_log_rows 3"), comments.end());
+  EXPECT_NE(std::find(comments.begin(), comments.end(),
+                      "reamsim cut_log 3 " + std::to_string(s.log()->entries().back().timeUnixMs)),
+            comments.end());
 
   w.openFile(bonePath);
   w.waitImport();
@@ -401,17 +403,28 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
   ASSERT_EQ(readCutLogCsv(dir.filePath("reamed.cut_log.csv").toStdString()).size(), 4u);
 
-  // Another log put beside the bone (here: the saved one less a row) is not taken for it.
+  // Another save's log of the same length put beside the bone is not taken for it.
   const QString logPath = dir.filePath("reamed.cut_log.csv");
-  std::vector<CutLogEntry> shorter = readCutLogCsv(logPath.toStdString());
-  shorter.pop_back();
-  const std::string other = cutLogCsv(shorter);
+  std::vector<CutLogEntry> otherRows = readCutLogCsv(logPath.toStdString());
+  otherRows.back().timeUnixMs += 60000;
+  const std::string other = cutLogCsv(otherRows);
   writeTextFile(logPath.toStdString(), other);
   w.openFile(bonePath);
   w.waitImport();
-  EXPECT_TRUE(w.lastError().contains("reamed.cut_log.csv: 3 rows")) << w.lastError().toStdString();
-  EXPECT_TRUE(w.lastError().contains("not the log saved with this bone")) << w.lastError().toStdString();
+  EXPECT_TRUE(w.lastError().contains(logPath + ": not the cut log saved with reamed.ply (4 rows"))
+      << w.lastError().toStdString();
   EXPECT_EQ(s.log()->size(), 0u);
+  // A raw file of the same name (no save of ReamSim's wrote it) takes no log.
+  const QString rawPath = dir.filePath("reamed.off");
+  writeMesh(s.bone()->current().toMesh(), rawPath.toStdString());
+  const QString errorBefore = w.lastError();
+  w.openFile(rawPath);
+  w.waitImport();
+  EXPECT_EQ(w.lastError(), errorBefore);
+  EXPECT_EQ(s.log()->size(), 0u);
+  // Back to the saved bone: a save keeps the other log aside rather than replacing it.
+  w.openFile(bonePath);
+  w.waitImport();
   ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
   QFile kept(logPath + ".unreadable");
   ASSERT_TRUE(kept.open(QIODevice::ReadOnly));
@@ -425,6 +438,32 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   EXPECT_TRUE(w.lastError().contains(logPath + ":2: 2 fields")) << w.lastError().toStdString();
   EXPECT_EQ(s.log()->size(), 0u);
   EXPECT_EQ(s.bone()->current().volume(), s.bone()->history().entries().front().state.volume());  // the bone opened
+
+  // A log the bone was saved with that is gone is named too.
+  s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.3));
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.log()->size(), 1u);
+  ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  ASSERT_TRUE(QFile::remove(logPath));
+  w.openFile(bonePath);
+  w.waitImport();
+  EXPECT_TRUE(w.lastError().contains(logPath + ": not found; reamed.ply was saved with its cut log there (1 row)"))
+      << w.lastError().toStdString();
+
+  // A binary STL's 80-byte header has no room for the removed volume: the log still comes back, and the status bar
+  // says where its cumulative volume goes on from.
+  s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.3));
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.log()->size(), 1u);
+  QTemporaryDir stlDir;
+  const QString stlPath = stlDir.filePath("reamed.stl");
+  ASSERT_TRUE(w.saveBoneAs(stlPath)) << w.lastError().toStdString();
+  w.openFile(stlPath);
+  w.waitImport();
+  EXPECT_EQ(s.log()->size(), 1u);
+  EXPECT_TRUE(w.statusBar()->currentMessage().contains("with its cut log (1 step; the file has no room for the volume "
+                                                        "removed at the save"))
+      << w.statusBar()->currentMessage().toStdString();
 }
 
 // As a user writes one: a double-click on the cut's row opens the note dialog with the note so far; OK writes

@@ -13,7 +13,7 @@ namespace {
 // The comment lines ReamSim writes to keep a bone's facts (BoneFileFacts; docs/CT_IMPORT.md, docs/GUI.md).
 constexpr std::string_view kFrameComment = "reamsim patient_frame ";
 constexpr std::string_view kRemovedComment = "reamsim removed_mm3 ";
-constexpr std::string_view kCutLogRowsComment = "reamsim cut_log_rows ";
+constexpr std::string_view kCutLogComment = "reamsim cut_log ";  // rows, then the last row's time in ms
 
 // The text after `prefix` in the first comment that starts with it.
 std::optional<std::string_view> factText(const std::vector<std::string>& comments, std::string_view prefix) {
@@ -60,7 +60,15 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, 
     out.frame = parsePatientFrame(*frame).value_or(PatientFrame::Unspecified);
   if (const auto removed = number<double>(factText(loaded.comments, kRemovedComment)); removed && std::isfinite(*removed))
     out.removedMm3 = *removed;
-  out.cutLogRows = number<std::size_t>(factText(loaded.comments, kCutLogRowsComment));
+  if (const auto log = factText(loaded.comments, kCutLogComment)) {
+    const std::size_t space = log->find(' ');
+    const auto rows = number<std::size_t>(log->substr(0, space));
+    const auto lastMs = space == std::string_view::npos ? std::nullopt : number<std::int64_t>(log->substr(space + 1));
+    if (rows && lastMs) {
+      out.cutLogRows = rows;
+      out.cutLogLastMs = *lastMs;
+    }
+  }
   for (const std::string& n : loaded.notes) out.report += "note: " + n + "\n";
   if (out.frame != PatientFrame::Unspecified)
     out.report += std::string("patient frame from the file: ") + toString(out.frame) + "\n";
@@ -102,8 +110,10 @@ void MeshImportPlugin::exportMesh(const TriangleMesh& mesh, const std::string& p
   o.progress = progress;
   if (facts.frame != PatientFrame::Unspecified)
     o.comments.push_back(std::string(kFrameComment) + std::string(toString(facts.frame)));
+  if (facts.cutLogRows)
+    o.comments.push_back(std::string(kCutLogComment) + std::to_string(*facts.cutLogRows) + " " +
+                         std::to_string(facts.cutLogLastMs));
   if (facts.removedMm3) o.comments.push_back(std::string(kRemovedComment) + numberText(*facts.removedMm3));
-  if (facts.cutLogRows) o.comments.push_back(std::string(kCutLogRowsComment) + std::to_string(*facts.cutLogRows));
   writeMesh(mesh, path, o);
 }
 

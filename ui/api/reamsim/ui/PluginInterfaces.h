@@ -8,6 +8,7 @@
 #include <QString>
 #include <QStringList>
 #include <QtPlugin>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -39,17 +40,19 @@ struct ImportedBone {
   // What a save by ReamSim recorded in the file (BoneFileFacts), unset in any other file.
   std::optional<double> removedMm3;
   std::optional<std::size_t> cutLogRows;
+  std::int64_t cutLogLastMs = 0;
 };
 
-// What ReamSim keeps in a bone file beside the surface, where the format has room (its comments; every format
-// ReamSim writes has some, docs/FORMATS.md): the patient frame of the coordinates and, written by a save, the
-// bone removed before this state (the cut log's cumulative volume at it: cuts undone before the save are not
-// counted) and how many rows the cut log saved beside it has, so that reopening the bone continues that log
-// and can tell a log beside it that is not the one saved with it.
+// What ReamSim keeps in a bone file beside the surface, in its comments (docs/FORMATS.md "What a bone file says
+// of itself"): the patient frame of the coordinates and, written by a save, the cut log saved beside it (its
+// rows and its last row's time, so that reopening the bone continues that log and tells another log from it)
+// and the bone removed before this state (the log's cumulative volume at it: cuts undone before the save not
+// counted). A binary STL's 80-byte header holds what fits, in that order.
 struct BoneFileFacts {
   PatientFrame frame = PatientFrame::Unspecified;
   std::optional<double> removedMm3;
   std::optional<std::size_t> cutLogRows;
+  std::int64_t cutLogLastMs = 0;  // the last row's time_utc (ms since 1970), 0 without rows
 };
 
 class MeshImportInterface {
