@@ -96,11 +96,8 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   notesSubscription_ = session_->document().subscribe([this](const DocumentEvent& e) {
     if (e.id.kind() == NodeKind::Log && isWindowModified() != hasUnsavedChanges()) updateTitle();
   });
-  connect(session_.get(), &ReamSession::editNotRecorded, this, [this](const QString& what) {
-    statusBar()->showMessage(tr("The %1 is made but Undo cannot take it back: recording it would drop the "
-                                "undone steps that Redo can still bring back").arg(what),
-                             10000);
-  });
+  connect(session_.get(), &ReamSession::editNotRecorded, this,
+          [this](const QString& message) { statusBar()->showMessage(message, 10000); });
   connect(session_.get(), &ReamSession::removalPreviewed, this, &MainWindow::removalPreviewed);
   connect(session_.get(), &ReamSession::noteReached, this,
           [this](const QString& note) { statusBar()->showMessage(tr("Note: %1").arg(note), 10000); });

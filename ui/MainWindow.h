@@ -15,6 +15,7 @@
 #include "BoneView.h"
 #include "ReamerMotion.h"
 #include "ReamSession.h"
+#include "RecoveryRead.h"
 #include "reamsim/ream/ScapularFrame.h"
 
 class QAction;
@@ -162,6 +163,9 @@ class MainWindow : public QMainWindow {
 
  public:
   QString boneFrameText() const;  // the status bar's patient frame and source of the bone
+  // What a save of a bone with `facts` to `path` has no room to record (a binary STL's header), as the status bar
+  // adds it after "Saved …"; empty when the file keeps all of it.
+  static QString factsLeftOut(const QString& path, const BoneFileFacts& facts);
   const OtherBonesLayer* otherBones() const { return otherBones_.get(); }
 
  protected:
@@ -186,10 +190,9 @@ class MainWindow : public QMainWindow {
   std::vector<const BoneNode*> unsavedBonesBeside() const;
   // Bones a CT import replaced whose cuts no save wrote: held by the undo history (ReplaceBoneCommand::held).
   std::vector<const BoneContent*> unsavedReplacedBones() const;
-  void restoreBonesBeside(const RecoveredBone& copy);  // its bones beside
-  // The copy's undo history (all of it, cursor at the end), or a message and nothing; `faces` and `volume`:
-  // the copied bone, which the history's state at the copy must be.
-  std::optional<BoneHistory> readRecoveredHistory(const RecoveredBone& copy, std::size_t faces, double volume);
+  // Its bones beside, as readRecoveryCopy read them (taken from `bones`).
+  void restoreBonesBeside(const RecoveredBone& copy, std::vector<RecoveredRead::Beside>& bones);
+  RecoveredRead readRecoveryCopyInteractive(const RecoveredBone& copy);  // on a worker, with progress and Cancel
   void removeRecoveryCopy();
   void restoreRecoveredReamer(const RecoveredBone& copy);
   void restoreRecoveredLandmarks(const RecoveredBone& copy);

@@ -20,6 +20,7 @@
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QtConcurrent/QtConcurrentRun>
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <unordered_set>
@@ -30,6 +31,7 @@
 #include "MainWindow.h"
 #include "PluginHost.h"
 #include "WriteProgressDialog.h"
+#include "reamsim/mesh/MeshIO.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/Plan.h"
@@ -239,21 +241,41 @@ bool MainWindow::saveBoneAs(const QString& path) {
   }
   savedPlanning_ = planning;
   savedNotes_ = notes;
+  const QString roomNote = factsLeftOut(path, facts);
   updateTitle();  // landmarks or notes alone changed: the undo stack's clean state did not move
   // Nor did the copy kept for a crash: written again (or removed, when nothing is left unsaved).
   if (recovery_ && !recoveryOfferPending_ && !recoveryTimer_.isActive()) recoveryTimer_.start();
   savedPath_ = path;  // written: the next Save goes here too
   if (changedMeanwhile) {
     statusBar()->showMessage(tr("Saved %1 and its cut log as they were when saving began; later cuts are not saved")
-                                 .arg(path), 8000);
+                                 .arg(path) + roomNote, 15000);
     return true;
   }
   session_->undoStack()->setClean();
   savedBoneRevision_ = session_->bone()->currentRevision();
   updateTitle();  // the stack may have been clean already (only landmark edits since the last save)
   savedRevisions_.insert(session_->bone()->currentRevision());  // still saved if it is later moved beside
-  statusBar()->showMessage(tr("Saved %1 and its cut log").arg(path), 5000);
+  statusBar()->showMessage(tr("Saved %1 and its cut log").arg(path) + roomNote, roomNote.isEmpty() ? 5000 : 20000);
   return true;
+}
+
+// What a save's file has no room for (a binary STL's 80-byte header), said after "Saved …": without the log's
+// record, reopening the bone does not bring its log back; without the removed volume, the log's cumulative volume
+// goes on from its last row.
+QString MainWindow::factsLeftOut(const QString& path, const BoneFileFacts& facts) {
+  WriteOptions options;  // as the plugin writes (binary where the format has a choice)
+  options.comments = factComments(facts);
+  const std::vector<std::string> kept = commentsKept(path.toStdString(), options);
+  const auto keeps = [&kept](std::string_view prefix) {
+    return std::any_of(kept.begin(), kept.end(), [prefix](const std::string& c) { return c.rfind(prefix, 0) == 0; });
+  };
+  if (facts.cutLogRows && !keeps(bone_file_facts::kCutLog))
+    return tr(". The file has no room to record the cut log saved beside it: reopened, it comes without its log "
+              "(PLY, OBJ, OFF, VTP or ASCII STL keep it)");
+  if (facts.removedMm3 && facts.cutLogRows && *facts.cutLogRows > 0 && !keeps(bone_file_facts::kRemoved))
+    return tr(". The file has no room for the volume removed so far: reopened, its log's cumulative volume goes on "
+              "from the log's last row (PLY, OBJ, OFF, VTP or ASCII STL keep it)");
+  return {};
 }
 
 bool MainWindow::saveBone() { return savedPath_.isEmpty() ? saveBoneAndCutLogInteractive() : saveBoneAs(savedPath_); }

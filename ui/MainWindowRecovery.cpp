@@ -3,11 +3,13 @@
 // (RecoveryFiles.h; docs/GUI.md "Unsaved changes").
 #include <QDateTime>
 #include <QDir>
+#include <QEventLoop>
 #include <QFile>
 #include <QFileInfo>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QStatusBar>
+#include <QFutureWatcher>
 #include <QtConcurrent/QtConcurrentRun>
 #include <cmath>
 #include <unordered_map>
@@ -20,12 +22,15 @@
 #include "MainWindow.h"
 #include "PluginHost.h"
 #include "RecoveryFiles.h"
+#include "RecoveryRead.h"
+#include "WriteProgressDialog.h"
 #include "reamsim/core/HistoryJournal.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/tools/ReamerFile.h"
 #include "reamsim/tools/ReamerPresets.h"
+#include "reamsim/ui/ProgressRelay.h"
 
 namespace reamsim::ui {
 
@@ -197,25 +202,39 @@ void MainWindow::offerRecovery() {
   box.addButton(QMessageBox::Discard);
   box.setDefaultButton(restore);
   box.exec();
-  recoveryOfferPending_ = false;
   if (box.clickedButton() != restore) {
+    recoveryOfferPending_ = false;
     removeRecoveryCopy();
     if (hasUnsavedChanges()) recoveryTimer_.start();
     return;
   }
-  ImportedBone bone;
+  // Read on a worker behind a progress dialog with Cancel; meanwhile the copy is neither written nor removed
+  // (recoveryOfferPending_ holds).
+  std::optional<RecoveredRead> read;
+  QString problem;
   try {
     if (!plugins_.meshImport()) throw std::runtime_error("no mesh import plugin is loaded (Help → Plugins)");
-    bone = plugins_.meshImport()->importBone(found->bonePath.toStdString(), false);
-    if (bone.mesh.triangles.empty()) throw std::runtime_error(found->bonePath.toStdString() + ": the mesh has no triangles");
     if (!session_->reamer()->cuttingVolume()) session_->setReamer(loadPreset(kDefaultReamerPreset, reamerPresetsPath()));
+    read = readRecoveryCopyInteractive(*found);
+    if (!read->error.empty()) problem = QString::fromStdString(read->error);
   } catch (const std::exception& e) {
-    // The copy stays where it is for the user to open by hand; this window stops managing the folder.
-    showError(tr("Cannot restore the recovered bone"),
-              tr("%1\n\nThe copy is kept in %2.").arg(QString::fromStdString(e.what()), recovery_->dir()));
+    problem = QString::fromStdString(e.what());
+  }
+  recoveryOfferPending_ = false;
+  if (read && read->cancelled) {
+    // Kept for the next start; this window stops managing the folder, so that no copy of its own replaces it.
+    statusBar()->showMessage(tr("Restore cancelled: the copy is kept in %1 and offered again at the next start")
+                                 .arg(recovery_->dir()), 15000);
     recovery_.reset();
     return;
   }
+  if (!problem.isEmpty()) {
+    // The copy stays where it is for the user to open by hand; this window stops managing the folder.
+    showError(tr("Cannot restore the recovered bone"), tr("%1\n\nThe copy is kept in %2.").arg(problem, recovery_->dir()));
+    recovery_.reset();
+    return;
+  }
+  ImportedBone bone = std::move(read->bone);
   const BoneState copied = BoneState::fromMesh(bone.mesh);
   session_->plan()->setPoses({});
   installBone(std::move(bone), tr("%1 (recovered)").arg(name), {});
@@ -225,8 +244,14 @@ void MainWindow::offerRecovery() {
   // the crash. One that cannot be read back (or does not end at the copied bone) is reported and kept; the
   // recovered bone is then the history's only state.
   std::unordered_map<std::uint64_t, std::uint64_t> revisionMap;  // the crashed history's revisions → the adopted ones
-  if (std::optional<BoneHistory> history = readRecoveredHistory(*found, copied.liveTriangleCount(), copied.volume())) {
-    session_->adoptHistory(std::move(*history));
+  if (!read->historyError.empty()) {
+    const QString kept = keepInRestored(found->historyPath);
+    showError(tr("The undo history was not restored"),
+              tr("The recovered bone is restored, but not its undo history (Undo cannot go back before it):\n%1\n\n"
+                 "The history is kept as %2.").arg(QString::fromStdString(read->historyError), kept));
+  }
+  if (read->history) {
+    session_->adoptHistory(std::move(*read->history));
     const BoneHistory& adopted = session_->bone()->history();
     for (std::size_t k = 0; k < adopted.size() && k < found->historyRevisions.size(); ++k)
       revisionMap[found->historyRevisions[k]] = adopted.entries()[k].revision;
@@ -246,7 +271,7 @@ void MainWindow::offerRecovery() {
   const double atCopyVolume = session_->bone()->current().volume();
   recoveredRevisions_.insert(session_->bone()->history().entries().front().revision);  // also once moved beside
   session_->moveReamer(startPoseFor(copied.bounds()));
-  restoreBonesBeside(*found);
+  restoreBonesBeside(*found, read->beside);
   session_->undoStack()->resetClean();  // saved nowhere but in the recovery copy
   savedBoneRevision_.reset();
   // The log up to the crash goes back into the log panel. One that cannot be read is kept as a file for
@@ -306,26 +331,21 @@ void MainWindow::restoreRecoveredReamer(const RecoveredBone& found) {
   }
 }
 
-std::optional<BoneHistory> MainWindow::readRecoveredHistory(const RecoveredBone& found, std::size_t faces, double volume) {
-  if (found.historyPath.isEmpty()) return std::nullopt;
-  try {
-    const std::size_t last = found.historyRevisions.size() - 1;
-    BoneHistory history = readHistoryJournal(found.historyPath.toStdString(), found.historyRevisions, last);
-    // The state the copy was made at must be the copied bone: a journal from another copy is not this one's.
-    const BoneState& atCopy = history.entries()[found.historyCursor].state;
-    if (atCopy.liveTriangleCount() != faces || std::abs(atCopy.volume() - volume) > 1e-9 * (1.0 + std::abs(volume)))
-      throw std::runtime_error(QFileInfo(found.historyPath).fileName().toStdString() +
-                               ": its state at the copy is not the copied bone (" + std::to_string(atCopy.liveTriangleCount()) +
-                               " faces, " + std::to_string(atCopy.volume()) + " mm³, against " + std::to_string(faces) +
-                               " faces, " + std::to_string(volume) + " mm³)");
-    return history;
-  } catch (const std::exception& e) {
-    const QString kept = keepInRestored(found.historyPath);
-    showError(tr("The undo history was not restored"),
-              tr("The recovered bone is restored, but not its undo history (Undo cannot go back before it):\n%1\n\n"
-                 "The history is kept as %2.").arg(QString::fromStdString(e.what()), kept));
-    return std::nullopt;
-  }
+// readRecoveryCopy on a worker, behind a window-modal dialog that shows the stage and has Cancel; the window keeps
+// painting meanwhile (a local event loop, as a save's).
+RecoveredRead MainWindow::readRecoveryCopyInteractive(const RecoveredBone& copy) {
+  WriteProgressDialog dialog(tr("Restoring %1").arg(copy.name.isEmpty() ? tr("the bone") : copy.name), this, tr("Restoring"));
+  dialog.show();  // before the worker starts, so that a Cancel at once is heard at its first check
+  const ProgressCallback progress = progressRelay(
+      &dialog, [&dialog](double f, const QString& stage) { dialog.showProgress(f, stage); }, dialog.stopFlag());
+  QEventLoop wait;
+  QFutureWatcher<RecoveredRead> watcher;
+  connect(&watcher, &QFutureWatcher<RecoveredRead>::finished, &wait, &QEventLoop::quit);
+  const MeshImportInterface* importer = plugins_.meshImport();
+  watcher.setFuture(QtConcurrent::run([importer, copy, progress] { return readRecoveryCopy(*importer, copy, progress); }));
+  wait.exec();
+  dialog.hide();
+  return watcher.result();
 }
 
 // A copy of `file` where the next save or close does not remove it (recovery/restored/), for a file that could
@@ -342,12 +362,13 @@ QString MainWindow::keepInRestored(const QString& file) const {
 // The bones beside of a recovery copy, beside the restored bone (not undoable: like the restore itself, the
 // start of this window's history). They count as unsaved until a save writes them (unsavedBonesBeside). One
 // that cannot be read is named in a message; the others are restored.
-void MainWindow::restoreBonesBeside(const RecoveredBone& found) {
+void MainWindow::restoreBonesBeside(const RecoveredBone& found, std::vector<RecoveredRead::Beside>& bones) {
   QStringList failed;
-  for (const RecoveredBone::Beside& copy : found.beside) {
+  for (std::size_t i = 0; i < found.beside.size() && i < bones.size(); ++i) {
+    const RecoveredBone::Beside& copy = found.beside[i];
     try {
-      ImportedBone read = plugins_.meshImport()->importBone(copy.path.toStdString(), false);
-      if (read.mesh.triangles.empty()) throw std::runtime_error(copy.path.toStdString() + ": the mesh has no triangles");
+      if (!bones[i].bone) throw std::runtime_error(bones[i].error);
+      ImportedBone read = std::move(*bones[i].bone);
       read.source = tr("crash-recovery copy of %1").arg(copy.name).toStdString();
       BoneContent content = boneContentFrom(std::move(read), tr("%1 (recovered)").arg(copy.name).toStdString(), "recovered");
       recoveredRevisions_.insert(content.history.entries().front().revision);

@@ -150,7 +150,8 @@ void ReamSession::recordPlanningEdit() {
   BonePlanning before = std::exchange(recordedPlanning_, now);
   if (planningQuiet_ > 0) return;
   if (!redoHoldsOnlyAnnotations()) {  // made, but not recorded
-    Q_EMIT editNotRecorded(tr("landmark edit"));
+    Q_EMIT editNotRecorded(tr("The landmark edit is made but Undo cannot take it back: recording it would drop the "
+                              "undone steps that Redo can still bring back"));
     return;
   }
   pushingOwnCommand_ = true;  // our own push is not an undo
@@ -158,10 +159,20 @@ void ReamSession::recordPlanningEdit() {
   pushingOwnCommand_ = false;
 }
 
+namespace {
+// A landmark edit, a note, or a macro of them (notes written on several rows at once).
+bool isAnnotation(const QUndoCommand* c) {
+  if (dynamic_cast<const PlanningCommand*>(c) || dynamic_cast<const NoteCommand*>(c)) return true;
+  if (c->childCount() == 0) return false;
+  for (int i = 0; i < c->childCount(); ++i)
+    if (!isAnnotation(c->child(i))) return false;
+  return true;
+}
+}  // namespace
+
 bool ReamSession::redoHoldsOnlyAnnotations() const {
   for (int i = undo_.index(); i < undo_.count(); ++i)
-    if (!dynamic_cast<const PlanningCommand*>(undo_.command(i)) && !dynamic_cast<const NoteCommand*>(undo_.command(i)))
-      return false;
+    if (!isAnnotation(undo_.command(i))) return false;
   return true;
 }
 
@@ -192,19 +203,24 @@ void ReamSession::recordNoteEdits() {
   }
   if (edits.empty()) return;
   if (!redoHoldsOnlyAnnotations()) {  // made, but not recorded
-    Q_EMIT editNotRecorded(tr("note"));
+    Q_EMIT editNotRecorded(tr("The note is made but Undo cannot take it back: recording it would drop the undone "
+                              "steps that Redo can still bring back"));
     return;
   }
   pushingOwnCommand_ = true;  // our own push is not an undo
+  if (edits.size() > 1) undo_.beginMacro(tr("Notes on %1 steps").arg(edits.size()));  // one change, one undo
   for (Edit& e : edits)
     undo_.push(new NoteCommand(*this, log_->id(), e.row, rows[e.row].stepIndex, std::move(e.before), rows[e.row].note));
+  if (edits.size() > 1) undo_.endMacro();
   pushingOwnCommand_ = false;
 }
 
 void ReamSession::restoreNote(NodeId log, std::size_t row, const std::string& note) {
   if (log != log_->id() || row >= log_->size()) return;  // another bone's log (loadBone clears the stack)
   annotationCommandRan_ = true;
-  recordedNotes_.at(row) = note;  // known to the stack already: not an edit
+  // Known to the stack already: not an edit (rows appended in a batch still open are not in the shadow yet).
+  if (recordedNotes_.size() <= row) recordedNotes_.resize(row + 1);
+  recordedNotes_[row] = note;
   log_->setNote(row, note);
 }
 

@@ -233,9 +233,9 @@ class ReamSession : public QObject {
   void contactSearched(const ContactSearch& result);
   void noteReached(const QString& note);  // a plan's step with a note was committed
   void removalPreviewed(const RemovalPreviewAnswer& answer);
-  // A landmark edit or a note ("landmark edit", "note") was made while undone cuts or bones could be redone:
-  // it is not on the undo stack.
-  void editNotRecorded(const QString& what);
+  // A landmark edit or a note was made while undone cuts or bones could be redone: it is not on the undo stack.
+  // `message` says so, for the status bar.
+  void editNotRecorded(const QString& message);
 
  private:
   void startNext();

@@ -8,9 +8,10 @@
 
 namespace reamsim::ui {
 
-WriteProgressDialog::WriteProgressDialog(const QString& what, QWidget* parent) : QDialog(parent), what_(what) {
+WriteProgressDialog::WriteProgressDialog(const QString& what, QWidget* parent, const QString& title)
+    : QDialog(parent), what_(what) {
   setObjectName("WriteProgressDialog");
-  setWindowTitle(tr("Saving"));
+  setWindowTitle(title.isEmpty() ? tr("Saving") : title);
   setWindowModality(Qt::WindowModal);
   label_ = new QLabel(what_, this);
   bar_ = new QProgressBar(this);

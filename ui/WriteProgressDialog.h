@@ -1,5 +1,6 @@
 #pragma once
-// The window-modal dialog shown while a file is written on a worker: what is written, how far, and Cancel.
+// The window-modal dialog shown while a file is written (or a crash copy read) on a worker: what, how far, and
+// Cancel.
 // Cancel (the button, Escape or the title bar's close) only asks: the dialog stays, says "Cancelling…", and
 // the caller closes it when the worker has stopped, so the window is never free while the file may still
 // be replaced.
@@ -16,7 +17,8 @@ namespace reamsim::ui {
 class WriteProgressDialog : public QDialog {
   Q_OBJECT
  public:
-  WriteProgressDialog(const QString& what, QWidget* parent);
+  // `title`: the dialog's (default "Saving"; a crash restore reads with it too).
+  WriteProgressDialog(const QString& what, QWidget* parent, const QString& title = {});
   // Read by the worker at each progress check (ProgressRelay.h).
   const std::shared_ptr<std::atomic<bool>>& stopFlag() const { return stop_; }
   void showProgress(double fraction, const QString& stage);

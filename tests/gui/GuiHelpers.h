@@ -7,6 +7,7 @@
 #include <QElapsedTimer>
 #include <QFileDialog>
 #include <QMessageBox>
+#include <QPushButton>
 #include <QTimer>
 #include <deque>
 #include <functional>
@@ -124,6 +125,25 @@ inline void cutOnce(ReamSession& s, double depthMm = 0.5) {
   ASSERT_TRUE(s.waitIdle(60000));
   ASSERT_EQ(s.cutsCommitted(), before + 1);
 }
+
+// Presses Cancel on every WriteProgressDialog (a save's, a crash restore's) as it appears, before its worker's
+// first check: counts the presses.
+class CancelProgressOnShow : public QObject {
+ public:
+  CancelProgressOnShow() { qApp->installEventFilter(this); }
+  ~CancelProgressOnShow() override { qApp->removeEventFilter(this); }
+  int pressed = 0;
+
+ protected:
+  bool eventFilter(QObject* o, QEvent* e) override {
+    if (e->type() == QEvent::Show && o->objectName() == "WriteProgressDialog") {
+      auto* cancel = o->findChild<QPushButton*>("WriteCancelButton");
+      EXPECT_NE(cancel, nullptr);
+      if (cancel) cancel->click(), ++pressed;
+    }
+    return false;
+  }
+};
 
 // Writes `note` on the log dock's row `row` as its Note… does (LogPanel::annotateRow, a slot of the plugin's
 // dock); false when the dock has no such row.

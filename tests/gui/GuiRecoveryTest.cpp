@@ -3,6 +3,7 @@
 // went away without a close, as in a crash) is offered by the next window, which restores the bone exactly
 // or deletes the copy, as the user answers; a second window does not touch the first one's copy.
 #include <QAction>
+#include <QApplication>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -466,6 +467,37 @@ TEST(GuiRecovery, DiscardingTheOfferDeletesTheCopy) {
   EXPECT_FALSE(w.recovery()->found());
   EXPECT_EQ(f.session().bone()->currentRevision(), revision);  // the default case stays
   EXPECT_FALSE(w.hasUnsavedChanges());
+}
+
+// The copy is read back on a worker behind a progress dialog (seconds for a CT bone of millions of faces). Its
+// Cancel leaves the window's bone, and keeps the copy for the next start: this window writes no copy of its own
+// over it; the next window offers it again and restores it.
+TEST(GuiRecovery, ACancelledRestoreKeepsTheCopyForTheNextStart) {
+  REAMSIM_REQUIRE_DISPLAY();
+  QTemporaryDir dir;
+  const double crashedVolume = crashAfterOneCut(dir);
+  {
+    GuiFixture f;
+    MainWindow& w = *f.window;
+    const std::uint64_t revision = f.session().bone()->currentRevision();
+    CancelProgressOnShow cancel;
+    ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+    w.enableRecovery(dir.filePath("recovery"), 0);
+    ASSERT_TRUE(QTest::qWaitFor([&] { return answers.seen() == 1 && cancel.pressed == 1 && !QApplication::activeModalWidget(); },
+                                30000));
+    QTest::qWait(50);
+    EXPECT_EQ(f.session().bone()->currentRevision(), revision);  // the default case stays
+    EXPECT_TRUE(w.statusBar()->currentMessage().contains("Restore cancelled")) << w.statusBar()->currentMessage().toStdString();
+    EXPECT_EQ(w.recovery(), nullptr);  // no longer this window's folder
+    cutOnce(f.session());  // unsaved work of this window: no copy replaces the one kept
+    QTest::qWait(200);
+  }
+  GuiFixture g;
+  ModalAnswers answers({ModalAnswers::click("RecoveryDialog", "Restore")});
+  g.window->enableRecovery(dir.filePath("recovery"), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return answers.seen() == 1 && !QApplication::activeModalWidget(); }, 30000));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return g.window->windowTitle().contains("(recovered)"); }, 30000));
+  EXPECT_NEAR(g.session().bone()->current().volume(), crashedVolume, 1e-9 * crashedVolume);
 }
 
 TEST(GuiRecovery, ACorruptCopyIsReportedAndKept) {

@@ -113,25 +113,6 @@ TEST(GuiUnsavedChanges, AFailedOrCancelledSaveKeepsTheWindowOpen) {
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
 }
 
-// Presses the save's Cancel as its progress dialog appears: before the worker's first check, so the cancel is
-// heard whatever the machine's speed.
-class CancelSaveOnShow : public QObject {
- public:
-  CancelSaveOnShow() { qApp->installEventFilter(this); }
-  ~CancelSaveOnShow() override { qApp->removeEventFilter(this); }
-  int pressed = 0;
-
- protected:
-  bool eventFilter(QObject* o, QEvent* e) override {
-    if (e->type() == QEvent::Show && o->objectName() == "WriteProgressDialog") {
-      auto* cancel = o->findChild<QPushButton*>("WriteCancelButton");
-      EXPECT_NE(cancel, nullptr);
-      if (cancel) cancel->click(), ++pressed;
-    }
-    return false;
-  }
-};
-
 QByteArray contents(const QString& path) {
   QFile file(path);
   return file.open(QIODevice::ReadOnly) ? file.readAll() : QByteArray();
@@ -154,7 +135,7 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   cutOnce(s, 1.0);
   ASSERT_TRUE(w.hasUnsavedChanges());
   {
-    CancelSaveOnShow cancel;
+    CancelProgressOnShow cancel;
     EXPECT_FALSE(w.saveBoneAs(path));
     EXPECT_EQ(cancel.pressed, 1);
   }
@@ -164,7 +145,7 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   EXPECT_TRUE(w.hasUnsavedChanges());
   EXPECT_TRUE(w.lastError().isEmpty()) << "a cancel is not an error: " << w.lastError().toStdString();
   {
-    CancelSaveOnShow cancel;
+    CancelProgressOnShow cancel;
     // The close question's Save writes where Save as did, without asking where.
     EXPECT_FALSE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save)}, 1));
     EXPECT_EQ(cancel.pressed, 1);
@@ -341,16 +322,49 @@ TEST(GuiUnsavedChanges, UndoTakesBackANote) {
   EXPECT_EQ(s.bone()->currentRevision(), cut);
   EXPECT_FALSE(undo.canRedo());
 
-  // While the second cut could be redone: written, not recorded, and the cut can still be redone.
+  // A feed runs on while a note is written and undone: neither interrupts the path.
+  s.restartPath(ReamSession::PathStart::Changed);  // the undo above interrupted the one before
+  const Pose seated = s.reamer()->pose();
+  s.runSteps({advancedAlongAxis(seated, 0.1), advancedAlongAxis(seated, 0.2), advancedAlongAxis(seated, 0.3),
+              advancedAlongAxis(seated, 0.4)});
+  ASSERT_TRUE(s.busy());
+  const std::size_t pathBefore = s.path().size();
+  ASSERT_TRUE(annotateRow(w, 1, "during the feed"));
+  undo.undo();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(s.path().size(), pathBefore + 4);  // every step ran
+  EXPECT_FALSE(s.pathInterrupted());
+  EXPECT_EQ(s.log()->entries()[1].note, "");
+  const std::uint64_t fed = s.bone()->currentRevision();
+
+  // Notes written on several rows at once (in one batch of the document) are one step to undo.
+  const int before = undo.count();
+  {
+    Document::BatchScope batch(s.document());
+    s.log()->setNote(0, "both: a");
+    s.log()->setNote(1, "both: b");
+  }
+  ASSERT_EQ(undo.count(), before + 1);
+  EXPECT_EQ(undo.undoText(), "Notes on 2 steps");
+  undo.undo();
+  EXPECT_EQ(s.log()->entries()[0].note, "second");
+  EXPECT_EQ(s.log()->entries()[1].note, "");
+  EXPECT_EQ(s.bone()->currentRevision(), fed);
+  ASSERT_TRUE(annotateRow(w, 1, "after the undone pair"));  // only notes could be redone: recorded
+  EXPECT_EQ(undo.count(), before + 1);
+  EXPECT_EQ(undo.undoText(), QString("Note on step %1").arg(s.log()->entries()[1].stepIndex));
+
+  // While a cut could be redone: written, not recorded, and the cut can still be redone.
   undo.setIndex(1);
   ASSERT_NE(s.bone()->currentRevision(), cut);
+  const int commands = undo.count();
   ASSERT_TRUE(annotateRow(w, 1, "on the undone cut"));
   EXPECT_EQ(s.log()->entries()[1].note, "on the undone cut");
-  EXPECT_EQ(undo.count(), 4);
+  EXPECT_EQ(undo.count(), commands);
   EXPECT_TRUE(w.statusBar()->currentMessage().contains("The note is made but Undo cannot take it back"))
       << w.statusBar()->currentMessage().toStdString();
   undo.redo();
-  EXPECT_EQ(s.bone()->currentRevision(), cut);
+  EXPECT_EQ(s.bone()->currentRevision(), cut);  // the second cut is back
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
 }
 
@@ -458,6 +472,13 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   QTemporaryDir stlDir;
   const QString stlPath = stlDir.filePath("reamed.stl");
   ASSERT_TRUE(w.saveBoneAs(stlPath)) << w.lastError().toStdString();
+  EXPECT_TRUE(w.statusBar()->currentMessage().contains("no room for the volume removed so far"))
+      << w.statusBar()->currentMessage().toStdString();
+  // A CT bone (a patient frame) with a log of 10,000 rows: the header has no room for the log's record either.
+  const std::int64_t t = 1764781234567;
+  EXPECT_TRUE(MainWindow::factsLeftOut("x.stl", {PatientFrame::LPS, 12.5, 9999, t}).contains("no room for the volume"));
+  EXPECT_TRUE(MainWindow::factsLeftOut("x.stl", {PatientFrame::LPS, 12.5, 10000, t}).contains("no room to record the cut log"));
+  EXPECT_TRUE(MainWindow::factsLeftOut("x.ply", {PatientFrame::LPS, 12.5, 100000, t}).isEmpty());
   w.openFile(stlPath);
   w.waitImport();
   EXPECT_EQ(s.log()->size(), 1u);

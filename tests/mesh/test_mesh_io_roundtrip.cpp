@@ -429,6 +429,24 @@ TEST_F(io_MeshIO, StlKeepsTheCommentsItsHeaderHasRoomFor) {
   EXPECT_TRUE(readMesh(path("other.stl"), ReadOptions{Units::Millimetres}).comments.empty());
 }
 
+// A comment that fills the header to its last byte keeps its line break (the reader drops a line without one),
+// so commentsKept, what a writer says it keeps, is what a reader gets back; one byte more and it is left out.
+TEST_F(io_MeshIO, StlHeaderKeepsExactlyWhatCommentsKeptSays) {
+  // "ReamSim binary STL" (18) + '\n' + comment + '\n' must fit in 80: a comment of 60 bytes fits, 61 does not.
+  for (const std::size_t size : {59u, 60u, 61u}) {
+    WriteOptions o;
+    o.comments = {std::string(size, 'c')};
+    writeMesh(octahedron(1, {}), path("fill.stl"), o);
+    std::vector<std::string> read = readMesh(path("fill.stl"), ReadOptions{Units::Millimetres}).comments;
+    read.erase(read.begin());  // "written by ReamSim"
+    EXPECT_EQ(read, commentsKept(path("fill.stl"), o)) << size;
+    EXPECT_EQ(read.size(), size <= 60 ? 1u : 0u) << size;
+  }
+  WriteOptions ply;
+  ply.comments = {std::string(500, 'p'), "b"};
+  EXPECT_EQ(commentsKept(path("any.ply"), ply), ply.comments);  // other formats keep them all
+}
+
 // Comments of files written elsewhere: whole-line '#' comments of OBJ and OFF (not those after data on a
 // line), and a VTP's comment array written by VTK in ASCII (a string's bytes as numbers, each string ended by 0).
 TEST_F(io_MeshIO, CommentsOfFilesWrittenElsewhere) {

@@ -28,6 +28,10 @@ inline constexpr const char* kWrittenByComment = "written by ReamSim";
 // would end a comment early in every format that has them).
 std::vector<std::string> commentLinesToWrite(const std::vector<std::string>& comments);
 
+// Of `comments`, those a binary STL's header keeps (in order; each one that does not fit after those before it is
+// left out).
+std::vector<std::string> binaryStlCommentsKept(const std::vector<std::string>& comments);
+
 RawMesh readStl(const std::string& path, std::string_view data);
 RawMesh readObj(const std::string& path, std::string_view data);
 RawMesh readPly(const std::string& path, std::string_view data);
@@ -36,7 +40,7 @@ RawMesh readVtp(const std::string& path, std::string_view data);
 
 // Writers return the file contents; MeshIO.cpp writes them (replaceFile).
 // `comments` go where the format has room: PLY 'comment' lines, OBJ and OFF '#' lines, a VTP field-data
-// string array, a binary STL's 80-byte header (those that fit; ASCII STL has no place for them).
+// string array, a binary STL's 80-byte header (those that fit: binaryStlCommentsKept), an ASCII STL's solid name.
 std::string writeStl(const TriangleMesh& mesh, const std::string& path, bool binary,
                      const std::vector<std::string>& comments);
 std::string writeObj(const TriangleMesh& mesh, const std::vector<std::string>& comments);

@@ -101,6 +101,13 @@ std::vector<std::string> commentLinesToWrite(const std::vector<std::string>& com
 
 }  // namespace io
 
+std::vector<std::string> commentsKept(const std::string& path, const WriteOptions& options) {
+  if (extensionOf(path) == ".stl" && options.binary) return io::binaryStlCommentsKept(options.comments);
+  std::vector<std::string> lines = io::commentLinesToWrite(options.comments);
+  lines.erase(lines.begin());  // "written by ReamSim"
+  return lines;
+}
+
 void writeMesh(const TriangleMesh& mesh, const std::string& path, const WriteOptions& options) {
   const ProgressCallback& progress = options.progress;
   const auto ask = [&](double fraction, const std::string& stage) {

@@ -29,12 +29,15 @@ bool looksLikeAsciiStl(std::string_view data) {
 }
 
 // "ReamSim binary STL", then the comments after "written by ReamSim" that fit in the 80 bytes, each ended
-// by a line break; spaces after. Other programs ignore the header.
-std::string binaryHeader(const std::vector<std::string>& comments) {
+// by a line break (the reader keeps only ended lines); spaces after. Other programs ignore the header.
+std::string binaryHeader(const std::vector<std::string>& comments, std::vector<std::string>* kept = nullptr) {
   std::string header = kStlHeaderMark;
   const std::vector<std::string> lines = commentLinesToWrite(comments);
   for (std::size_t i = 1; i < lines.size(); ++i)
-    if (header.size() + 1 + lines[i].size() <= kHeader - 4) header += '\n' + lines[i];
+    if (header.size() + 1 + lines[i].size() + 1 <= kHeader - 4) {  // with its own break and the last one
+      header += '\n' + lines[i];
+      if (kept) kept->push_back(lines[i]);
+    }
   header += '\n';
   header.resize(kHeader - 4, ' ');
   return header;
@@ -229,6 +232,12 @@ std::string writeStl(const TriangleMesh& mesh, const std::string& path, bool bin
   }
   out += "endsolid reamsim\n";
   return out;
+}
+
+std::vector<std::string> binaryStlCommentsKept(const std::vector<std::string>& comments) {
+  std::vector<std::string> kept;
+  binaryHeader(comments, &kept);
+  return kept;
 }
 
 }  // namespace reamsim::io

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "reamsim/core/PatientFrame.h"
+#include "reamsim/ui/BoneFileFacts.h"
 #include "reamsim/mesh/RepairProgress.h"
 #include "reamsim/mesh/TriangleMesh.h"
 #include "reamsim/ream/ReamBackends.h"
@@ -41,18 +42,6 @@ struct ImportedBone {
   std::optional<double> removedMm3;
   std::optional<std::size_t> cutLogRows;
   std::int64_t cutLogLastMs = 0;
-};
-
-// What ReamSim keeps in a bone file beside the surface, in its comments (docs/FORMATS.md "What a bone file says
-// of itself"): the patient frame of the coordinates and, written by a save, the cut log saved beside it (its
-// rows and its last row's time, so that reopening the bone continues that log and tells another log from it)
-// and the bone removed before this state (the log's cumulative volume at it: cuts undone before the save not
-// counted). A binary STL's 80-byte header holds what fits, in that order.
-struct BoneFileFacts {
-  PatientFrame frame = PatientFrame::Unspecified;
-  std::optional<double> removedMm3;
-  std::optional<std::size_t> cutLogRows;
-  std::int64_t cutLogLastMs = 0;  // the last row's time_utc (ms since 1970), 0 without rows
 };
 
 class MeshImportInterface {

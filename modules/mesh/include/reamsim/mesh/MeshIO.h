@@ -32,8 +32,8 @@ LoadedMesh readMesh(const std::string& path, const ReadOptions& options = {});
 struct WriteOptions {
   bool binary = true;  // for STL and PLY; OBJ and OFF are always text
   // Written where the format has room, after "written by ReamSim" (line breaks become spaces), and read back
-  // into LoadedMesh::comments; e.g. the bone's patient frame. PLY, OBJ, OFF and VTP keep them all, binary STL
-  // those that fit in its 80-byte header, ASCII STL none.
+  // into LoadedMesh::comments; e.g. the bone's patient frame. PLY, OBJ, OFF, VTP and ASCII STL keep them all,
+  // binary STL those that fit in its 80-byte header (commentsKept says which).
   std::vector<std::string> comments;
   // Hears the fraction done and the stage ("checking", "encoding", "writing", "flushing"); returning false
   // stops the write before the file is replaced, with WriteCancelled (reamsim/mesh/FileReplace.h).
@@ -42,6 +42,10 @@ struct WriteOptions {
 // The format follows the extension (.stl .obj .ply .off .vtp); throws InputError on failure. The file is
 // replaced whole or not at all (replaceFile).
 void writeMesh(const TriangleMesh& mesh, const std::string& path, const WriteOptions& options = {});
+
+// Of options.comments, those a writeMesh to `path` with `options` stores (line breaks as spaces): all of them,
+// except in a binary STL, whose header keeps those that fit.
+std::vector<std::string> commentsKept(const std::string& path, const WriteOptions& options);
 
 std::vector<std::string> supportedMeshExtensions();
 Units parseUnits(const std::string& text);  // "m", "mm", "auto"; throws std::invalid_argument
