@@ -99,6 +99,14 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   connect(session_.get(), &ReamSession::editNotRecorded, this,
           [this](const QString& message) { statusBar()->showMessage(message, 10000); });
   connect(session_.get(), &ReamSession::removalPreviewed, this, &MainWindow::removalPreviewed);
+  connect(session_.get(), &ReamSession::placedOutward, this, [this](double mm) {
+    statusBar()->showMessage(tr("Placed %L1 mm further out along the axis than asked: there, the reamer would have cut "
+                                "the bone").arg(mm, 0, 'f', 2), 15000);
+  });
+  connect(session_.get(), &ReamSession::noRoomClearOfBone, this, [this] {
+    statusBar()->showMessage(tr("The reamer is not moved: along the aimed axis it meets the bone for the next %1 mm "
+                                "out, and placing it would cut it").arg(kClearPlacementReachMm), 15000);
+  });
   connect(session_.get(), &ReamSession::noteReached, this,
           [this](const QString& note) { statusBar()->showMessage(tr("Note: %1").arg(note), 10000); });
   updateStatus();

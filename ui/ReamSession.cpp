@@ -28,7 +28,8 @@ ReamSession::ReamSession(const PluginHost& plugins, QObject* parent) : QObject(p
   alerts_ = &document_.create<AlertNode>("Alerts");
   interaction_ = &document_.create<InteractionNode>("Interaction");
   placementRequests_ = document_.observeNode(reamer_->id(), [this] {
-    if (const std::optional<Pose> pose = reamer_->takePlacementRequest()) moveReamer(*pose, false);
+    if (const auto request = reamer_->takePlacementRequest())
+      request->clearOfBone ? placeClearOfBone(request->pose) : moveReamer(request->pose, false);
   });
   planningEdits_ = document_.observeNode(bone_->id(), [this] { recordPlanningEdit(); });
   watchLog();
@@ -271,7 +272,11 @@ QString ReamSession::cuttingStatus() const {
   return tr("collision: %1; cutting: %2").arg(plugins_.collision()->engineName(), plugins_.csg()->engineName());
 }
 
-void ReamSession::moveReamer(const Pose& pose, bool moved) {
+void ReamSession::moveReamer(const Pose& pose, bool moved) { moveReamerAs(pose, moved, false); }
+
+void ReamSession::placeClearOfBone(const Pose& pose) { moveReamerAs(pose, false, true); }
+
+void ReamSession::moveReamerAs(const Pose& pose, bool moved, bool clearOfBone) {
   reamer_->setPose(pose);  // the view follows at once; the step itself is computed on the worker
   if (!engine_) return;
   if (!queued_.empty()) {  // a move by hand interrupts a feed sequence
@@ -282,6 +287,7 @@ void ReamSession::moveReamer(const Pose& pose, bool moved) {
   // Coalesced moves sweep from the last computed pose only if every one of them was a travel.
   latestUserMoved_ = (latestUserPose_ ? latestUserMoved_ : true) && moved;
   latestUserPose_ = pose;
+  latestUserClear_ = clearOfBone;  // the newest move decides
   if (frameGate_ && !running_) {
     if (!waitingForFrame_) {
       waitingForFrame_ = true;
@@ -307,7 +313,7 @@ void ReamSession::runSteps(const std::vector<Pose>& poses, bool placeFirst) {
 void ReamSession::runSteps(const std::vector<Pose>& poses, const std::vector<bool>& placed) {
   if (!engine_ || poses.empty()) return;
   std::vector<QueuedStep> steps;
-  for (std::size_t i = 0; i < poses.size(); ++i) steps.push_back({poses[i], std::nullopt, i < placed.size() && placed[i], {}, std::nullopt});
+  for (std::size_t i = 0; i < poses.size(); ++i) steps.push_back({poses[i], std::nullopt, i < placed.size() && placed[i], {}, std::nullopt, false});
   queueSequence(std::move(steps));
 }
 
@@ -329,7 +335,7 @@ void ReamSession::runPlan(const ReamPlan& plan, double paceSpeed) {
   std::optional<double> firstTime;
   std::vector<QueuedStep> steps;
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    QueuedStep step{poses[i], std::nullopt, placed[i], notes[i], std::nullopt};
+    QueuedStep step{poses[i], std::nullopt, placed[i], notes[i], std::nullopt, false};
     if (paceSpeed > 0 && times[i]) {
       if (!firstTime) firstTime = times[i];
       step.dueMs = (*times[i] - *firstTime) / paceSpeed;
@@ -388,7 +394,7 @@ void ReamSession::cancelPreview() {
 
 void ReamSession::queuePendingUserMove() {
   if (!latestUserPose_) return;
-  queued_.push_back({*latestUserPose_, std::nullopt, !latestUserMoved_, {}, std::nullopt});  // a placement stays one (Aim)
+  queued_.push_back({*latestUserPose_, std::nullopt, !latestUserMoved_, {}, std::nullopt, latestUserClear_});  // a placement stays one (Aim)
   latestUserPose_.reset();
 }
 
@@ -401,7 +407,7 @@ void ReamSession::searchContactAlongAxis(const Pose& start, double maxMm) {
     return;
   }
   queuePendingUserMove();  // keep the order: the pending move by hand first
-  queued_.push_back({start, maxMm, false, {}, std::nullopt});
+  queued_.push_back({start, maxMm, false, {}, std::nullopt, false});
   startNext();
 }
 
@@ -453,6 +459,7 @@ void ReamSession::startNext() {
   }
   Pose pose;
   bool moved = true;  // queued steps (feeds, ream to depth, plans) follow a path
+  bool clearOfBone = false;
   runningNote_.clear();
   if (!queued_.empty()) {
     if (const std::optional<double> due = queued_.front().dueMs) {
@@ -472,9 +479,11 @@ void ReamSession::startNext() {
     }
     pose = next.pose;
     moved = !next.placed;
+    clearOfBone = next.clearOfBone;
   } else {
     pose = *latestUserPose_;
     moved = latestUserMoved_;
+    clearOfBone = latestUserClear_;
     latestUserPose_.reset();
   }
   // A placed step comes from nowhere, as the command line's first pose of a plan (its broad phase looks no wider).
@@ -485,9 +494,15 @@ void ReamSession::startNext() {
   runningStep_ = PathStep{pose, !sweptFrom, reamer_->spec()};
   control_ = std::make_shared<StepControl>();
   progressTimer_->start();
-  runOnWorker([pose, stepMm, sweptFrom, control = control_](ReamEngine& engine, const BoneState& state,
-                                                            std::uint64_t revision, StepResult& r) {
-    r.computation = engine.compute(state, revision, pose, stepMm, sweptFrom ? &*sweptFrom : nullptr, control.get());
+  runOnWorker([pose, stepMm, sweptFrom, clearOfBone, control = control_](ReamEngine& engine, const BoneState& state,
+                                                                         std::uint64_t revision, StepResult& r) {
+    Pose at = pose;
+    if (clearOfBone) {  // in this job: nothing can change the bone between the search and the step
+      r.clear = findClearPlacement(engine, state, revision, pose);
+      if (r.clear->outcome == ClearPlacement::Outcome::NoRoom) return;
+      at = r.clear->pose;
+    }
+    r.computation = engine.compute(state, revision, at, stepMm, sweptFrom ? &*sweptFrom : nullptr, control.get());
   });
 }
 
@@ -552,15 +567,20 @@ void ReamSession::finished() {
     startNext();
     return;
   }
-  if (r.cancelled) {
-    // Stop: the step never happened, so the next one sweeps from where the bone was last cut and, unless a
-    // newer move is pending, the reamer goes back there. Stopped because the bone changed (undo, another
-    // bone) it is simply dropped, as a finished step would be.
+  const bool noRoom = r.clear && r.clear->outcome == ClearPlacement::Outcome::NoRoom;
+  if (noRoom || r.cancelled) {
+    // Stop (or no room clear of the bone): the step never happened, so the next one sweeps from where the bone
+    // was last cut and, unless a newer move is pending, the reamer goes back there. Stopped because the bone
+    // changed (undo, another bone) it is simply dropped, as a finished step would be.
     if (r.revision == bone_->currentRevision()) {
       lastComputedPose_ = poseBeforeRunning_;
       if (!latestUserPose_ && queued_.empty() && poseBeforeRunning_) reamer_->setPose(*poseBeforeRunning_);
-      Q_EMIT stepCancelled();
+      if (noRoom)
+        Q_EMIT noRoomClearOfBone();
+      else
+        Q_EMIT stepCancelled();
     }
+    runningStep_.reset();
   } else if (!r.error.isEmpty()) {
     // The step never happened: as for Stop, the next one sweeps from where the bone was last computed (the path
     // the session records, and a replay of it, go on from there too).
@@ -572,6 +592,11 @@ void ReamSession::finished() {
     Q_EMIT engineError(r.error);
   } else if (engine_ && r.computation.baseRevision == bone_->currentRevision()) {
     Document::BatchScope batch(document_);
+    const bool retreated = r.clear && r.clear->outcome == ClearPlacement::Outcome::Retreated;
+    if (retreated) {  // placed out along the axis: that is where the reamer is, and where the path goes
+      lastComputedPose_ = r.computation.pose;
+      if (runningStep_) runningStep_->pose = r.computation.pose;
+    }
     CommitOptions options;
     options.logEveryStep = false;  // the GUI's log lists cuts
     options.initialVolumeMm3 = initialVolumeMm3();
@@ -595,6 +620,7 @@ void ReamSession::finished() {
     lastMinDistance_ = e.minDistanceMm;
     lastStepSwept_ = r.computation.swept;
     Q_EMIT stepFinished(e.minDistanceMm, e.contact);
+    if (retreated) Q_EMIT placedOutward(r.clear->retreatMm);
     if (!runningNote_.empty()) Q_EMIT noteReached(QString::fromStdString(runningNote_));
   }  // else: computed against a bone that has changed since (undo, new bone): dropped
   if (sequenceTotal_ > 0) {

@@ -27,6 +27,7 @@
 #include "reamsim/core/LogNode.h"
 #include "reamsim/core/PlanNode.h"
 #include "reamsim/core/ReamerNode.h"
+#include "reamsim/ream/ClearPlacement.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/ream/ReamEngine.h"
 #include "reamsim/ream/RemovalPreview.h"
@@ -59,6 +60,7 @@ struct StepResult {
   bool cancelled = false;  // stopped between the Booleans of a swept turn: nothing was computed
   std::uint64_t revision = 0;  // the bone revision the step started from
   double computeMs = 0;
+  std::optional<ClearPlacement> clear;  // a placeClearOfBone's search (NoRoom: nothing was computed)
 };
 
 // The answer to ReamSession::previewReamToDepth.
@@ -125,6 +127,11 @@ class ReamSession : public QObject {
   // User move: coalesced; cancels a running step sequence. `moved`: the reamer travelled here from where it
   // was (keys, drag), so a sideways translation cuts the volume it swept; false: it was placed here.
   void moveReamer(const Pose& pose, bool moved = false);
+  // A placement (as moveReamer's) that cuts nothing: where the reamer would overlap the bone at `pose`, it is
+  // placed out along its axis, as near as it is clear (findClearPlacement, on the worker in the step's own job);
+  // where nothing within reach is clear it is not moved. Signals placedOutward / noRoomClearOfBone say so.
+  // Aim asks for it (ReamerNode::requestPlacement's clearOfBone).
+  void placeClearOfBone(const Pose& pose);
   // Every step runs (feed, ream to depth, plan), each a travel from the one before; with `placeFirst` the first is
   // placed instead (nothing swept to it), as the command line's plan runner places a plan's first pose.
   void runSteps(const std::vector<Pose>& poses, bool placeFirst = false);
@@ -232,6 +239,8 @@ class ReamSession : public QObject {
   void boneReplaced();
   void contactSearched(const ContactSearch& result);
   void noteReached(const QString& note);  // a plan's step with a note was committed
+  void placedOutward(double retreatMm);   // placeClearOfBone: placed this far out along the axis than asked
+  void noRoomClearOfBone();               // placeClearOfBone: nothing clear within reach, the reamer stays
   void removalPreviewed(const RemovalPreviewAnswer& answer);
   // A landmark edit or a note was made while undone cuts or bones could be redone: it is not on the undo stack.
   // `message` says so, for the status bar.
@@ -296,6 +305,7 @@ class ReamSession : public QObject {
     bool placed = false;             // placed there (nothing swept), not a travel from the step before
     std::string note;                // a plan's note for the step
     std::optional<double> dueMs;     // paced: not started before paceClock_ has reached it
+    bool clearOfBone = false;        // a placement that cuts nothing (placeClearOfBone)
   };
   // A sequence's steps to the queue's end (after the pending move by hand), counted for progress, and started.
   void queueSequence(std::vector<QueuedStep> steps);
@@ -310,6 +320,8 @@ class ReamSession : public QObject {
   std::uint64_t pathRevision_ = 0;  // the cut bone's revision where the path stands (after its last step)
   std::optional<Pose> latestUserPose_;
   bool latestUserMoved_ = false;
+  bool latestUserClear_ = false;  // the pending move by hand is a placeClearOfBone
+  void moveReamerAs(const Pose& pose, bool moved, bool clearOfBone);
   bool lastStepSwept_ = false;
   bool frameGate_ = false, waitingForFrame_ = false;
   static constexpr int kFrameGateMs = 50;  // every coalesced move since the last step was a travel (see moveReamer)

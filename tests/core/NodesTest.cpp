@@ -118,12 +118,15 @@ TEST(Nodes, ReamerPlacementRequestWaitsUntilTaken) {
   r.requestPlacement(Pose{{1, 2, 3}, {0, 0, -1}, 0});
   EXPECT_EQ(reports, 1);
   EXPECT_EQ(r.pose().tip.x, 0);  // asked for, not moved
-  const std::optional<Pose> taken = r.takePlacementRequest();
+  const auto taken = r.takePlacementRequest();
   ASSERT_TRUE(taken);
-  EXPECT_EQ(taken->tip.y, 2);
+  EXPECT_EQ(taken->pose.tip.y, 2);
+  EXPECT_FALSE(taken->clearOfBone);
   EXPECT_FALSE(r.placementRequest());
   EXPECT_FALSE(r.takePlacementRequest());
   EXPECT_EQ(reports, 1);  // taking it reports nothing
+  r.requestPlacement(Pose{{1, 2, 3}, {0, 0, -1}, 0}, true);  // Aim's: clear of the bone
+  EXPECT_TRUE(r.takePlacementRequest()->clearOfBone);
 }
 
 TEST(Nodes, ABoneKeepsItsLandmarksAndTheyGoWithItsContent) {

@@ -123,6 +123,51 @@ TEST(GuiPlanning, TheDockReadsTheReamerAxisAndAimsTheReamer) {
   EXPECT_GT(std::abs(now.versionDeg + 10) + std::abs(now.inclinationDeg - 5), 0.5);
 }
 
+// Aim with the reamer's tip asked at the glenoid centre (no clearance): there the reamer overlaps the glenoid, and a
+// placement would cut it. It is placed out along the aimed axis instead, as near as it is clear, and says so;
+// nothing is cut.
+TEST(GuiPlanning, AimPlacesTheReamerClearOfTheBone) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  QDockWidget* dock = planningDock(w);
+  ASSERT_NE(dock, nullptr);
+  auto* clearance = part<QDoubleSpinBox>(dock, "AimClearance");
+  auto* aim = part<QPushButton>(dock, "AimReamer");
+  ASSERT_TRUE(clearance && aim);
+  const std::uint64_t revisionBefore = s.bone()->currentRevision();
+  const std::size_t rowsBefore = s.log()->size();
+  clearance->setValue(0);
+  double retreat = -1;
+  const QMetaObject::Connection c = QObject::connect(&s, &ReamSession::placedOutward, [&](double mm) { retreat = mm; });
+  QTest::mouseClick(aim, Qt::LeftButton);
+  ASSERT_TRUE(s.waitIdle(60000));
+  QObject::disconnect(c);
+  ASSERT_GT(retreat, 0.1);
+  EXPECT_LT(retreat, 30.0);
+  EXPECT_EQ(s.bone()->currentRevision(), revisionBefore);  // nothing cut
+  EXPECT_EQ(s.log()->size(), rowsBefore);
+  const Vec3 centre = *s.bone()->landmarks()[ScapulaLandmark::GlenoidCentre];
+  EXPECT_NEAR(norm(s.reamer()->pose().tip - centre), retreat, 1e-6);  // on the aimed axis, that far out
+  EXPECT_NEAR(dot(normalized(s.reamer()->pose().tip - centre), s.reamer()->pose().axis), -1.0, 1e-9);
+  EXPECT_TRUE(w.statusBar()->currentMessage().contains("further out along the axis than asked"))
+      << w.statusBar()->currentMessage().toStdString();
+  ASSERT_TRUE(s.path().size() >= 1);
+  EXPECT_NEAR(norm(s.path().back().pose.tip - s.reamer()->pose().tip), 0.0, 1e-12);  // the path records where it went
+  // A feed from there starts at the first contact (no cut on the way), and cuts.
+  const Pose placed = s.reamer()->pose();
+  const double approach = *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), placed, 100);
+  EXPECT_LT(approach, 0.1);  // just outside: the margin
+
+  // Asked 40 mm deep in the scapula's neck: back out to the nearest clear pose, the glenoid's, not cut through.
+  s.placeClearOfBone(advancedAlongAxis(placed, 40.0));
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(s.bone()->currentRevision(), revisionBefore);
+  EXPECT_NEAR(norm(s.reamer()->pose().tip - placed.tip), 0.0, 0.01);
+  // (Nothing clear within reach leaves the reamer where it was: ClearPlacement.NoRoomWithinReachPlacesNothing.)
+}
+
 TEST(GuiPlanning, AClickOnTheBonePlacesTheLandmarkAskedFor) {
   REAMSIM_REQUIRE_DISPLAY();
   GuiFixture f;

@@ -117,7 +117,7 @@ TEST(ReamEngine, CollisionOnlyEngineNeverCutsAndCutLogSkipsNonCuts) {
   EXPECT_TRUE(c.contactChecked);
   EXPECT_TRUE(c.contact.penetrating);
   EXPECT_FALSE(c.cut.changed);
-  const CutLogEntry e = commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, c, 0, CommitOptions{false, std::nullopt});
+  const CutLogEntry e = commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, c, 0, CommitOptions{false, std::nullopt, {}});
   EXPECT_FALSE(e.contact);
   EXPECT_EQ(s.log->size(), 0u);  // the GUI's log lists cuts only
   EXPECT_TRUE(s.alerts->has(AlertKind::BoundsOverlap));
@@ -128,7 +128,7 @@ TEST(ReamEngine, CollisionOnlyEngineNeverCutsAndCutLogSkipsNonCuts) {
 TEST(ReamEngine, CumulativeFromInitialVolumeIgnoresUndoneCuts) {
   test::ReamScene s(block(), test::flatReamer20());
   ReamEngine engine = referenceEngine(*s.reamer);
-  CommitOptions options{false, s.bone->current().volume()};
+  CommitOptions options{false, s.bone->current().volume(), {}};
   auto step = [&](double z, std::size_t i) {
     ReamComputation c = engine.compute(s.bone->current(), s.bone->currentRevision(), at(z), 0.5);
     const CutLogEntry e = commitReamStep(s.doc, *s.bone, *s.reamer, *s.log, s.alerts, c, i, options);

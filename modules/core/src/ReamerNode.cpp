@@ -13,8 +13,8 @@ void ReamerNode::setPose(const Pose& pose) {
   markModified();
 }
 
-void ReamerNode::requestPlacement(const Pose& pose) {
-  placementRequest_ = pose;
+void ReamerNode::requestPlacement(const Pose& pose, bool clearOfBone) {
+  placementRequest_ = PlacementRequest{pose, clearOfBone};
   markModified();
 }
 

@@ -81,6 +81,17 @@ std::optional<double> ReamEngine::advanceToContactMm(const BoneState& bone, std:
   return reamsim::advanceToContactMm(bone, *cuttingVolume_, start, maxMm, spec);  // builds a tree for this call
 }
 
+std::optional<bool> ReamEngine::touchesAt(const BoneState& bone, std::uint64_t revision, const Pose& pose) {
+  if (bone.empty()) return false;
+  if (!contact_) return std::nullopt;
+  const ReamerSpec* spec = spec_ ? &*spec_ : nullptr;
+  // A motion of a micrometre: its first contact at t = 0 is a touch at the pose itself.
+  const auto along = contact_->firstContactAlong(bone, revision, cuttingVolume_, spec, toTransform(pose),
+                                                 toTransform(advancedAlongAxis(pose, 1e-3)));
+  if (!along) return std::nullopt;
+  return along->reached && along->t == 0;
+}
+
 // The cutter keeps exact coordinates between cuts; when the bone changed underneath (undo, a new import,
 // a dropped computation) it restarts from the given state.
 void ReamEngine::sync(const BoneState& bone, std::uint64_t revision) {

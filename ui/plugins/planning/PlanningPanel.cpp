@@ -245,7 +245,7 @@ QString PlanningPanel::aimReamer() {
     const AxisAngles angles{version_->value(), inclination_->value()};
     const Pose placed = aimedReamerPose(frame, angles, clearance_->value());
     bone()->setPlannedAxis(Pose{frame.origin, placed.axis, 0});
-    r->requestPlacement(placed);
+    r->requestPlacement(placed, true);  // clear of the bone: placed further out where the rim is in the way
     return {};
   } catch (const std::invalid_argument& e) {
     return tr("The reamer cannot be aimed: %1.").arg(QString::fromStdString(e.what()));

@@ -29,9 +29,15 @@ class ReamerNode : public Node {
   // A pose asked for from outside the reaming loop (a planning panel, later an input device): whoever runs
   // the loop takes it on the modification it reports and places the reamer there as its own move, so the
   // asker needs no handle on the loop. nullopt when none waits. take...() does not report a modification.
-  const std::optional<Pose>& placementRequest() const { return placementRequest_; }
-  void requestPlacement(const Pose& pose);
-  std::optional<Pose> takePlacementRequest() { return std::exchange(placementRequest_, std::nullopt); }
+  // `clearOfBone`: where the reamer would cut the bone there, the loop places it out along its axis, as near
+  // as it is clear (Aim: a placement that cut the glenoid rim surprised; ClearPlacement.h).
+  struct PlacementRequest {
+    Pose pose;
+    bool clearOfBone = false;
+  };
+  const std::optional<PlacementRequest>& placementRequest() const { return placementRequest_; }
+  void requestPlacement(const Pose& pose, bool clearOfBone = false);
+  std::optional<PlacementRequest> takePlacementRequest() { return std::exchange(placementRequest_, std::nullopt); }
 
   // Null until set; shared so the renderer and the cutting engine can hold it without copies.
   const std::shared_ptr<const TriangleMesh>& cuttingVolume() const { return cuttingVolume_; }
@@ -40,7 +46,7 @@ class ReamerNode : public Node {
  private:
   ReamerSpec spec_;
   Pose pose_;
-  std::optional<Pose> placementRequest_;
+  std::optional<PlacementRequest> placementRequest_;
   std::shared_ptr<const TriangleMesh> cuttingVolume_;
 };
 

@@ -80,6 +80,10 @@ class ReamEngine {
   // rather than a tree built for it (~0.6 s at 400k faces; the free advanceToContactMm, used by engines
   // without an exact motion query). A call like compute: one at a time.
   std::optional<double> advanceToContactMm(const BoneState& bone, std::uint64_t revision, const Pose& start, double maxMm);
+  // Whether the cutting solid at `pose` touches `bone` (its first contact along the axis is at once), asked of
+  // the contact engine's own structure; nullopt when the engine has no exact motion query (nothing to ask it
+  // without building a tree per call). A call like compute: one at a time.
+  std::optional<bool> touchesAt(const BoneState& bone, std::uint64_t revision, const Pose& pose);
   // The `next` of the last compute was committed to the bone history as `revision`.
   void adopt(std::uint64_t revision);
   // Another reamer (sequential reaming with growing sizes): the bone's collision structure and the cutter's exact
