@@ -103,9 +103,13 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
     statusBar()->showMessage(tr("Placed %L1 mm further out along the axis than asked: there, the reamer would have cut "
                                 "the bone").arg(mm, 0, 'f', 2), 15000);
   });
-  connect(session_.get(), &ReamSession::noRoomClearOfBone, this, [this] {
-    statusBar()->showMessage(tr("The reamer is not moved: along the aimed axis it meets the bone for the next %1 mm "
-                                "out, and placing it would cut it").arg(kClearPlacementReachMm), 15000);
+  connect(session_.get(), &ReamSession::notPlacedClearOfBone, this, [this](bool unchecked, bool dropped) {
+    statusBar()->showMessage(
+        dropped     ? tr("The reamer is not moved: the bone changed while its place clear of the bone was searched")
+        : unchecked ? tr("The reamer is not moved: the contact engine cannot tell where it would be clear of the bone")
+                    : tr("The reamer is not moved: along the aimed axis it meets the bone for the next %1 mm out, and "
+                         "placing it would cut it").arg(kClearPlacementReachMm),
+        15000);
   });
   connect(session_.get(), &ReamSession::noteReached, this,
           [this](const QString& note) { statusBar()->showMessage(tr("Note: %1").arg(note), 10000); });

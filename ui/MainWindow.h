@@ -223,6 +223,7 @@ class MainWindow : public QMainWindow {
   void editKeyBindings();
   void editRenderSettings();
   void askReamToDepth();
+  bool waitingForClearPlacement();  // true (and said) while Aim's placement searches: moves and feeds wait
   void askFeedBy();
   bool takeReamer(const ReamerSpec& spec, const QString& description);
   ReamerSpec planReamer(const std::string& reamer, const QString& planFile) const;

@@ -32,7 +32,16 @@ namespace reamsim::ui {
 // Where the reamer will be once everything requested has run: the next key press starts from there.
 Pose MainWindow::targetPose() const { return session_->targetPose(); }
 
+// A move or feed starts from where the reamer is or will be; while Aim's placement is searching for room clear of
+// the bone (milliseconds), that is not known yet: the request is not taken, and the status bar says so.
+bool MainWindow::waitingForClearPlacement() {
+  if (!session_->placingClearOfBone()) return false;
+  statusBar()->showMessage(tr("Aim is placing the reamer clear of the bone: try again in a moment"), 3000);
+  return true;
+}
+
 void MainWindow::applyMove(ReamerMove move) {
+  if (waitingForClearPlacement()) return;
   const bool feed = move == ReamerMove::FeedForward || move == ReamerMove::FeedBack;
   if (feed) {
     // Every feed step is cut, none is skipped: it continues from the last queued pose. A held key repeats
@@ -52,6 +61,7 @@ void MainWindow::applyMove(ReamerMove move) {
 }
 
 void MainWindow::dragReamer(double mm) {
+  if (waitingForClearPlacement()) return;
   session_->moveReamer(advancedAlongAxis(session_->reamer()->pose(), mm), true);
 }
 
@@ -255,14 +265,14 @@ void MainWindow::exportPathInteractive() {
 }
 
 void MainWindow::feedBy(double mm) {
-  if (!(mm > 0)) return;
+  if (!(mm > 0) || waitingForClearPlacement()) return;
   session_->runSteps(reamToDepthPoses(targetPose(), 0.0, mm, feedStep_->value()));
 }
 
 // Depth below the first contact: the session searches the contact on its worker, with the collision
 // structure that already follows the bone, then the reamer moves to it and feeds in feed steps.
 void MainWindow::reamToDepth(double depthMm) {
-  if (!(depthMm > 0) || pendingDepth_) return;
+  if (!(depthMm > 0) || pendingDepth_ || waitingForClearPlacement()) return;
   if (!session_->reamer()->cuttingVolume() || session_->bone()->current().empty()) {
     showError(tr("Ream to depth"), tr("There is no bone or no reamer to ream with."));
     return;
@@ -316,6 +326,7 @@ void MainWindow::askPreviewReamToDepth() {
 }
 
 void MainWindow::previewReamToDepth(double depthMm) {
+  if (waitingForClearPlacement()) return;
   lastPreviewText_.clear();
   statusBar()->showMessage(tr("Computing what reaming %L1 mm would remove, on a copy of the bone (Esc stops)…")
                                .arg(depthMm, 0, 'f', 2));

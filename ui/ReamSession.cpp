@@ -274,7 +274,15 @@ QString ReamSession::cuttingStatus() const {
 
 void ReamSession::moveReamer(const Pose& pose, bool moved) { moveReamerAs(pose, moved, false); }
 
-void ReamSession::placeClearOfBone(const Pose& pose) { moveReamerAs(pose, false, true); }
+void ReamSession::placeClearOfBone(const Pose& pose) {
+  if (!placingClearOfBone()) poseBeforeClear_ = reamer_->pose();
+  moveReamerAs(pose, false, true);
+}
+
+bool ReamSession::placingClearOfBone() const {
+  return runningClear_ || (latestUserPose_ && latestUserClear_) ||
+         std::any_of(queued_.begin(), queued_.end(), [](const QueuedStep& q) { return q.clearOfBone; });
+}
 
 void ReamSession::moveReamerAs(const Pose& pose, bool moved, bool clearOfBone) {
   reamer_->setPose(pose);  // the view follows at once; the step itself is computed on the worker
@@ -421,8 +429,12 @@ void ReamSession::clearQueue() {
 
 void ReamSession::cancelQueued() {
   if (running_ && control_) control_->stop = true;
+  // A clear placement not started yet is shown at the pose asked, in the bone: back where the reamer was.
+  const bool clearWaiting = (latestUserPose_ && latestUserClear_) ||
+                            std::any_of(queued_.begin(), queued_.end(), [](const QueuedStep& q) { return q.clearOfBone; });
   clearQueue();
   latestUserPose_.reset();
+  if (clearWaiting && !runningClear_) reamer_->setPose(poseBeforeClear_);
   waitingForFrame_ = false;
   sequenceDone_ = sequenceTotal_ = 0;
   Q_EMIT progress(0, 0);
@@ -492,6 +504,7 @@ void ReamSession::startNext() {
   poseBeforeRunning_ = lastComputedPose_;
   lastComputedPose_ = pose;
   runningStep_ = PathStep{pose, !sweptFrom, reamer_->spec()};
+  runningClear_ = clearOfBone;
   control_ = std::make_shared<StepControl>();
   progressTimer_->start();
   runOnWorker([pose, stepMm, sweptFrom, clearOfBone, control = control_](ReamEngine& engine, const BoneState& state,
@@ -499,7 +512,8 @@ void ReamSession::startNext() {
     Pose at = pose;
     if (clearOfBone) {  // in this job: nothing can change the bone between the search and the step
       r.clear = findClearPlacement(engine, state, revision, pose);
-      if (r.clear->outcome == ClearPlacement::Outcome::NoRoom) return;
+      if (r.clear->outcome == ClearPlacement::Outcome::NoRoom || r.clear->outcome == ClearPlacement::Outcome::Unsupported)
+        return;  // nothing is placed
       at = r.clear->pose;
     }
     r.computation = engine.compute(state, revision, at, stepMm, sweptFrom ? &*sweptFrom : nullptr, control.get());
@@ -567,16 +581,26 @@ void ReamSession::finished() {
     startNext();
     return;
   }
-  const bool noRoom = r.clear && r.clear->outcome == ClearPlacement::Outcome::NoRoom;
+  const bool clearStep = std::exchange(runningClear_, false);
+  const bool noRoom = r.clear && (r.clear->outcome == ClearPlacement::Outcome::NoRoom ||
+                                  r.clear->outcome == ClearPlacement::Outcome::Unsupported);
+  // A clear placement that will not be committed leaves the reamer where it was shown before it (not at the
+  // pose asked, which overlaps the bone), unless the user has moved it since.
+  const auto backBeforeClear = [&] {
+    if (!latestUserPose_ && queued_.empty()) reamer_->setPose(poseBeforeClear_);
+  };
   if (noRoom || r.cancelled) {
     // Stop (or no room clear of the bone): the step never happened, so the next one sweeps from where the bone
     // was last cut and, unless a newer move is pending, the reamer goes back there. Stopped because the bone
     // changed (undo, another bone) it is simply dropped, as a finished step would be.
     if (r.revision == bone_->currentRevision()) {
       lastComputedPose_ = poseBeforeRunning_;
-      if (!latestUserPose_ && queued_.empty() && poseBeforeRunning_) reamer_->setPose(*poseBeforeRunning_);
+      if (clearStep)
+        backBeforeClear();
+      else if (!latestUserPose_ && queued_.empty() && poseBeforeRunning_)
+        reamer_->setPose(*poseBeforeRunning_);
       if (noRoom)
-        Q_EMIT noRoomClearOfBone();
+        Q_EMIT notPlacedClearOfBone(r.clear->outcome == ClearPlacement::Outcome::Unsupported, false);
       else
         Q_EMIT stepCancelled();
     }
@@ -585,6 +609,7 @@ void ReamSession::finished() {
     // The step never happened: as for Stop, the next one sweeps from where the bone was last computed (the path
     // the session records, and a replay of it, go on from there too).
     if (r.revision == bone_->currentRevision()) lastComputedPose_ = poseBeforeRunning_;
+    if (clearStep) backBeforeClear();
     // Stop the rest of a queued sequence: its steps would meet the same problem (one message, not one per step).
     clearQueue();
     sequenceDone_ = sequenceTotal_ = 0;
@@ -622,6 +647,10 @@ void ReamSession::finished() {
     Q_EMIT stepFinished(e.minDistanceMm, e.contact);
     if (retreated) Q_EMIT placedOutward(r.clear->retreatMm);
     if (!runningNote_.empty()) Q_EMIT noteReached(QString::fromStdString(runningNote_));
+  } else if (clearStep) {  // computed against a bone that has changed since (undo, new bone): not placed
+    lastComputedPose_ = poseBeforeRunning_;
+    backBeforeClear();
+    Q_EMIT notPlacedClearOfBone(false, true);
   }  // else: computed against a bone that has changed since (undo, new bone): dropped
   if (sequenceTotal_ > 0) {
     ++sequenceDone_;

@@ -130,8 +130,11 @@ class ReamSession : public QObject {
   // A placement (as moveReamer's) that cuts nothing: where the reamer would overlap the bone at `pose`, it is
   // placed out along its axis, as near as it is clear (findClearPlacement, on the worker in the step's own job);
   // where nothing within reach is clear it is not moved. Signals placedOutward / noRoomClearOfBone say so.
-  // Aim asks for it (ReamerNode::requestPlacement's clearOfBone).
+  // Aim asks for it (ReamerNode::requestPlacement's clearOfBone). Until it is answered, where the reamer will be
+  // is unknown: placingClearOfBone() says so, and the window takes no move or feed that starts from the reamer
+  // meanwhile (a few milliseconds).
   void placeClearOfBone(const Pose& pose);
+  bool placingClearOfBone() const;
   // Every step runs (feed, ream to depth, plan), each a travel from the one before; with `placeFirst` the first is
   // placed instead (nothing swept to it), as the command line's plan runner places a plan's first pose.
   void runSteps(const std::vector<Pose>& poses, bool placeFirst = false);
@@ -240,7 +243,9 @@ class ReamSession : public QObject {
   void contactSearched(const ContactSearch& result);
   void noteReached(const QString& note);  // a plan's step with a note was committed
   void placedOutward(double retreatMm);   // placeClearOfBone: placed this far out along the axis than asked
-  void noRoomClearOfBone();               // placeClearOfBone: nothing clear within reach, the reamer stays
+  // placeClearOfBone placed nothing, the reamer back where it was: nothing clear within reach (or `unchecked`:
+  // the contact engine cannot tell, ReamEngine::touchesAt), or `dropped`: the bone changed meanwhile (undo).
+  void notPlacedClearOfBone(bool unchecked, bool dropped);
   void removalPreviewed(const RemovalPreviewAnswer& answer);
   // A landmark edit or a note was made while undone cuts or bones could be redone: it is not on the undo stack.
   // `message` says so, for the status bar.
@@ -321,6 +326,8 @@ class ReamSession : public QObject {
   std::optional<Pose> latestUserPose_;
   bool latestUserMoved_ = false;
   bool latestUserClear_ = false;  // the pending move by hand is a placeClearOfBone
+  bool runningClear_ = false;     // the running step is one
+  Pose poseBeforeClear_;          // where the reamer was shown before the last placeClearOfBone (put back if none)
   void moveReamerAs(const Pose& pose, bool moved, bool clearOfBone);
   bool lastStepSwept_ = false;
   bool frameGate_ = false, waitingForFrame_ = false;

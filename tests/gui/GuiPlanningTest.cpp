@@ -142,7 +142,14 @@ TEST(GuiPlanning, AimPlacesTheReamerClearOfTheBone) {
   double retreat = -1;
   const QMetaObject::Connection c = QObject::connect(&s, &ReamSession::placedOutward, [&](double mm) { retreat = mm; });
   QTest::mouseClick(aim, Qt::LeftButton);
+  // Until the placement has found its room, moves and feeds that start from the reamer are not taken (they would
+  // start from the pose asked, in the bone).
+  ASSERT_TRUE(s.placingClearOfBone());
+  w.applyMove(ReamerMove::FeedForward);
+  w.reamToDepth(1.0);
+  EXPECT_TRUE(w.statusBar()->currentMessage().contains("Aim is placing the reamer")) << w.statusBar()->currentMessage().toStdString();
   ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_FALSE(s.placingClearOfBone());
   QObject::disconnect(c);
   ASSERT_GT(retreat, 0.1);
   EXPECT_LT(retreat, 30.0);
@@ -158,6 +165,7 @@ TEST(GuiPlanning, AimPlacesTheReamerClearOfTheBone) {
   // A feed from there starts at the first contact (no cut on the way), and cuts.
   const Pose placed = s.reamer()->pose();
   const double approach = *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), placed, 100);
+  EXPECT_GT(approach, 0.0);  // clear
   EXPECT_LT(approach, 0.1);  // just outside: the margin
 
   // Asked 40 mm deep in the scapula's neck: back out to the nearest clear pose, the glenoid's, not cut through.
@@ -165,6 +173,16 @@ TEST(GuiPlanning, AimPlacesTheReamerClearOfTheBone) {
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_EQ(s.bone()->currentRevision(), revisionBefore);
   EXPECT_NEAR(norm(s.reamer()->pose().tip - placed.tip), 0.0, 0.01);
+
+  // Undone before or while it searches (the bone it would search is gone): nothing placed, the reamer not left at
+  // the pose asked, in the bone.
+  cutOnce(s);
+  const Pose asked = advancedAlongAxis(s.reamer()->pose(), 3.0);
+  s.placeClearOfBone(asked);
+  s.undoStack()->undo();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_EQ(s.bone()->currentRevision(), revisionBefore);  // the cut undone, nothing cut since
+  EXPECT_GT(norm(s.reamer()->pose().tip - asked.tip), 2.0);
   // (Nothing clear within reach leaves the reamer where it was: ClearPlacement.NoRoomWithinReachPlacesNothing.)
 }
 

@@ -12,6 +12,8 @@ ClearPlacement findClearPlacement(ReamEngine& engine, const BoneState& bone, std
   if (!(maxRetreatMm > 0) || !std::isfinite(maxRetreatMm) || !(stepMm > 0) || !std::isfinite(stepMm) ||
       !(marginMm >= 0) || !std::isfinite(marginMm))
     throw std::invalid_argument("findClearPlacement: maxRetreatMm and stepMm must be positive, marginMm >= 0");
+  const double steps = std::ceil(maxRetreatMm / stepMm);
+  if (steps > 100000) throw std::invalid_argument("findClearPlacement: more than 100000 steps to reach maxRetreatMm");
   ClearPlacement out;
   out.pose = asked;
   const auto at = [&asked](double d) { return advancedAlongAxis(asked, -d); };
@@ -28,7 +30,8 @@ ClearPlacement findClearPlacement(ReamEngine& engine, const BoneState& bone, std
   if (!*atAsked) return out;  // AsAsked
   double inside = 0;          // touching here...
   double clear = -1;          // ...and clear here
-  for (double d = stepMm; d <= maxRetreatMm + 1e-9; d += stepMm) {
+  for (int k = 1; k <= int(steps); ++k) {
+    const double d = std::min(k * stepMm, maxRetreatMm);  // the last step ends at the reach
     if (!*touches(d)) {
       clear = d;
       break;
@@ -43,7 +46,7 @@ ClearPlacement findClearPlacement(ReamEngine& engine, const BoneState& bone, std
     const double mid = 0.5 * (inside + clear);
     (*touches(mid) ? inside : clear) = mid;
   }
-  // The margin, where it is clear too (a thin ridge may come back beyond the boundary: then the step's end).
+  // The margin, where it is clear too (bone may come back within it: then the boundary's clear side itself).
   double placed = clear + marginMm;
   if (marginMm > 0 && *touches(placed)) placed = clear;
   out.outcome = ClearPlacement::Outcome::Retreated;
