@@ -105,7 +105,7 @@ MainWindow::MainWindow(const PluginHost& plugins, bool useStoredSettings, QWidge
   });
   connect(session_.get(), &ReamSession::notPlacedClearOfBone, this, [this](bool unchecked, bool dropped) {
     statusBar()->showMessage(
-        dropped     ? tr("The reamer is not moved: the bone changed while its place clear of the bone was searched")
+        dropped     ? tr("The reamer is not moved: Aim's placement was stopped, or the bone changed while it searched")
         : unchecked ? tr("The reamer is not moved: the contact engine cannot tell where it would be clear of the bone")
                     : tr("The reamer is not moved: along the aimed axis it meets the bone for the next %1 mm out, and "
                          "placing it would cut it").arg(kClearPlacementReachMm),

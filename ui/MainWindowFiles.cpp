@@ -193,7 +193,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
   const std::uint64_t generation = boneGeneration_;
   const QMetaObject::Connection watch =
       connect(session_->undoStack(), &QUndoStack::indexChanged, this, [&changedMeanwhile] { changedMeanwhile = true; });
-  const std::string csv = cutLogCsv(session_->log()->entries());
+  const std::string csv = cutLogCsv(withUndoneMarked(session_->log()->entries(), session_->bone()->history()));
   const SavedNotes notes = notesOf(*session_->log());
   const BonePlanning planning = planningOf(*session_->bone());
   // What reopening the bone needs to continue this log: the volume removed before this state (undone cuts not
@@ -596,13 +596,11 @@ QString MainWindow::exportReport(const QString& file) {
   if (session_->reamer()->cuttingVolume()) in.reamerPose = session_->reamer()->pose();
   in.landmarks = bone.landmarks();
   in.plannedAxis = bone.plannedAxis();
-  in.cuts = session_->log()->entries();
-  // The log only grows: a cut undone since (its state in this bone's history, past the cursor) is marked. Rows of
-  // another bone (before an exchange) or of a branch the history left are not this history's: not marked.
-  std::unordered_set<std::uint64_t> undone;
-  for (std::size_t k = bone.history().cursor() + 1; k < bone.history().size(); ++k)
-    undone.insert(bone.history().entries()[k].revision);
-  for (const CutLogEntry& e : in.cuts) in.undone.push_back(e.boneStateId != 0 && undone.count(e.boneStateId) > 0);
+  // The log only grows: a cut undone since (its state in this bone's history, past the cursor) is marked, and so
+  // is one a saved log said was undone. Rows of another bone (before an exchange) or of a branch the history left
+  // are not this history's: not marked.
+  in.cuts = withUndoneMarked(session_->log()->entries(), bone.history());
+  for (const CutLogEntry& e : in.cuts) in.undone.push_back(e.undone);
   in.writtenUnixMs = QDateTime::currentMSecsSinceEpoch();
   in.writtenBy = "ReamSim (File → Export a report)";
   // The view as it is drawn now: the bone, its removed depth or fresh cuts, the reamer, the landmarks.

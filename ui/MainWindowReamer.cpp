@@ -287,6 +287,8 @@ void MainWindow::contactSearched(const ContactSearch& result) {
   const std::optional<PendingDepth> pending = std::exchange(pendingDepth_, std::nullopt);
   if (!pending) return;
   statusBar()->clearMessage();
+  // Aim asked meanwhile: the reamer goes where it says, not back to the axis this depth was asked along.
+  if (session_->placingClearOfBone()) return;
   switch (result.outcome) {
     case ContactSearch::Outcome::Dropped:  // the bone changed or the user moved on first
       return;

@@ -116,7 +116,7 @@ void MainWindow::writeRecoveryCopy() {
   description.history.emplace();
   for (const BoneHistory::Entry& e : entries) description.history->revisions.push_back(e.revision);
   description.history->cursor = history.cursor();
-  std::string csv = cutLogCsv(session_->log()->entries());
+  std::string csv = cutLogCsv(withUndoneMarked(session_->log()->entries(), session_->bone()->history()));
   copiedNotesRevision_ = session_->log()->notesRevision();
   const PatientFrame frame = session_->bone()->patientFrame();
   description.name = boneName_;

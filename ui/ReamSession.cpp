@@ -434,7 +434,7 @@ void ReamSession::cancelQueued() {
                             std::any_of(queued_.begin(), queued_.end(), [](const QueuedStep& q) { return q.clearOfBone; });
   clearQueue();
   latestUserPose_.reset();
-  if (clearWaiting && !runningClear_) reamer_->setPose(poseBeforeClear_);
+  if (clearWaiting && !runningClear_) reamer_->setPose(lastComputedPose_ ? *lastComputedPose_ : poseBeforeClear_);
   waitingForFrame_ = false;
   sequenceDone_ = sequenceTotal_ = 0;
   Q_EMIT progress(0, 0);
@@ -584,32 +584,37 @@ void ReamSession::finished() {
   const bool clearStep = std::exchange(runningClear_, false);
   const bool noRoom = r.clear && (r.clear->outcome == ClearPlacement::Outcome::NoRoom ||
                                   r.clear->outcome == ClearPlacement::Outcome::Unsupported);
-  // A clear placement that will not be committed leaves the reamer where it was shown before it (not at the
-  // pose asked, which overlaps the bone), unless the user has moved it since.
-  const auto backBeforeClear = [&] {
-    if (!latestUserPose_ && queued_.empty()) reamer_->setPose(poseBeforeClear_);
-  };
-  if (noRoom || r.cancelled) {
-    // Stop (or no room clear of the bone): the step never happened, so the next one sweeps from where the bone
-    // was last cut and, unless a newer move is pending, the reamer goes back there. Stopped because the bone
-    // changed (undo, another bone) it is simply dropped, as a finished step would be.
-    if (r.revision == bone_->currentRevision()) {
+  const bool commits =
+      !noRoom && !r.cancelled && r.error.isEmpty() && engine_ && r.computation.baseRevision == bone_->currentRevision();
+  if (clearStep && !commits) {
+    // A clear placement not made (no room, stopped, failed, or asked of a bone that has changed since): nothing is
+    // placed, and the reamer goes back where it was last computed, not left at the pose asked, in the bone. Not
+    // when a new bone or engine has come meanwhile (its own pose stands), nor over a newer move of the user's.
+    if (!r.error.isEmpty()) {
+      clearQueue();
+      sequenceDone_ = sequenceTotal_ = 0;
+      Q_EMIT progress(0, 0);
+      Q_EMIT engineError(r.error);
+    }
+    if (r.engineGeneration == engineGeneration_) {
       lastComputedPose_ = poseBeforeRunning_;
-      if (clearStep)
-        backBeforeClear();
-      else if (!latestUserPose_ && queued_.empty() && poseBeforeRunning_)
-        reamer_->setPose(*poseBeforeRunning_);
-      if (noRoom)
-        Q_EMIT notPlacedClearOfBone(r.clear->outcome == ClearPlacement::Outcome::Unsupported, false);
-      else
-        Q_EMIT stepCancelled();
+      if (!latestUserPose_ && queued_.empty()) reamer_->setPose(poseBeforeRunning_ ? *poseBeforeRunning_ : poseBeforeClear_);
     }
     runningStep_.reset();
+    Q_EMIT notPlacedClearOfBone(noRoom && r.clear->outcome == ClearPlacement::Outcome::Unsupported, !noRoom);
+  } else if (r.cancelled) {
+    // Stop: the step never happened, so the next one sweeps from where the bone was last cut and, unless a newer
+    // move is pending, the reamer goes back there. Stopped because the bone changed (undo, another bone) it is
+    // simply dropped, as a finished step would be.
+    if (r.revision == bone_->currentRevision()) {
+      lastComputedPose_ = poseBeforeRunning_;
+      if (!latestUserPose_ && queued_.empty() && poseBeforeRunning_) reamer_->setPose(*poseBeforeRunning_);
+      Q_EMIT stepCancelled();
+    }
   } else if (!r.error.isEmpty()) {
     // The step never happened: as for Stop, the next one sweeps from where the bone was last computed (the path
     // the session records, and a replay of it, go on from there too).
     if (r.revision == bone_->currentRevision()) lastComputedPose_ = poseBeforeRunning_;
-    if (clearStep) backBeforeClear();
     // Stop the rest of a queued sequence: its steps would meet the same problem (one message, not one per step).
     clearQueue();
     sequenceDone_ = sequenceTotal_ = 0;
@@ -647,10 +652,6 @@ void ReamSession::finished() {
     Q_EMIT stepFinished(e.minDistanceMm, e.contact);
     if (retreated) Q_EMIT placedOutward(r.clear->retreatMm);
     if (!runningNote_.empty()) Q_EMIT noteReached(QString::fromStdString(runningNote_));
-  } else if (clearStep) {  // computed against a bone that has changed since (undo, new bone): not placed
-    lastComputedPose_ = poseBeforeRunning_;
-    backBeforeClear();
-    Q_EMIT notPlacedClearOfBone(false, true);
   }  // else: computed against a bone that has changed since (undo, new bone): dropped
   if (sequenceTotal_ > 0) {
     ++sequenceDone_;

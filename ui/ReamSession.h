@@ -244,7 +244,8 @@ class ReamSession : public QObject {
   void noteReached(const QString& note);  // a plan's step with a note was committed
   void placedOutward(double retreatMm);   // placeClearOfBone: placed this far out along the axis than asked
   // placeClearOfBone placed nothing, the reamer back where it was: nothing clear within reach (or `unchecked`:
-  // the contact engine cannot tell, ReamEngine::touchesAt), or `dropped`: the bone changed meanwhile (undo).
+  // the contact engine cannot tell, ReamEngine::touchesAt), or `dropped`: stopped, failed, or the bone changed
+  // meanwhile (an undo).
   void notPlacedClearOfBone(bool unchecked, bool dropped);
   void removalPreviewed(const RemovalPreviewAnswer& answer);
   // A landmark edit or a note was made while undone cuts or bones could be redone: it is not on the undo stack.
@@ -327,7 +328,8 @@ class ReamSession : public QObject {
   bool latestUserMoved_ = false;
   bool latestUserClear_ = false;  // the pending move by hand is a placeClearOfBone
   bool runningClear_ = false;     // the running step is one
-  Pose poseBeforeClear_;          // where the reamer was shown before the last placeClearOfBone (put back if none)
+  Pose poseBeforeClear_;          // where the reamer was shown before placeClearOfBone (put back when no pose was
+                                  // computed yet, e.g. the first move after a load)
   void moveReamerAs(const Pose& pose, bool moved, bool clearOfBone);
   bool lastStepSwept_ = false;
   bool frameGate_ = false, waitingForFrame_ = false;

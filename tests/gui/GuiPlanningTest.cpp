@@ -174,15 +174,35 @@ TEST(GuiPlanning, AimPlacesTheReamerClearOfTheBone) {
   EXPECT_EQ(s.bone()->currentRevision(), revisionBefore);
   EXPECT_NEAR(norm(s.reamer()->pose().tip - placed.tip), 0.0, 0.01);
 
-  // Undone before or while it searches (the bone it would search is gone): nothing placed, the reamer not left at
-  // the pose asked, in the bone.
-  cutOnce(s);
-  const Pose asked = advancedAlongAxis(s.reamer()->pose(), 3.0);
-  s.placeClearOfBone(asked);
-  s.undoStack()->undo();
-  ASSERT_TRUE(s.waitIdle(60000));
-  EXPECT_EQ(s.bone()->currentRevision(), revisionBefore);  // the cut undone, nothing cut since
-  EXPECT_GT(norm(s.reamer()->pose().tip - asked.tip), 2.0);
+  // Undone while it searches (the bone it searched is gone): nothing placed, the reamer back where it was computed,
+  // not left at the pose asked, in the bone. Undone before it started (waiting for a frame): it searches the bone
+  // as the undo left it, and places the reamer clear of that.
+  for (const bool started : {true, false}) {
+    cutOnce(s);
+    const Pose cutPose = s.reamer()->pose();
+    const Pose asked = advancedAlongAxis(cutPose, 3.0);
+    s.setFrameGate(!started);  // without the gate the job starts at once
+    bool dropped = false;
+    const QMetaObject::Connection d =
+        QObject::connect(&s, &ReamSession::notPlacedClearOfBone, [&](bool, bool wasDropped) { dropped = wasDropped; });
+    s.placeClearOfBone(asked);
+    EXPECT_EQ(s.busy(), true);
+    s.undoStack()->undo();
+    ASSERT_TRUE(s.waitIdle(60000));
+    QObject::disconnect(d);
+    EXPECT_EQ(s.bone()->currentRevision(), revisionBefore) << started;  // the cut undone, nothing cut since
+    if (started) {
+      EXPECT_NEAR(norm(s.reamer()->pose().tip - cutPose.tip), 0.0, 1e-12);
+      EXPECT_TRUE(dropped);
+    } else {
+      const std::optional<double> gap =
+          advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), s.reamer()->pose(), 100);
+      ASSERT_TRUE(gap);
+      EXPECT_GT(*gap, 0.0);  // clear of the bone now
+      EXPECT_GT(norm(s.reamer()->pose().tip - asked.tip), 2.0);
+    }
+  }
+  s.setFrameGate(true);
   // (Nothing clear within reach leaves the reamer where it was: ClearPlacement.NoRoomWithinReachPlacesNothing.)
 }
 

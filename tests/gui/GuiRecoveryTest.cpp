@@ -413,7 +413,7 @@ TEST(GuiRecovery, ALogThatCannotBeReadBackIsReportedAndKept) {
   EXPECT_NEAR(f.session().bone()->current().volume(), volume, 1e-9 * volume);  // the bone is back
   EXPECT_TRUE(f.session().log()->empty());
   const std::string message = w.lastError().toStdString();
-  EXPECT_NE(message.find(QFileInfo(copy->logPath).fileName().toStdString() + ":3: 2 fields where the header has 27"),
+  EXPECT_NE(message.find(QFileInfo(copy->logPath).fileName().toStdString() + ":3: 2 fields where the header has 28"),
             std::string::npos) << message;
   ASSERT_FALSE(w.recoveredLogPath().isEmpty());
   EXPECT_NE(message.find(w.recoveredLogPath().toStdString()), std::string::npos) << message;

@@ -144,29 +144,49 @@ TEST(CutLog, NotesReadBackAndLogsWithoutTheNoteColumnStillRead) {
   rows[2].note = "\xff\xfe";
   EXPECT_NE(cutLogJson(rows).find("\"note\": \"\xef\xbf\xbd\xef\xbf\xbd\""), std::string::npos);
 
-  // The same rows as the writer wrote them before session 55: no "note" column.
+  // The same rows as the writer wrote them before session 56 (no "undone" column) and before session 55 (no
+  // "note" either): read as not undone, with no notes.
   std::vector<CutLogEntry> plain = variedEntries();
   for (CutLogEntry& e : plain) e.note.clear();
   const std::string text = cutLogCsv(plain);
-  std::string old;
-  for (std::size_t at = 0, end; at < text.size(); at = end + 1) {
-    end = text.find('\n', at);
-    std::string line = text.substr(at, end - at);
-    if (at == 0) {
-      ASSERT_EQ(line.substr(line.size() - 5), ",note");
-      line.resize(line.size() - 5);
-    } else if (!line.empty() && line.back() == ',') {  // a record's last line: its empty note's field goes
-      line.pop_back();
+  const auto older = [&text](bool withNote) {
+    std::string out;
+    for (std::size_t at = 0, end; at < text.size(); at = end + 1) {
+      end = text.find('\n', at);
+      std::string line = text.substr(at, end - at);
+      if (at == 0) {
+        EXPECT_EQ(line.substr(line.size() - 12), ",undone,note");
+        line.resize(line.size() - 12);
+        if (withNote) line += ",note";
+      } else if (line.size() >= 3 && line.substr(line.size() - 3) == ",0,") {  // a record's last line
+        line.resize(line.size() - 3);
+        if (withNote) line += ",";
+      }
+      out += line + "\n";
     }
-    old += line + "\n";
+    return out;
+  };
+  for (const bool withNote : {true, false}) {
+    const std::string old = older(withNote);
+    const std::vector<CutLogEntry> oldRows = cutLogFromCsv(old, "before.csv");
+    ASSERT_EQ(oldRows.size(), 3u) << withNote;
+    EXPECT_EQ(cutLogCsv(oldRows), cutLogCsv(plain)) << withNote;
+    // An old header with rows of the new width is refused.
+    const std::string oldHeader = old.substr(0, old.find('\n') + 1);
+    const std::string newRows = text.substr(text.find('\n') + 1);
+    EXPECT_THROW(cutLogFromCsv(oldHeader + newRows, "mixed.csv"), InputError) << withNote;
   }
-  const std::vector<CutLogEntry> oldRows = cutLogFromCsv(old, "before_notes.csv");
-  ASSERT_EQ(oldRows.size(), 3u);
-  EXPECT_EQ(cutLogCsv(oldRows), cutLogCsv(plain));
-  // An old header with a row of the new width, and the reverse, are refused.
-  const std::string oldHeader = old.substr(0, old.find('\n') + 1);
-  const std::string newRows = text.substr(text.find('\n') + 1);
-  EXPECT_THROW(cutLogFromCsv(oldHeader + newRows, "mixed.csv"), InputError);
+}
+
+// A row whose cut was undone when the log was written says so, and reads back so (a saved bone reopened).
+TEST(CutLog, AnUndoneRowReadsBackUndone) {
+  std::vector<CutLogEntry> rows = variedEntries();
+  rows[1].undone = true;
+  const std::vector<CutLogEntry> back = cutLogFromCsv(cutLogCsv(rows), "undone.csv");
+  ASSERT_EQ(back.size(), 3u);
+  EXPECT_FALSE(back[0].undone);
+  EXPECT_TRUE(back[1].undone);
+  EXPECT_FALSE(back[2].undone);
 }
 
 // Each damage is refused with the file, the line (of the record it is in) and the column.
@@ -189,7 +209,7 @@ TEST(CutLog, ADamagedCsvIsRefusedNamingTheLineAndTheColumn) {
     std::string after, from, to, where, what;
   };
   const std::vector<Damage> damages = {
-      {"", "-38.125000", "-38,125000", ":2: ", "28 fields where the header has 27"},  // a decimal comma
+      {"", "-38.125000", "-38,125000", ":2: ", "29 fields where the header has 28"},  // a decimal comma
       {"", "-38.125000", "-38.12x000", ":2: ", "column 3 (tip_x): '-38.12x000' is not a number"},
       {"", ",14998,", ",1.5e4,", ":2: ", "column 15 (faces): '1.5e4' is not a whole number"},
       {"", "2026-11-22T05:27:11.325Z", "2026-11-31T05:27:11.325Z", ":2: ", "column 2 (time_utc)"},

@@ -6,9 +6,10 @@ namespace reamsim::detail {
   "step,time_utc,tip_x,tip_y,tip_z,axis_x,axis_y,axis_z,boxes_overlap,contact,min_distance_mm,removed_mm3,"      \
   "cumulative_mm3,cut_ms,faces,contact_x,contact_y,contact_z,bone_state,move_contact_t,move_contact_x,"          \
   "move_contact_y,move_contact_z,reamer,reamer_diameter_mm,reamer_sphere_radius_mm"
-inline constexpr const char* kCutLogCsvHeader = REAMSIM_CUT_LOG_COLUMNS ",note";
-// The header before rows had notes (session 55): such a file (a crash copy or a saved log) still reads, with
-// every note empty.
+inline constexpr const char* kCutLogCsvHeader = REAMSIM_CUT_LOG_COLUMNS ",undone,note";
+// Headers written before, still read: without `undone` (session 55: every row read as not undone), and without
+// notes either (before session 55: every note empty).
+inline constexpr const char* kCutLogCsvHeaderWithoutUndone = REAMSIM_CUT_LOG_COLUMNS ",note";
 inline constexpr const char* kCutLogCsvHeaderWithoutNotes = REAMSIM_CUT_LOG_COLUMNS;
 #undef REAMSIM_CUT_LOG_COLUMNS
 

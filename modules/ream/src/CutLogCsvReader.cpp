@@ -176,11 +176,12 @@ std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::strin
   if (rows.empty()) throw InputError(file, "empty: not a cut log (no header line)");
   std::string header = text.substr(0, text.find('\n'));  // as written: no field quoted
   if (!header.empty() && header.back() == '\r') header.pop_back();
-  const bool withNotes = header == detail::kCutLogCsvHeader;
+  const bool withUndone = header == detail::kCutLogCsvHeader;
+  const bool withNotes = withUndone || header == detail::kCutLogCsvHeaderWithoutUndone;
   if (!withNotes && header != detail::kCutLogCsvHeaderWithoutNotes)
     throw InputError(file, 1,
                      "not a ReamSim cut log: the header is not \"" + std::string(detail::kCutLogCsvHeader) + "\"");
-  const std::size_t columns = columnNames().size() - (withNotes ? 0 : 1);
+  const std::size_t columns = columnNames().size() - (withUndone ? 0 : withNotes ? 1 : 2);
   std::vector<CutLogEntry> out;
   out.reserve(rows.size() - 1);
   for (std::size_t i = 1; i < rows.size(); ++i) {
@@ -208,7 +209,8 @@ std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::strin
     e.reamer = f.text(23);
     e.reamerDiameterMm = f.optionalNumber(24).value_or(0.0);
     e.reamerSphereRadiusMm = f.optionalNumber(25);
-    if (withNotes) e.note = f.text(26);
+    if (withUndone) e.undone = f.flag(26);
+    if (withNotes) e.note = f.text(withUndone ? 27 : 26);
     out.push_back(std::move(e));
   }
   return out;

@@ -54,6 +54,16 @@ std::string isoTimeUtc(std::int64_t unixMs) {
   return out;
 }
 
+std::vector<CutLogEntry> withUndoneMarked(std::vector<CutLogEntry> rows, const BoneHistory& history) {
+  std::unordered_map<std::uint64_t, bool> undoneOf;  // this history's states: past the cursor or not
+  for (std::size_t k = 0; k < history.size(); ++k) undoneOf[history.entries()[k].revision] = k > history.cursor();
+  for (CutLogEntry& e : rows) {
+    const auto it = e.boneStateId != 0 ? undoneOf.find(e.boneStateId) : undoneOf.end();
+    if (it != undoneOf.end()) e.undone = it->second;
+  }
+  return rows;
+}
+
 std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
   std::string out = std::string(detail::kCutLogCsvHeader) + "\n";
   for (const CutLogEntry& e : entries) {
@@ -70,7 +80,7 @@ std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
     out += "," + csvField(e.reamer) + "," +
            (e.reamerDiameterMm > 0 ? num(e.reamerDiameterMm, NumberStyle::Significant9) : std::string()) + "," +
            (e.reamerSphereRadiusMm ? num(*e.reamerSphereRadiusMm, NumberStyle::Significant9) : std::string()) + "," +
-           csvField(e.note) + "\n";
+           (e.undone ? "1" : "0") + "," + csvField(e.note) + "\n";
   }
   return out;
 }

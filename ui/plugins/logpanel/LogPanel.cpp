@@ -219,7 +219,10 @@ QString LogPanel::exportCsv(const QString& path, bool interactive) {
   const LogNode* log = document_.firstOf<LogNode>();
   QString error;
   try {
-    writeTextFile(path.toStdString(), cutLogCsv(log ? log->entries() : std::vector<CutLogEntry>{}));
+    const BoneNode* bone = document_.firstOf<BoneNode>();  // the cut bone: its undone cuts are marked
+    std::vector<CutLogEntry> rows = log ? log->entries() : std::vector<CutLogEntry>{};
+    if (bone) rows = withUndoneMarked(std::move(rows), bone->history());
+    writeTextFile(path.toStdString(), cutLogCsv(rows));
   } catch (const std::exception& e) {
     error = QString::fromStdString(e.what());
   }

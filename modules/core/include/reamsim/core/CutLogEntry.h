@@ -34,6 +34,10 @@ struct CutLogEntry {
   std::optional<double> reamerSphereRadiusMm;
   // Free text an educator or surgeon attached to the step (the log dock's note column, a plan pose's "note").
   std::string note;
+  // The step's cut was not in the bone when its log was written (undone: the log keeps the row, it records what
+  // was done). Written by a save and a crash copy, read back with the log; a row of the running session is
+  // judged by the bone's history instead (boneStateId).
+  bool undone = false;
 };
 
 }  // namespace reamsim

@@ -4,9 +4,15 @@
 #include <string>
 #include <vector>
 
+#include "reamsim/core/BoneHistory.h"
 #include "reamsim/core/CutLogEntry.h"
 
 namespace reamsim {
+
+// `rows` with CutLogEntry::undone set as the bone's `history` has them now: a row whose state lies past the
+// history's cursor was undone. A row of no state of this history (another bone's, before an exchange; a branch
+// the history left; a row read back, boneStateId 0) keeps its flag. What a saved log and a report say.
+std::vector<CutLogEntry> withUndoneMarked(std::vector<CutLogEntry> rows, const BoneHistory& history);
 
 // "2026-11-22T05:07:11.325Z" (UTC, milliseconds); "" for 0 (not recorded).
 std::string isoTimeUtc(std::int64_t unixMs);
