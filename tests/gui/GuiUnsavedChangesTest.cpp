@@ -402,6 +402,16 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   ASSERT_EQ(s.log()->size(), 3u);
   EXPECT_EQ(s.log()->entries()[1].note, "second cut: rim reached");
   EXPECT_FALSE(w.hasUnsavedChanges());  // the log as saved
+  // The third cut was undone before the save: its row says so, and the report marks it.
+  EXPECT_FALSE(s.log()->entries()[0].undone);
+  EXPECT_FALSE(s.log()->entries()[1].undone);
+  EXPECT_TRUE(s.log()->entries()[2].undone);
+  const QString reportPath = dir.filePath("report.html");
+  ASSERT_TRUE(w.exportReport(reportPath).isEmpty());
+  QFile report(reportPath);
+  ASSERT_TRUE(report.open(QIODevice::ReadOnly));
+  const QString html = QString::fromUtf8(report.readAll());
+  EXPECT_EQ(html.count("(undone)"), 1) << html.toStdString().substr(0, 2000);
   EXPECT_NEAR(s.initialVolumeMm3(), original, 1e-6 * original);
   // One more cut continues the log: numbered after the saved rows, cumulative from what the saved bone lacked.
   const double opened = s.bone()->current().volume();
