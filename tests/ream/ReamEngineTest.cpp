@@ -72,8 +72,8 @@ TEST(ReamEngine, LogNamesTheReamerTheStepWasComputedWith) {
   EXPECT_EQ(e.reamerDiameterMm, 20);
   EXPECT_FALSE(e.reamerSphereRadiusMm);  // flat
   const std::string csv = cutLogCsv(s.log->entries());
-  EXPECT_NE(csv.find(",reamer,reamer_diameter_mm,reamer_sphere_radius_mm,note\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",flat-20,20,,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",reamer,reamer_diameter_mm,reamer_sphere_radius_mm,undone,note\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",flat-20,20,,0,\n"), std::string::npos) << csv;
   // An engine that does not know its reamer's spec logs the node's: the curved one, with its radius.
   s.reamer->setCuttingVolume(std::make_shared<const TriangleMesh>(buildCuttingSolid(other)));
   ReamEngine anonymous = referenceEngine(*s.reamer);
