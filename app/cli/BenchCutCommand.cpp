@@ -35,6 +35,7 @@
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/LocalCutBackend.h"
 #include "reamsim/ream/ReamController.h"
+#include "reamsim/ream/ClearPlacement.h"
 #include "reamsim/ream/ReamEngine.h"
 #include "reamsim/tools/ReamerGeometry.h"
 #include "reamsim/tools/ReamerPresets.h"
@@ -303,6 +304,43 @@ nlohmann::json reamToDepthSearch(const TriangleMesh& bone, const ReamerSpec& spe
           {"engine_median_ms", engineMedian},
           {"fresh_tree_median_ms", freshMedian},
           {"ratio", engineMedian > 0 ? freshMedian / engineMedian : 0.0}};
+}
+
+// Aim's placement clear of the bone (findClearPlacement on the reaming engine's own tree, what the GUI's
+// ReamSession::placeClearOfBone runs): from 0.25 to 5 mm past the first contact along the path's first pose's
+// axis, 20 poses; each answer checked clear, and touching 0.01 mm inward of it less its margin.
+nlohmann::json clearPlacement(const TriangleMesh& bone, const ReamerSpec& spec, const TriangleMesh& localTool,
+                              const Pose& first) {
+  const BoneState state = BoneState::fromMesh(bone);
+  auto volume = std::make_shared<const TriangleMesh>(localTool);
+  ReamEngine engine(volume, makeBvhContactBackend(false), CutBackendFactory{}, spec);
+  engine.compute(state, 1, first, 0);  // a session's engine has answered a step: its tree exists
+  const std::optional<double> approach = engine.advanceToContactMm(state, 1, first, 100);
+  if (!approach) return {{"error", "the path's first pose meets no bone along its axis"}};
+  std::vector<double> ms, retreat, queries;
+  std::size_t retreated = 0, wrong = 0;
+  for (int i = 0; i < 20; ++i) {
+    const Pose asked = advancedAlongAxis(first, *approach + 0.25 * (i + 1));
+    const auto t0 = std::chrono::steady_clock::now();
+    const ClearPlacement c = findClearPlacement(engine, state, 1, asked);
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    queries.push_back(c.queries);
+    if (c.outcome != ClearPlacement::Outcome::Retreated) continue;
+    ++retreated;
+    retreat.push_back(c.retreatMm);
+    const bool clearThere = engine.touchesAt(state, 1, c.pose) == false;
+    const bool touchingInward = engine.touchesAt(state, 1, advancedAlongAxis(c.pose, 0.05 + 0.01)) == true;
+    if (!clearThere || !touchingInward) ++wrong;
+  }
+  return {{"what", "Aim's placement clear of the bone (findClearPlacement on the reaming engine's tree) from 20 poses "
+                   "0.25-5 mm past the first contact"},
+          {"placements", ms.size()},
+          {"retreated", retreated},
+          {"not_nearest_clear", wrong},
+          {"median_ms", percentile(ms, 0.5)},
+          {"p95_ms", percentile(ms, 0.95)},
+          {"median_queries", percentile(queries, 0.5)},
+          {"median_retreat_mm", retreat.empty() ? 0.0 : percentile(retreat, 0.5)}};
 }
 
 double smallestAngleDeg(const TriangleMesh& m, const Triangle& t) {
@@ -780,6 +818,7 @@ int runBenchCut(const std::vector<std::string>& args) {
     out["loop"] = appLoop(bone, spec, localTool, poses, !a.has("no-cleanup"));
     out["loop"]["moves_past_bone"] = movesPastBone(bone, spec, localTool, poses.front());
     out["loop"]["ream_to_depth_search"] = reamToDepthSearch(bone, spec, localTool, poses.front());
+    out["loop"]["clear_placement"] = clearPlacement(bone, spec, localTool, poses.front());
     out["loop"]["volume_end_diff_rel"] =
         std::abs(out["loop"]["volume_end_mm3"].get<double>() - engine.volumeMm3()) / engine.volumeMm3();
   }
