@@ -12,6 +12,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
@@ -271,12 +272,21 @@ nlohmann::json movesPastBone(const TriangleMesh& bone, const ReamerSpec& spec, c
 // "Ream to depth"'s contact search as the GUI makes it (ReamEngine::advanceToContactMm on the engine that
 // has been reaming: its tree follows the bone) against the free advanceToContactMm, which builds a tree for
 // the call (what the GUI did before session 30); from 1 to 5 mm before the first pose, alternating.
+// A contact-only engine that has answered a step at `first` on `state` (revision 1), as a session's has: its
+// tree exists and follows the bone.
+std::unique_ptr<ReamEngine> engineThatHasStepped(const BoneState& state, const ReamerSpec& spec,
+                                                 const TriangleMesh& localTool, const Pose& first) {
+  auto engine = std::make_unique<ReamEngine>(std::make_shared<const TriangleMesh>(localTool),
+                                             makeBvhContactBackend(false), CutBackendFactory{}, spec);
+  engine->compute(state, 1, first, 0);
+  return engine;
+}
+
 nlohmann::json reamToDepthSearch(const TriangleMesh& bone, const ReamerSpec& spec, const TriangleMesh& localTool,
                                  const Pose& first) {
   const BoneState state = BoneState::fromMesh(bone);
-  auto volume = std::make_shared<const TriangleMesh>(localTool);
-  ReamEngine engine(volume, makeBvhContactBackend(false), CutBackendFactory{}, spec);
-  engine.compute(state, 1, first, 0);  // a session's engine has answered a step: its tree exists
+  const std::unique_ptr<ReamEngine> owned = engineThatHasStepped(state, spec, localTool, first);
+  ReamEngine& engine = *owned;
   std::vector<double> engineMs, freshMs;
   double maxDiffMm = 0;
   std::size_t found = 0;
@@ -312,9 +322,8 @@ nlohmann::json reamToDepthSearch(const TriangleMesh& bone, const ReamerSpec& spe
 nlohmann::json clearPlacement(const TriangleMesh& bone, const ReamerSpec& spec, const TriangleMesh& localTool,
                               const Pose& first) {
   const BoneState state = BoneState::fromMesh(bone);
-  auto volume = std::make_shared<const TriangleMesh>(localTool);
-  ReamEngine engine(volume, makeBvhContactBackend(false), CutBackendFactory{}, spec);
-  engine.compute(state, 1, first, 0);  // a session's engine has answered a step: its tree exists
+  const std::unique_ptr<ReamEngine> owned = engineThatHasStepped(state, spec, localTool, first);
+  ReamEngine& engine = *owned;
   const std::optional<double> approach = engine.advanceToContactMm(state, 1, first, 100);
   if (!approach) return {{"error", "the path's first pose meets no bone along its axis"}};
   std::vector<double> ms, retreat, queries;
