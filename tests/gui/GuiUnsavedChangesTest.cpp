@@ -385,6 +385,15 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   cutOnce(s, 1.1);
   s.undoStack()->undo();  // the third cut: its row stays in the log, its volume is not removed
   ASSERT_TRUE(s.waitIdle(60000));
+  auto* table = w.findChild<QTableWidget*>("LogTable");
+  ASSERT_NE(table, nullptr);
+  const auto shownUndone = [table](int row) { return table->item(row, 0)->font().italic(); };
+  EXPECT_TRUE(shownUndone(2));  // the panel shows the undone cut apart
+  EXPECT_FALSE(shownUndone(1));
+  s.undoStack()->redo();
+  EXPECT_FALSE(shownUndone(2));
+  s.undoStack()->undo();
+  EXPECT_TRUE(shownUndone(2));
   const double removedAtSave = original - s.bone()->current().volume();
   ASSERT_GT(removedAtSave, 0);
   ASSERT_GT(s.log()->cumulativeMm3(), removedAtSave + 1e-3);  // the undone cut's row says more
@@ -406,6 +415,9 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   EXPECT_FALSE(s.log()->entries()[0].undone);
   EXPECT_FALSE(s.log()->entries()[1].undone);
   EXPECT_TRUE(s.log()->entries()[2].undone);
+  EXPECT_TRUE(shownUndone(2));  // and the panel shows it apart
+  EXPECT_FALSE(shownUndone(0));
+  EXPECT_TRUE(table->item(2, 9)->font().italic());  // its note cell too
   const QString reportPath = dir.filePath("report.html");
   ASSERT_TRUE(w.exportReport(reportPath).isEmpty());
   QFile report(reportPath);

@@ -54,13 +54,21 @@ std::string isoTimeUtc(std::int64_t unixMs) {
   return out;
 }
 
-std::vector<CutLogEntry> withUndoneMarked(std::vector<CutLogEntry> rows, const BoneHistory& history) {
+std::vector<bool> undoneRows(const std::vector<CutLogEntry>& rows, const BoneHistory& history) {
   std::unordered_map<std::uint64_t, bool> undoneOf;  // this history's states: past the cursor or not
   for (std::size_t k = 0; k < history.size(); ++k) undoneOf[history.entries()[k].revision] = k > history.cursor();
-  for (CutLogEntry& e : rows) {
+  std::vector<bool> out;
+  out.reserve(rows.size());
+  for (const CutLogEntry& e : rows) {
     const auto it = e.boneStateId != 0 ? undoneOf.find(e.boneStateId) : undoneOf.end();
-    if (it != undoneOf.end()) e.undone = it->second;
+    out.push_back(it != undoneOf.end() ? it->second : e.undone);
   }
+  return out;
+}
+
+std::vector<CutLogEntry> withUndoneMarked(std::vector<CutLogEntry> rows, const BoneHistory& history) {
+  const std::vector<bool> undone = undoneRows(rows, history);
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i].undone = undone[i];
   return rows;
 }
 

@@ -89,6 +89,7 @@ void LogPanel::sync() {
     table_->setRowCount(0);
     shown_ = 0;
     notesShown_ = 0;
+    undoneShown_.clear();
     logId_ = log ? log->id() : NodeId{};
   }
   if (!log) {
@@ -102,7 +103,7 @@ void LogPanel::sync() {
   anglesFrom_ = landmarks;
   if (otherLandmarks) showAngles(0);  // every row again, in the new frame
   showNotes();  // of the rows shown (a note may change in the same event as rows are added)
-  if (entries.size() == shown_) return;
+  if (entries.size() == shown_) return showUndone();  // an undo or redo of the bone, or a note
   seatLabel_->clear();  // measured on an earlier bone state
   for (std::size_t i = shown_; i < entries.size(); ++i) {
     const CutLogEntry& e = entries[i];
@@ -137,6 +138,7 @@ void LogPanel::sync() {
   for (std::size_t i = firstNew; i < shown_; ++i)
     table_->setItem(int(i), kNoteColumn, new QTableWidgetItem(QString::fromStdString(entries[i].note)));
   notesShown_ = log->notesRevision();
+  showUndone();
   table_->scrollToBottom();
   std::vector<double> cumulative, ms;
   for (const CutLogEntry& e : entries) {
@@ -166,7 +168,35 @@ void LogPanel::showAngles(std::size_t first) {
       } catch (const std::invalid_argument&) {  // pointing medially
       }
     table_->setItem(int(i), kAnglesColumn, new QTableWidgetItem(text));
+    styleUndone(int(i), kAnglesColumn);
   }
+}
+
+// The log keeps every row (it records what was done); a cut undone since, or undone when a log read back was
+// written, is shown apart, as the report marks it (undoneRows).
+void LogPanel::showUndone() {
+  const LogNode* log = document_.firstOf<LogNode>();
+  const BoneNode* bone = document_.firstOf<BoneNode>();
+  if (!log || !bone) return;
+  const std::vector<bool> undone = undoneRows(log->entries(), bone->history());
+  undoneShown_.resize(std::min<std::size_t>(shown_, undone.size()), false);
+  for (std::size_t i = 0; i < undoneShown_.size(); ++i) {
+    if (undoneShown_[i] == undone[i]) continue;
+    undoneShown_[i] = undone[i];
+    for (int col = 0; col < table_->columnCount(); ++col) styleUndone(int(i), col);
+  }
+}
+
+// One cell as its row's undone state says (also a cell made again: the angles in a new frame, a changed note).
+void LogPanel::styleUndone(int row, int col) {
+  QTableWidgetItem* item = table_->item(row, col);
+  if (!item) return;
+  const bool undone = std::size_t(row) < undoneShown_.size() && undoneShown_[std::size_t(row)];
+  QFont font = item->font();
+  font.setItalic(undone);
+  item->setFont(font);
+  item->setForeground(undone ? palette().brush(QPalette::Disabled, QPalette::Text) : palette().brush(QPalette::Text));
+  if (col != 5 && col != 7) item->setToolTip(undone ? tr("Undone: this cut is not in the bone now") : QString());
 }
 
 // Every row's note again when one has changed since they were shown (a row's note is all that can change).
@@ -178,7 +208,10 @@ void LogPanel::showNotes() {
   for (std::size_t i = 0; i < shown_ && i < entries.size(); ++i) {
     const QString note = QString::fromStdString(entries[i].note);
     QTableWidgetItem* item = table_->item(int(i), kNoteColumn);
-    if (!item || item->text() != note) table_->setItem(int(i), kNoteColumn, new QTableWidgetItem(note));
+    if (!item || item->text() != note) {
+      table_->setItem(int(i), kNoteColumn, new QTableWidgetItem(note));
+      styleUndone(int(i), kNoteColumn);
+    }
   }
 }
 

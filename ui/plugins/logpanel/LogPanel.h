@@ -46,6 +46,8 @@ class LogPanel : public QDockWidget {
   void sync();
   void showAngles(std::size_t firstRow);
   void showNotes();
+  void showUndone();  // rows whose cut is undone (not in the bone now) in grey italics, with a tooltip
+  void styleUndone(int row, int col);
   static constexpr int kAnglesColumn = 8;
   static constexpr int kNoteColumn = 9;
 
@@ -55,6 +57,7 @@ class LogPanel : public QDockWidget {
   ScapulaLandmarks anglesFrom_;  // the landmarks the angles column was computed with
   std::size_t shown_ = 0;
   std::uint64_t notesShown_ = 0;  // the log's notesRevision the note column shows
+  std::vector<bool> undoneShown_;  // by row, as shown
   QTableWidget* table_ = nullptr;
   CutPlot* plot_ = nullptr;
   QPushButton* exportButton_ = nullptr;

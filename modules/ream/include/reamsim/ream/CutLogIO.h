@@ -13,6 +13,8 @@ namespace reamsim {
 // history's cursor was undone. A row of no state of this history (another bone's, before an exchange; a branch
 // the history left; a row read back, boneStateId 0) keeps its flag. What a saved log and a report say.
 std::vector<CutLogEntry> withUndoneMarked(std::vector<CutLogEntry> rows, const BoneHistory& history);
+// The same marks alone, row by row (no copy of the rows: the log panel asks at every change of the bone).
+std::vector<bool> undoneRows(const std::vector<CutLogEntry>& rows, const BoneHistory& history);
 
 // "2026-11-22T05:07:11.325Z" (UTC, milliseconds); "" for 0 (not recorded).
 std::string isoTimeUtc(std::int64_t unixMs);
