@@ -7,7 +7,6 @@
 #include <QDragEnterEvent>
 #include <QDir>
 #include <QDropEvent>
-#include <QEventLoop>
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -300,28 +299,20 @@ bool MainWindow::writeBoneFile(const QString& path, const BoneFileFacts& facts) 
   BoneState state = session_->bone()->current();  // an immutable value, cheap to copy
   const QString name = QFileInfo(path).fileName();
   WriteProgressDialog dialog(tr("Saving %1").arg(name), this);
-  dialog.show();  // before the worker starts, so that a Cancel at once is heard at its first check
-  const ProgressCallback progress = progressRelay(
-      &dialog, [&dialog](double f, const QString& stage) { dialog.showProgress(f, stage); }, dialog.stopFlag());
   saving_ = true;
-  QEventLoop wait;
-  QFutureWatcher<Outcome> watcher;
-  connect(&watcher, &QFutureWatcher<Outcome>::finished, &wait, &QEventLoop::quit);
-  watcher.setFuture(QtConcurrent::run([writer, state = std::move(state), file = path.toStdString(), facts, progress] {
-    Outcome out;
-    try {
-      writer->exportMesh(state.toMesh(), file, facts, progress);
-    } catch (const WriteCancelled&) {
-      out.cancelled = true;
-    } catch (const std::exception& e) {
-      out.error = QString::fromStdString(e.what());
-    }
-    return out;
-  }));
-  wait.exec();
+  const Outcome out = dialog.runWhileShown(
+      [writer, state = std::move(state), file = path.toStdString(), facts](const ProgressCallback& progress) {
+        Outcome result;
+        try {
+          writer->exportMesh(state.toMesh(), file, facts, progress);
+        } catch (const WriteCancelled&) {
+          result.cancelled = true;
+        } catch (const std::exception& e) {
+          result.error = QString::fromStdString(e.what());
+        }
+        return result;
+      });
   saving_ = false;
-  dialog.hide();
-  const Outcome out = watcher.result();
   if (out.cancelled) {
     statusBar()->showMessage(tr("Save of %1 cancelled; the file there is unchanged").arg(name), 8000);
     return false;

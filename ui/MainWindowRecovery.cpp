@@ -3,7 +3,6 @@
 // (RecoveryFiles.h; docs/GUI.md "Unsaved changes").
 #include <QDateTime>
 #include <QDir>
-#include <QEventLoop>
 #include <QFile>
 #include <QFileInfo>
 #include <QMessageBox>
@@ -30,7 +29,6 @@
 #include "reamsim/ream/ScapularFrame.h"
 #include "reamsim/tools/ReamerFile.h"
 #include "reamsim/tools/ReamerPresets.h"
-#include "reamsim/ui/ProgressRelay.h"
 
 namespace reamsim::ui {
 
@@ -335,17 +333,9 @@ void MainWindow::restoreRecoveredReamer(const RecoveredBone& found) {
 // painting meanwhile (a local event loop, as a save's).
 RecoveredRead MainWindow::readRecoveryCopyInteractive(const RecoveredBone& copy) {
   WriteProgressDialog dialog(tr("Restoring %1").arg(copy.name.isEmpty() ? tr("the bone") : copy.name), this, tr("Restoring"));
-  dialog.show();  // before the worker starts, so that a Cancel at once is heard at its first check
-  const ProgressCallback progress = progressRelay(
-      &dialog, [&dialog](double f, const QString& stage) { dialog.showProgress(f, stage); }, dialog.stopFlag());
-  QEventLoop wait;
-  QFutureWatcher<RecoveredRead> watcher;
-  connect(&watcher, &QFutureWatcher<RecoveredRead>::finished, &wait, &QEventLoop::quit);
   const MeshImportInterface* importer = plugins_.meshImport();
-  watcher.setFuture(QtConcurrent::run([importer, copy, progress] { return readRecoveryCopy(*importer, copy, progress); }));
-  wait.exec();
-  dialog.hide();
-  return watcher.result();
+  return dialog.runWhileShown(
+      [importer, copy](const ProgressCallback& progress) { return readRecoveryCopy(*importer, copy, progress); });
 }
 
 // A copy of `file` where the next save or close does not remove it (recovery/restored/), for a file that could
