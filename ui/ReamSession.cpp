@@ -430,11 +430,10 @@ void ReamSession::clearQueue() {
 void ReamSession::cancelQueued() {
   if (running_ && control_) control_->stop = true;
   // A clear placement not started yet is shown at the pose asked, in the bone: back where the reamer was.
-  const bool clearWaiting = (latestUserPose_ && latestUserClear_) ||
-                            std::any_of(queued_.begin(), queued_.end(), [](const QueuedStep& q) { return q.clearOfBone; });
+  const bool clearWaiting = placingClearOfBone() && !runningClear_;
   clearQueue();
   latestUserPose_.reset();
-  if (clearWaiting && !runningClear_) reamer_->setPose(lastComputedPose_ ? *lastComputedPose_ : poseBeforeClear_);
+  if (clearWaiting) reamer_->setPose(lastComputedPose_ ? *lastComputedPose_ : poseBeforeClear_);
   waitingForFrame_ = false;
   sequenceDone_ = sequenceTotal_ = 0;
   Q_EMIT progress(0, 0);

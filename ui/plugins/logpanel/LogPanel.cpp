@@ -120,15 +120,15 @@ void LogPanel::sync() {
     cell(2, shown.toString(e.cumulativeMm3, 'f', 3));
     cell(3, shown.toString(e.cutMs, 'f', 1));
     cell(4, shown.toString(qlonglong(e.faces)));
-    cell(5, e.contactPoint ? pointText(*e.contactPoint, 2) : QStringLiteral("–"));
+    cell(kContactColumn, e.contactPoint ? pointText(*e.contactPoint, 2) : QStringLiteral("–"));
     if (e.moveContactT && e.moveContactPoint)  // a move onto the bone: where it first met it
-      table_->item(row, 5)->setToolTip(tr("the move first met the bone %L1 % of the way, at %2 mm")
+      table_->item(row, kContactColumn)->setToolTip(tr("the move first met the bone %L1 % of the way, at %2 mm")
                                            .arg(100.0 * *e.moveContactT, 0, 'f', 1)
                                            .arg(pointText(*e.moveContactPoint, 2)));
     cell(6, QString::number(e.stepIndex));
-    cell(7, QString::fromStdString(e.reamer));  // a session may change reamers
+    cell(kReamerColumn, QString::fromStdString(e.reamer));  // a session may change reamers
     if (e.reamerDiameterMm > 0)
-      table_->item(row, 7)->setToolTip(e.reamerSphereRadiusMm
+      table_->item(row, kReamerColumn)->setToolTip(e.reamerSphereRadiusMm
                                            ? tr("Ø %L1 mm, cap sphere R %L2 mm").arg(e.reamerDiameterMm).arg(*e.reamerSphereRadiusMm)
                                            : tr("Ø %L1 mm, flat").arg(e.reamerDiameterMm));
   }
@@ -196,7 +196,8 @@ void LogPanel::styleUndone(int row, int col) {
   font.setItalic(undone);
   item->setFont(font);
   item->setForeground(undone ? palette().brush(QPalette::Disabled, QPalette::Text) : palette().brush(QPalette::Text));
-  if (col != 5 && col != 7) item->setToolTip(undone ? tr("Undone: this cut is not in the bone now") : QString());
+  if (col != kContactColumn && col != kReamerColumn)  // those keep their own tooltips
+    item->setToolTip(undone ? tr("Undone: this cut is not in the bone now") : QString());
 }
 
 // Every row's note again when one has changed since they were shown (a row's note is all that can change).

@@ -48,6 +48,8 @@ class LogPanel : public QDockWidget {
   void showNotes();
   void showUndone();  // rows whose cut is undone (not in the bone now) in grey italics, with a tooltip
   void styleUndone(int row, int col);
+  static constexpr int kContactColumn = 5;  // its tooltip says where a move met the bone
+  static constexpr int kReamerColumn = 7;   // its tooltip gives the reamer's size
   static constexpr int kAnglesColumn = 8;
   static constexpr int kNoteColumn = 9;
 
