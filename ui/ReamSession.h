@@ -129,7 +129,7 @@ class ReamSession : public QObject {
   void moveReamer(const Pose& pose, bool moved = false);
   // A placement (as moveReamer's) that cuts nothing: where the reamer would overlap the bone at `pose`, it is
   // placed out along its axis, as near as it is clear (findClearPlacement, on the worker in the step's own job);
-  // where nothing within reach is clear it is not moved. Signals placedOutward / noRoomClearOfBone say so.
+  // where nothing within reach is clear it is not moved. Signals placedOutward / notPlacedClearOfBone say so.
   // Aim asks for it (ReamerNode::requestPlacement's clearOfBone). Until it is answered, where the reamer will be
   // is unknown: placingClearOfBone() says so, and the window takes no move or feed that starts from the reamer
   // meanwhile (a few milliseconds).
