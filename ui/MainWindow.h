@@ -82,7 +82,7 @@ class MainWindow : public QMainWindow {
   void cancelImport();  // the window is free at once; the worker stops at its next check, its result is discarded
   // Where the last cancelled import's worker stopped (a repair stage), empty when it ran to its end (tests).
   const QString& lastImportStoppedAt() const { return importStoppedAt_; }
-  // The bone at `path` and its cut log beside it (NAME.cut_log.csv); true when both are written, and only then
+  // The bone at `path` and its cut log beside it (NAME.ply.cut_log.csv); true when both are written, and only then
   // is the bone "saved" (no unsaved changes). Errors in a dialog.
   bool saveBoneAs(const QString& path);
   // File → Save (Ctrl+S) and the close question's Save: to the file the bone was last saved to with Save as
@@ -205,7 +205,8 @@ class MainWindow : public QMainWindow {
   // The bone's mesh only (with `facts` in its comments), on a worker with a progress dialog (Cancel); errors in
   // a dialog; does not mark it saved. True when written.
   bool writeBoneFile(const QString& path, const BoneFileFacts& facts);
-  static QString cutLogPathBeside(const QString& bonePath);  // NAME.cut_log.csv beside NAME.ply
+  static QString cutLogPathBeside(const QString& bonePath);  // NAME.ply.cut_log.csv beside NAME.ply
+  static QString earlierCutLogPathBeside(const QString& bonePath);  // NAME.cut_log.csv (saves before session 57)
   // A bone opened from a file brings the cut log saved beside it (MainWindowFiles.cpp).
   // `saved`: the facts the bone's file holds (none in a file no save by ReamSim wrote). Returns what the status
   // bar adds to "Opened …".
@@ -293,7 +294,7 @@ class MainWindow : public QMainWindow {
   QString unreadableCutLogFile_;    // the same for its cut log (or one that is not the log saved with the bone)
   std::optional<BonePlanning> copiedPlanning_;
   std::optional<std::uint64_t> savedBoneRevision_;  // the cut bone's revision as opened or last saved; none: restored
-  // The log's notes (annotations) are saved with it (NAME.cut_log.csv): their count of changes at the last save
+  // The log's notes (annotations) are saved with it (NAME.ply.cut_log.csv): their count of changes at the last save
   // or open (LogNode::notesRevision), and in the crash-recovery copy kept (copiedNotesRevision_; none: no copy).
   struct SavedNotes {
     NodeId log;

@@ -378,7 +378,12 @@ void MainWindow::openLandmarksBeside(const QString& bonePath) {
   }
 }
 
-QString MainWindow::cutLogPathBeside(const QString& bonePath) {
+// The bone file's whole name, as for its landmarks: NAME.stl and NAME.ply saved side by side keep a log each.
+QString MainWindow::cutLogPathBeside(const QString& bonePath) { return bonePath + ".cut_log.csv"; }
+
+// Where saves before session 57 put it (NAME.cut_log.csv beside NAME.ply): read when the bone has no log of
+// the name above, never written.
+QString MainWindow::earlierCutLogPathBeside(const QString& bonePath) {
   const QFileInfo info(bonePath);
   return info.dir().filePath(info.completeBaseName() + ".cut_log.csv");
 }
@@ -389,16 +394,20 @@ void MainWindow::moveAsideUnreadable(const QString& file) {
   if (!QFile::rename(file, aside)) throw std::runtime_error(file.toStdString() + ": cannot move the unreadable file aside");
 }
 
-// A bone opened from a file its Save wrote brings the cut log saved beside it (NAME.cut_log.csv): the log panel
-// lists its rows with their notes, new steps continue its numbering, and the cumulative volume goes on from what
-// had been removed when the bone was saved (the file's `removed_mm3`). Only a file whose save recorded the log
-// (`cut_log`) takes one: a raw scan beside a reamed save of the same name never does. A log that cannot be read,
-// or is not the one saved (another number of rows or another last time: another save's, or the bone replaced
-// since), or is missing, is named in a dialog; the bone opens without it, and a save moves a file there aside
-// instead of replacing it. Returns what the status bar adds to "Opened …" (empty without a log).
+// A bone opened from a file its Save wrote brings the cut log saved beside it (NAME.ply.cut_log.csv, or
+// NAME.cut_log.csv as saves before session 57 named it): the log panel lists its rows with their notes, new steps
+// continue its numbering, and the cumulative volume goes on from what had been removed when the bone was saved
+// (the file's `removed_mm3`). Only a file whose save recorded the log (`cut_log`) takes one: a raw scan beside a
+// reamed save of the same name never does. A log that cannot be read, or is not the one saved (another number of
+// rows or another last time: another save's, or the bone replaced since), or is missing, is named in a dialog;
+// the bone opens without it, and a save to NAME.ply moves a file at NAME.ply.cut_log.csv aside instead of
+// replacing it (an earlier save's NAME.cut_log.csv is never written). Returns what the status bar adds to
+// "Opened …" (empty without a log).
 QString MainWindow::openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved) {
   const auto rowsText = [](std::size_t n) { return std::to_string(n) + (n == 1 ? " row" : " rows"); };
-  const QString file = cutLogPathBeside(bonePath);
+  QString file = cutLogPathBeside(bonePath);
+  if (!QFileInfo::exists(file) && QFileInfo::exists(earlierCutLogPathBeside(bonePath)))
+    file = earlierCutLogPathBeside(bonePath);
   unreadableCutLogFile_.clear();
   if (!saved.cutLogRows) return {};  // not a bone a Save wrote (or saved before session 56)
   const std::string bone = QFileInfo(bonePath).fileName().toStdString();
@@ -406,8 +415,9 @@ QString MainWindow::openCutLogBeside(const QString& bonePath, const BoneFileFact
   try {
     if (!QFileInfo::exists(file)) {
       if (*saved.cutLogRows == 0) return {};
-      throw std::runtime_error(file.toStdString() + ": not found; " + bone + " was saved with its cut log there (" +
-                               rowsText(*saved.cutLogRows) + ")");
+      throw std::runtime_error(file.toStdString() + ": not found (nor " +
+                               QFileInfo(earlierCutLogPathBeside(bonePath)).fileName().toStdString() + "); " + bone +
+                               " was saved with its cut log there (" + rowsText(*saved.cutLogRows) + ")");
     }
     rows = readCutLogCsv(file.toStdString());
     if (rows.size() != *saved.cutLogRows || (!rows.empty() && rows.back().timeUnixMs != saved.cutLogLastMs))
@@ -530,7 +540,7 @@ bool MainWindow::confirmDiscardChanges(const QString& action) {
   }
 }
 
-// The bone where the user says, the cut log as NAME.cut_log.csv beside it. Anything that fails (or a
+// The bone where the user says, the cut log as NAME.ply.cut_log.csv beside it. Anything that fails (or a
 // cancelled file dialog) answers false, so the window stays as it is and nothing is lost.
 bool MainWindow::saveBoneAndCutLogInteractive() {
   if (!plugins_.meshImport()) {

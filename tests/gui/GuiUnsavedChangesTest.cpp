@@ -79,7 +79,7 @@ TEST(GuiUnsavedChanges, SaveWritesTheBoneAndItsCutLogThenCloses) {
   const BoneState& bone = s.bone()->current();
   EXPECT_EQ(saved.triangles.size(), bone.liveTriangleCount());
   EXPECT_NEAR(BoneState::fromMesh(saved).volume(), bone.volume(), 1e-6 * bone.volume());
-  QFile csv(out.filePath("reamed.cut_log.csv"));
+  QFile csv(out.filePath("reamed.ply.cut_log.csv"));
   ASSERT_TRUE(csv.open(QIODevice::ReadOnly));
   EXPECT_EQ(csv.readAll().count('\n'), 2);  // the header and the one cut
 }
@@ -107,8 +107,8 @@ TEST(GuiUnsavedChanges, AFailedOrCancelledSaveKeepsTheWindowOpen) {
   EXPECT_TRUE(w.hasUnsavedChanges());
   // The bone written but its cut log not (a folder stands where the log goes): the work is not saved, so the
   // window stays open with unsaved changes and the question comes again.
-  ASSERT_TRUE(QDir().mkpath(out.filePath("bone.cut_log.csv")));
-  expectFailedSaveOnClose(w, out.filePath("bone.ply"), "bone.cut_log.csv");
+  ASSERT_TRUE(QDir().mkpath(out.filePath("bone.ply.cut_log.csv")));
+  expectFailedSaveOnClose(w, out.filePath("bone.ply"), "bone.ply.cut_log.csv");
   EXPECT_TRUE(QFileInfo::exists(out.filePath("bone.ply")));
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
 }
@@ -128,7 +128,7 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   ReamSession& s = f.session();
   cutOnce(s);
   QTemporaryDir out;
-  const QString path = out.filePath("bone.ply"), log = out.filePath("bone.cut_log.csv");
+  const QString path = out.filePath("bone.ply"), log = out.filePath("bone.ply.cut_log.csv");
   ASSERT_TRUE(w.saveBoneAs(path)) << w.lastError().toStdString();
   const QByteArray bone = contents(path), cuts = contents(log);
   ASSERT_FALSE(bone.isEmpty());
@@ -141,7 +141,7 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   }
   EXPECT_EQ(contents(path), bone);
   EXPECT_EQ(contents(log), cuts);
-  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.cut_log.csv", "bone.ply", "bone.ply.landmarks.json"}));
+  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.ply", "bone.ply.cut_log.csv", "bone.ply.landmarks.json"}));
   EXPECT_TRUE(w.hasUnsavedChanges());
   EXPECT_TRUE(w.lastError().isEmpty()) << "a cancel is not an error: " << w.lastError().toStdString();
   {
@@ -152,7 +152,7 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   }
   EXPECT_TRUE(w.isVisible());
   EXPECT_EQ(contents(path), bone);
-  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.cut_log.csv", "bone.ply", "bone.ply.landmarks.json"}));
+  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.ply", "bone.ply.cut_log.csv", "bone.ply.landmarks.json"}));
   // Let run, the same save writes the cut bone and both cuts.
   ASSERT_TRUE(w.saveBoneAs(path)) << w.lastError().toStdString();
   EXPECT_FALSE(w.hasUnsavedChanges());
@@ -170,7 +170,7 @@ TEST(GuiUnsavedChanges, SaveWritesWhereSaveAsWroteWithoutAsking) {
   ReamSession& s = f.session();
   cutOnce(s);
   QTemporaryDir out;
-  const QString path = out.filePath("bone.ply"), log = out.filePath("bone.cut_log.csv");
+  const QString path = out.filePath("bone.ply"), log = out.filePath("bone.ply.cut_log.csv");
   {
     ModalAnswers answers({ModalAnswers::file(path)});
     w.action("save_again")->trigger();
@@ -195,7 +195,7 @@ TEST(GuiUnsavedChanges, SaveWritesWhereSaveAsWroteWithoutAsking) {
   EXPECT_EQ(contents(log).count('\n'), 3);  // the cut not saved was not written by the load
   cutOnce(s);
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Save), ModalAnswers::file(out.filePath("other.ply"))}, 2));
-  EXPECT_TRUE(QFileInfo::exists(out.filePath("other.cut_log.csv")));
+  EXPECT_TRUE(QFileInfo::exists(out.filePath("other.ply.cut_log.csv")));
   EXPECT_EQ(contents(log).count('\n'), 3);
 }
 
@@ -268,7 +268,7 @@ TEST(GuiUnsavedChanges, ANoteOnACutIsSavedWithTheLog) {
   EXPECT_FALSE(annotateRow(w, 1, note));  // no such row
   ASSERT_TRUE(w.saveBoneAs(out.filePath("bone.ply"))) << w.lastError().toStdString();
   EXPECT_FALSE(w.isWindowModified());
-  const std::vector<CutLogEntry> saved = readCutLogCsv(out.filePath("bone.cut_log.csv").toStdString());
+  const std::vector<CutLogEntry> saved = readCutLogCsv(out.filePath("bone.ply.cut_log.csv").toStdString());
   ASSERT_EQ(saved.size(), 1u);
   EXPECT_EQ(saved[0].note, note.toStdString());
   // Changed after the save: asked about on close (Cancel keeps the window).
@@ -437,10 +437,10 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   EXPECT_NEAR(next.cumulativeMm3, removedAtSave + next.removedMm3, 1e-9 * original);
   EXPECT_TRUE(w.hasUnsavedChanges());
   ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
-  ASSERT_EQ(readCutLogCsv(dir.filePath("reamed.cut_log.csv").toStdString()).size(), 4u);
+  ASSERT_EQ(readCutLogCsv(dir.filePath("reamed.ply.cut_log.csv").toStdString()).size(), 4u);
 
   // Another save's log of the same length put beside the bone is not taken for it.
-  const QString logPath = dir.filePath("reamed.cut_log.csv");
+  const QString logPath = dir.filePath("reamed.ply.cut_log.csv");
   std::vector<CutLogEntry> otherRows = readCutLogCsv(logPath.toStdString());
   otherRows.back().timeUnixMs += 60000;
   const std::string other = cutLogCsv(otherRows);
@@ -483,7 +483,7 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   ASSERT_TRUE(QFile::remove(logPath));
   w.openFile(bonePath);
   w.waitImport();
-  EXPECT_TRUE(w.lastError().contains(logPath + ": not found; reamed.ply was saved with its cut log there (1 row)"))
+  EXPECT_TRUE(w.lastError().contains(logPath + ": not found (nor reamed.cut_log.csv); reamed.ply was saved with its cut log there (1 row)"))
       << w.lastError().toStdString();
 
   // A binary STL's 80-byte header has no room for the removed volume: the log still comes back, and the status bar
@@ -507,6 +507,51 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   EXPECT_TRUE(w.statusBar()->currentMessage().contains("with its cut log (1 step; the file has no room for the volume "
                                                         "removed at the save"))
       << w.statusBar()->currentMessage().toStdString();
+}
+
+// The log is named after the bone file's whole name (as its landmarks are): the same bone saved as NAME.ply and,
+// later cut further, as NAME.obj keeps both logs, and each reopens with its own. A log an earlier save wrote
+// under NAME.cut_log.csv still comes back, and a save does not write over it.
+TEST(GuiUnsavedChanges, BonesOfOneNameInTwoFormatsKeepTheirOwnCutLogs) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const Pose start = s.plan()->poses().front();  // opening a file clears the plan
+  cutOnce(s);
+  QTemporaryDir dir;
+  const QString ply = dir.filePath("glenoid.ply"), obj = dir.filePath("glenoid.obj");
+  ASSERT_TRUE(w.saveBoneAs(ply)) << w.lastError().toStdString();
+  cutOnce(s, 0.9);
+  ASSERT_TRUE(w.saveBoneAs(obj)) << w.lastError().toStdString();
+  EXPECT_EQ(readCutLogCsv((ply + ".cut_log.csv").toStdString()).size(), 1u);
+  EXPECT_EQ(readCutLogCsv((obj + ".cut_log.csv").toStdString()).size(), 2u);
+  for (const auto& [path, rows] : {std::pair{ply, 1u}, std::pair{obj, 2u}}) {
+    w.openFile(path);
+    w.waitImport();
+    EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+    EXPECT_EQ(s.log()->size(), rows) << path.toStdString();
+    EXPECT_FALSE(w.hasUnsavedChanges());
+  }
+
+  // As an earlier save left it: the log under the bone's base name.
+  const QString earlier = dir.filePath("glenoid.cut_log.csv");
+  ASSERT_TRUE(QFile::rename(ply + ".cut_log.csv", earlier));
+  const QByteArray earlierLog = contents(earlier);
+  w.openFile(ply);
+  w.waitImport();
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  ASSERT_EQ(s.log()->size(), 1u);
+  s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.4));
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.log()->size(), 2u);
+  ASSERT_TRUE(w.saveBoneAs(ply)) << w.lastError().toStdString();
+  EXPECT_EQ(readCutLogCsv((ply + ".cut_log.csv").toStdString()).size(), 2u);
+  EXPECT_EQ(contents(earlier), earlierLog);  // not written over
+  w.openFile(ply);  // the log of its own name comes first
+  w.waitImport();
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_EQ(s.log()->size(), 2u);
 }
 
 // As a user writes one: a double-click on the cut's row opens the note dialog with the note so far; OK writes
