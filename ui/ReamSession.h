@@ -244,7 +244,7 @@ class ReamSession : public QObject {
   void noteReached(const QString& note);  // a plan's step with a note was committed
   void placedOutward(double retreatMm);   // placeClearOfBone: placed this far out along the axis than asked
   // placeClearOfBone placed nothing, the reamer back where it was: nothing clear within reach (or `unchecked`:
-  // the contact engine cannot tell, ReamEngine::touchesAt), or `dropped`: stopped, failed, or the bone changed
+  // the contact engine cannot tell, ReamEngine::overlapsAt), or `dropped`: stopped, failed, or the bone changed
   // meanwhile (an undo).
   void notPlacedClearOfBone(bool unchecked, bool dropped);
   void removalPreviewed(const RemovalPreviewAnswer& answer);

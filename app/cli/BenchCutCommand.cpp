@@ -318,7 +318,8 @@ nlohmann::json reamToDepthSearch(const TriangleMesh& bone, const ReamerSpec& spe
 
 // Aim's placement clear of the bone (findClearPlacement on the reaming engine's own tree, what the GUI's
 // ReamSession::placeClearOfBone runs): from 0.25 to 5 mm past the first contact along the path's first pose's
-// axis, 20 poses; each answer checked clear, and touching 0.01 mm inward of it less its margin.
+// axis, 20 poses; each answer checked clear (no overlap at all), and overlapping 0.01 mm inward of it less its
+// margin.
 nlohmann::json clearPlacement(const TriangleMesh& bone, const ReamerSpec& spec, const TriangleMesh& localTool,
                               const Pose& first) {
   const BoneState state = BoneState::fromMesh(bone);
@@ -327,18 +328,19 @@ nlohmann::json clearPlacement(const TriangleMesh& bone, const ReamerSpec& spec, 
   const std::optional<double> approach = engine.advanceToContactMm(state, 1, first, 100);
   if (!approach) return {{"error", "the path's first pose meets no bone along its axis"}};
   std::vector<double> ms, retreat, queries;
-  std::size_t retreated = 0, wrong = 0;
+  std::size_t retreated = 0, wrong = 0, overlapSearches = 0;
   for (int i = 0; i < 20; ++i) {
     const Pose asked = advancedAlongAxis(first, *approach + 0.25 * (i + 1));
     const auto t0 = std::chrono::steady_clock::now();
     const ClearPlacement c = findClearPlacement(engine, state, 1, asked);
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     queries.push_back(c.queries);
+    overlapSearches += c.overlapSearch;
     if (c.outcome != ClearPlacement::Outcome::Retreated) continue;
     ++retreated;
     retreat.push_back(c.retreatMm);
-    const bool clearThere = engine.touchesAt(state, 1, c.pose) == false;
-    const bool touchingInward = engine.touchesAt(state, 1, advancedAlongAxis(c.pose, 0.05 + 0.01)) == true;
+    const bool clearThere = engine.overlapsAt(state, 1, c.pose) == false;
+    const bool touchingInward = engine.overlapsAt(state, 1, advancedAlongAxis(c.pose, 0.05 + 0.01)) == true;
     if (!clearThere || !touchingInward) ++wrong;
   }
   return {{"what", "Aim's placement clear of the bone (findClearPlacement on the reaming engine's tree) from 20 poses "
@@ -349,6 +351,7 @@ nlohmann::json clearPlacement(const TriangleMesh& bone, const ReamerSpec& spec, 
           {"median_ms", percentile(ms, 0.5)},
           {"p95_ms", percentile(ms, 0.95)},
           {"median_queries", percentile(queries, 0.5)},
+          {"overlap_searches", overlapSearches},  // answers the surface touch got wrong (ClearPlacement::overlapSearch)
           {"median_retreat_mm", retreat.empty() ? 0.0 : percentile(retreat, 0.5)}};
 }
 

@@ -24,6 +24,14 @@ class BvhContactBackend final : public ContactBackend {
     return moveContact(collider_->firstContact(*reamer_, from, to));
   }
 
+  std::optional<bool> overlapsAt(const BoneState& bone, std::uint64_t revision,
+                                 const std::shared_ptr<const TriangleMesh>& cuttingVolumeLocal,
+                                 const ReamerSpec* reamerSpec, const RigidTransform& pose) override {
+    syncReamer(cuttingVolumeLocal, reamerSpec);
+    syncBone(bone, revision);
+    return collider_->overlap(*reamer_, pose, OverlapMode::AnyContact).overlap;
+  }
+
   ContactResult query(const ContactInput& in) override {
     syncReamer(in.cuttingVolumeLocal, in.reamerSpec);
     syncBone(in.bone, in.revision);

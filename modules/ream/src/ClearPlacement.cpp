@@ -7,32 +7,30 @@
 
 namespace reamsim {
 
-ClearPlacement findClearPlacement(ReamEngine& engine, const BoneState& bone, std::uint64_t revision, const Pose& asked,
-                                  double maxRetreatMm, double stepMm, double marginMm) {
-  if (!(maxRetreatMm > 0) || !std::isfinite(maxRetreatMm) || !(stepMm > 0) || !std::isfinite(stepMm) ||
-      !(marginMm >= 0) || !std::isfinite(marginMm))
-    throw std::invalid_argument("findClearPlacement: maxRetreatMm and stepMm must be positive, marginMm >= 0");
+namespace {
+
+// The search itself, on one predicate: nullopt when it cannot tell, true when the solid is not clear there.
+template <class NotClear>
+ClearPlacement searchOut(const Pose& asked, double maxRetreatMm, double stepMm, double marginMm, NotClear&& notClear) {
   const double steps = std::ceil(maxRetreatMm / stepMm);
-  if (steps > 100000) throw std::invalid_argument("findClearPlacement: more than 100000 steps to reach maxRetreatMm");
   ClearPlacement out;
   out.pose = asked;
   const auto at = [&asked](double d) { return advancedAlongAxis(asked, -d); };
-  // nullopt: the engine cannot tell (no exact query); true: the cutting solid touches the bone there.
-  const auto touches = [&](double d) {
+  const auto blocked = [&](double d) {
     ++out.queries;
-    return engine.touchesAt(bone, revision, at(d));
+    return notClear(at(d));
   };
-  const std::optional<bool> atAsked = touches(0);
+  const std::optional<bool> atAsked = blocked(0);
   if (!atAsked) {
     out.outcome = ClearPlacement::Outcome::Unsupported;
     return out;
   }
   if (!*atAsked) return out;  // AsAsked
-  double inside = 0;          // touching here...
+  double inside = 0;          // not clear here...
   double clear = -1;          // ...and clear here
   for (int k = 1; k <= int(steps); ++k) {
     const double d = std::min(k * stepMm, maxRetreatMm);  // the last step ends at the reach
-    if (!*touches(d)) {
+    if (!*blocked(d)) {
       clear = d;
       break;
     }
@@ -44,14 +42,42 @@ ClearPlacement findClearPlacement(ReamEngine& engine, const BoneState& bone, std
   }
   for (int i = 0; i < 8; ++i) {  // the boundary within stepMm / 256
     const double mid = 0.5 * (inside + clear);
-    (*touches(mid) ? inside : clear) = mid;
+    (*blocked(mid) ? inside : clear) = mid;
   }
   // The margin, where it is clear too (bone may come back within it: then the boundary's clear side itself).
   double placed = clear + marginMm;
-  if (marginMm > 0 && *touches(placed)) placed = clear;
+  if (marginMm > 0 && *blocked(placed)) placed = clear;
   out.outcome = ClearPlacement::Outcome::Retreated;
   out.retreatMm = placed;
   out.pose = at(placed);
+  return out;
+}
+
+}  // namespace
+
+// Searched on the surface touch (the first contact's start test, bounded by the ideal solid: ~30 µs a query at
+// 400k faces), and the answer checked for any overlap at all (~0.2 ms: every bone triangle in the solid's box),
+// which the touch does not see where the solid lies wholly inside a closed bone or holds a whole fragment. Only
+// when that check fails is the search run again on the overlap itself. Where the touch finds no room, neither
+// does the overlap (a touch is an overlap).
+ClearPlacement findClearPlacement(ReamEngine& engine, const BoneState& bone, std::uint64_t revision, const Pose& asked,
+                                  double maxRetreatMm, double stepMm, double marginMm) {
+  if (!(maxRetreatMm > 0) || !std::isfinite(maxRetreatMm) || !(stepMm > 0) || !std::isfinite(stepMm) ||
+      !(marginMm >= 0) || !std::isfinite(marginMm))
+    throw std::invalid_argument("findClearPlacement: maxRetreatMm and stepMm must be positive, marginMm >= 0");
+  if (std::ceil(maxRetreatMm / stepMm) > 100000)
+    throw std::invalid_argument("findClearPlacement: more than 100000 steps to reach maxRetreatMm");
+  const auto touches = [&](const Pose& p) { return engine.touchesAt(bone, revision, p); };
+  const auto overlaps = [&](const Pose& p) { return engine.overlapsAt(bone, revision, p); };
+  ClearPlacement out = searchOut(asked, maxRetreatMm, stepMm, marginMm, touches);
+  if (out.outcome == ClearPlacement::Outcome::Unsupported || out.outcome == ClearPlacement::Outcome::NoRoom) return out;
+  const std::optional<bool> enclosed = overlaps(out.pose);
+  ++out.queries;
+  if (!enclosed || !*enclosed) return out;  // clear (or an engine that can only tell the touch)
+  const int queriesSoFar = out.queries;
+  out = searchOut(asked, maxRetreatMm, stepMm, marginMm, overlaps);
+  out.queries += queriesSoFar;
+  out.overlapSearch = true;
   return out;
 }
 

@@ -92,6 +92,12 @@ std::optional<bool> ReamEngine::touchesAt(const BoneState& bone, std::uint64_t r
   return along->reached && along->t == 0;
 }
 
+std::optional<bool> ReamEngine::overlapsAt(const BoneState& bone, std::uint64_t revision, const Pose& pose) {
+  if (bone.empty()) return false;
+  if (!contact_) return std::nullopt;
+  return contact_->overlapsAt(bone, revision, cuttingVolume_, spec_ ? &*spec_ : nullptr, toTransform(pose));
+}
+
 // The cutter keeps exact coordinates between cuts; when the bone changed underneath (undo, a new import,
 // a dropped computation) it restarts from the given state.
 void ReamEngine::sync(const BoneState& bone, std::uint64_t revision) {

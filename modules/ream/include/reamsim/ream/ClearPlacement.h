@@ -15,16 +15,18 @@ struct ClearPlacement {
     AsAsked,      // the asked pose is clear
     Retreated,    // moved out along the axis by retreatMm
     NoRoom,       // nothing clear within maxRetreatMm: place nothing
-    Unsupported,  // the engine has no exact contact query to ask (ReamEngine::touchesAt)
+    Unsupported,  // the engine has no exact contact query to ask (ReamEngine::touchesAt, overlapsAt)
   };
   Outcome outcome = Outcome::AsAsked;
   double retreatMm = 0;  // outward along the axis (Retreated)
   Pose pose;             // where to place it (the asked pose unless Retreated)
-  int queries = 0;       // contact queries asked
+  int queries = 0;       // contact queries asked (surface touches and overlaps)
+  bool overlapSearch = false;  // the answer on the surface touch overlapped the bone (the solid inside a closed
+                               // bone, or a fragment inside the solid): searched again on the overlap itself
 };
 
-// Steps out from `asked` by stepMm until the reamer's cutting solid is clear of `bone`, bisects the last step
-// down to ~stepMm / 256, and adds marginMm (checked clear too). `engine`: the reaming loop's, between computes,
+// Steps out from `asked` by stepMm until the reamer's cutting solid is clear of `bone` (overlaps none of it:
+// ReamEngine::overlapsAt), bisects the last step down to ~stepMm / 256, and adds marginMm (checked clear too). `engine`: the reaming loop's, between computes,
 // as advanceToContactMm. Preconditions checked first: maxRetreatMm, stepMm positive and finite, marginMm >= 0.
 inline constexpr double kClearPlacementReachMm = 60;  // how far out the search looks by default
 ClearPlacement findClearPlacement(ReamEngine& engine, const BoneState& bone, std::uint64_t revision, const Pose& asked,

@@ -52,6 +52,14 @@ class ContactBackend {
                                                        const RigidTransform& /*to*/) {
     return std::nullopt;
   }
+  // Whether the cutting solid at `pose` overlaps the bone: touches its surface, holds some of it (a fragment
+  // wholly inside the solid), or lies wholly inside a closed bone. What placing the reamer there would cut.
+  // Engines without an exact query return nullopt.
+  virtual std::optional<bool> overlapsAt(const BoneState& /*bone*/, std::uint64_t /*revision*/,
+                                         const std::shared_ptr<const TriangleMesh>& /*cuttingVolumeLocal*/,
+                                         const ReamerSpec* /*reamerSpec*/, const RigidTransform& /*pose*/) {
+    return std::nullopt;
+  }
 };
 
 // A cutting engine holding one bone (it may keep its own exact representation between cuts).
