@@ -105,7 +105,7 @@ void MainWindow::openFile(const QString& path, bool repair) {
     ImportOutcome out;
     try {
       out.bone = importer->importBone(file, repair, progress);
-    } catch (const RepairCancelled& e) {
+    } catch (const StageCancelled& e) {  // reading, validating or repairing
       out.stoppedAt = QString::fromStdString(e.stage());
     } catch (const std::exception& e) {
       out.error = QString::fromStdString(e.what());
@@ -126,9 +126,9 @@ void MainWindow::waitImport() {
   QCoreApplication::processEvents();  // delivers finished()
 }
 
-// Cancel gives the window back at once; the worker stops at the repair's or the validation's next check
-// (RepairOptions::progress, StageProgress: within about a second at every stage) and whatever it returns is
-// discarded. Reading the file is not interrupted.
+// Cancel gives the window back at once; the worker stops at the reading's, the repair's or the validation's
+// next check (ReadOptions::progress, RepairOptions::progress, StageProgress: within about a second at every
+// stage) and whatever it returns is discarded.
 void MainWindow::cancelImport() {
   if (!importWatcher_.isRunning()) return;
   importCancelled_ = true;

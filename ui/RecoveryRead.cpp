@@ -46,7 +46,7 @@ RecoveredRead readRecoveryCopy(const MeshImportInterface& importer, const Recove
     try {
       out.bone = importer.importBone(copy.bonePath.toStdString(), false, bonesStage("the bone"));
       if (out.bone.mesh.triangles.empty()) throw std::runtime_error(copy.bonePath.toStdString() + ": the mesh has no triangles");
-    } catch (const RepairCancelled&) {
+    } catch (const StageCancelled&) {
       throw Stopped{};
     } catch (const std::exception& e) {
       out.error = e.what();
@@ -66,7 +66,7 @@ RecoveredRead readRecoveryCopy(const MeshImportInterface& importer, const Recove
       try {
         read.bone = importer.importBone(b.path.toStdString(), false, bonesStage(b.name.toStdString()));
         if (read.bone->mesh.triangles.empty()) throw std::runtime_error(b.path.toStdString() + ": the mesh has no triangles");
-      } catch (const RepairCancelled&) {
+      } catch (const StageCancelled&) {
         throw Stopped{};
       } catch (const std::exception& e) {
         read.bone.reset();

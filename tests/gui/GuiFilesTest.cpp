@@ -65,6 +65,54 @@ TEST(GuiFiles, CancelledImportGivesTheWindowBackAndDiscardsTheResult) {
   EXPECT_TRUE(w.lastError().contains("stl_ascii_bad_number.stl"));
 }
 
+// A large text file: the status bar follows its reading and parsing, and Cancel stops the worker inside them
+// (ReadOptions::progress) instead of after the whole file is read.
+TEST(GuiFiles, CancelStopsTheReadingOfALargeFile) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  TriangleMesh large;  // 400,000 triangles of OBJ text, ~15 MB: a few tenths of a second to parse
+  for (int k = 0; k < 50000; ++k) {
+    const auto base = static_cast<std::uint32_t>(large.vertices.size());
+    for (Vec3 p : {Vec3{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}})
+      large.vertices.push_back(p + Vec3{3.0 * (k % 400), 3.0 * (k / 400), 0});
+    for (Triangle t : std::initializer_list<Triangle>{{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}})
+      large.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  QTemporaryDir dir;
+  const QString path = dir.filePath("large.obj");
+  writeMesh(large, path.toStdString());
+  const std::uint64_t revision = f.session().bone()->currentRevision();
+
+  QStringList stages;
+  const QMetaObject::Connection heard = QObject::connect(w.statusBar(), &QStatusBar::messageChanged, [&](const QString& m) {
+    for (const char* stage : {": reading", ": parsing", ": validation"})
+      if (m.endsWith(stage) && (stages.isEmpty() || stages.back() != stage)) stages << stage;
+  });
+  w.openFile(path, false);
+  QElapsedTimer guard;  // a deadline for a hung worker, not a measurement
+  guard.start();
+  while (w.importRunning() && guard.elapsed() < 300000) QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+  w.waitImport();
+  QObject::disconnect(heard);
+  ASSERT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_EQ(f.session().bone()->current().liveTriangleCount(), large.triangles.size());
+  EXPECT_TRUE(stages.contains(": parsing")) << stages.join(' ').toStdString();
+  EXPECT_EQ(stages.indexOf(": parsing") < stages.indexOf(": validation") || !stages.contains(": validation"), true);
+
+  const std::uint64_t opened = f.session().bone()->currentRevision();
+  ASSERT_NE(opened, revision);
+  w.openFile(path, false);
+  ASSERT_TRUE(w.importRunning());
+  QTest::mouseClick(w.findChild<QPushButton*>("CancelImport"), Qt::LeftButton);
+  w.waitImport();
+  // Stopped while the file was read or parsed, not at the validation after it.
+  EXPECT_TRUE(w.lastImportStoppedAt() == "reading" || w.lastImportStoppedAt() == "parsing")
+      << w.lastImportStoppedAt().toStdString();
+  EXPECT_EQ(f.session().bone()->currentRevision(), opened);
+  EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+}
+
 TEST(GuiFiles, ImportShowsTheRepairsProgress) {
   REAMSIM_REQUIRE_DISPLAY();
   GuiFixture f;

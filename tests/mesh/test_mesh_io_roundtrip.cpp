@@ -9,6 +9,7 @@
 
 #include <csignal>
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <clocale>
@@ -240,6 +241,56 @@ TEST_P(io_RoundTrip, ACancelledWriteLeavesTheFileThatWasThere) {
     std::size_t entries = 0;
     for (const auto& e : fs::directory_iterator(dir_)) entries += e.path().filename() != fs::path(file).filename();
     EXPECT_EQ(entries, 0u) << "a new file is left behind after a cancel at check " << stopAt;
+  }
+}
+
+// A read reports "reading" (the bytes) and then "parsing" (how far into them), the fraction never going back,
+// and stops where its callback says so with ReadCancelled naming the stage: an import's Cancel does not wait for
+// a large text file to be read whole.
+TEST_P(io_RoundTrip, ACancelledReadStopsWhereItWasAsked) {
+  const RoundTripCase c = GetParam();
+  const std::string file = path(std::string("large") + c.ext);
+  WriteOptions wo;
+  wo.binary = c.binary;
+  TriangleMesh large;  // 150,000 vertices and 200,000 triangles: several parse checks in every format
+  for (int k = 0; k < 25000; ++k) {
+    const TriangleMesh o = octahedron(1, {3.0 * k, 0, 0});
+    const auto base = static_cast<std::uint32_t>(large.vertices.size());
+    large.vertices.insert(large.vertices.end(), o.vertices.begin(), o.vertices.end());
+    for (Triangle t : o.triangles) large.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  writeMesh(large, file, wo);
+  std::vector<std::pair<double, std::string>> heard;
+  ReadOptions ro{Units::Millimetres};
+  ro.progress = [&heard](double f, const std::string& stage) {
+    heard.emplace_back(f, stage);
+    return true;
+  };
+  EXPECT_EQ(readMesh(file, ro).mesh.triangleCount(), large.triangleCount());
+  ASSERT_GE(heard.size(), 4u);
+  std::vector<std::string> stages;
+  for (std::size_t i = 0; i < heard.size(); ++i) {
+    EXPECT_GE(heard[i].first, i ? heard[i - 1].first : 0.0) << "at " << heard[i].second;
+    EXPECT_LE(heard[i].first, 1.0);
+    if (stages.empty() || stages.back() != heard[i].second) stages.push_back(heard[i].second);
+  }
+  EXPECT_EQ(stages, (std::vector<std::string>{"reading", "parsing"}));
+  EXPECT_EQ(heard.front().first, 0.0);
+  EXPECT_GT(heard.back().first, 0.5);  // well into the parse
+
+  const std::size_t firstParse = std::size_t(
+      std::find_if(heard.begin(), heard.end(), [](const auto& h) { return h.second == "parsing"; }) - heard.begin());
+  for (std::size_t stopAt : {std::size_t{0}, firstParse, heard.size() - 1}) {
+    std::size_t calls = 0;
+    ro.progress = [&calls, stopAt](double, const std::string&) { return calls++ < stopAt; };
+    std::string stage;
+    try {
+      (void)readMesh(file, ro);
+    } catch (const ReadCancelled& e) {
+      stage = e.stage();
+    }
+    EXPECT_EQ(stage, heard[stopAt].second) << "stopped at check " << stopAt;
+    EXPECT_EQ(calls, stopAt + 1) << "no check after the one that said stop";
   }
 }
 

@@ -19,7 +19,9 @@ QStringList MeshImportPlugin::nameFilters() const {
 }
 
 ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, const RepairProgress& progress) const {
-  LoadedMesh loaded = readMesh(path);
+  ReadOptions reading;
+  reading.progress = progress;  // "reading", "parsing": Cancel does not wait for a large text file
+  LoadedMesh loaded = readMesh(path, reading);
   ImportedBone out;
   out.source = path;
   const BoneFileFacts facts = factsFromComments(loaded.comments);

@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "reamsim/mesh/MeshError.h"
+#include "reamsim/mesh/MeshIO.h"
 
 namespace reamsim::io {
 namespace {
@@ -23,7 +24,7 @@ struct FileCloser {
 
 std::string errnoText(int err) { return err ? std::string(std::strerror(err)) : std::string("unknown error"); }
 
-std::string readFileBytes(const std::string& path) {
+std::string readFileBytes(const std::string& path, const StageProgress* progress) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
@@ -38,8 +39,14 @@ std::string readFileBytes(const std::string& path) {
   std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
   if (!f) throw InputError(path, "cannot open the file for reading: " + errnoText(errno));
   std::string bytes(static_cast<std::size_t>(size), '\0');
-  const std::size_t got = size ? std::fread(bytes.data(), 1, bytes.size(), f.get()) : 0;
-  if (got != bytes.size()) throw InputError(path, "read error (file changed or unreadable while reading)");
+  constexpr std::size_t kPiece = std::size_t{8} << 20;
+  for (std::size_t done = 0; done < bytes.size();) {
+    if (progress && !progress->keepGoing(double(done) / double(bytes.size()))) throw ReadCancelled(progress->stage);
+    const std::size_t want = std::min(kPiece, bytes.size() - done);
+    const std::size_t got = std::fread(bytes.data() + done, 1, want, f.get());
+    if (got != want) throw InputError(path, "read error (file changed or unreadable while reading)");
+    done += got;
+  }
   if (bytes.empty()) throw InputError(path, "file is empty");
   return bytes;
 }

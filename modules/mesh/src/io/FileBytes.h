@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <string>
 
+#include "reamsim/mesh/RepairProgress.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
 namespace reamsim::io {
@@ -11,7 +12,8 @@ namespace reamsim::io {
 constexpr std::size_t kMaxMeshFileBytes = std::size_t{2} * 1024 * 1024 * 1024;
 
 // Reads the whole file; throws InputError if it is missing, unreadable, a directory, empty or > 2 GiB.
-std::string readFileBytes(const std::string& path);
+// `progress` (may be null) hears the fraction read after every 8 MiB; ReadCancelled when it says stop.
+std::string readFileBytes(const std::string& path, const StageProgress* progress = nullptr);
 
 // strerror(err) for an error message; "unknown error" for 0.
 std::string errnoText(int err);

@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "reamsim/mesh/RepairProgress.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
 namespace reamsim::io {
@@ -32,11 +33,12 @@ std::vector<std::string> commentLinesToWrite(const std::vector<std::string>& com
 // left out).
 std::vector<std::string> binaryStlCommentsKept(const std::vector<std::string>& comments);
 
-RawMesh readStl(const std::string& path, std::string_view data);
-RawMesh readObj(const std::string& path, std::string_view data);
-RawMesh readPly(const std::string& path, std::string_view data);
-RawMesh readOff(const std::string& path, std::string_view data);
-RawMesh readVtp(const std::string& path, std::string_view data);
+// `progress` (may be null): how far into `data` the parse is, through MeshBuilder::watch.
+RawMesh readStl(const std::string& path, std::string_view data, const StageProgress* progress = nullptr);
+RawMesh readObj(const std::string& path, std::string_view data, const StageProgress* progress = nullptr);
+RawMesh readPly(const std::string& path, std::string_view data, const StageProgress* progress = nullptr);
+RawMesh readOff(const std::string& path, std::string_view data, const StageProgress* progress = nullptr);
+RawMesh readVtp(const std::string& path, std::string_view data, const StageProgress* progress = nullptr);
 
 // Writers return the file contents; MeshIO.cpp writes them (replaceFile).
 // `comments` go where the format has room: PLY 'comment' lines, OBJ and OFF '#' lines, a VTP field-data

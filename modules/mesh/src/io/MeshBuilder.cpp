@@ -1,9 +1,11 @@
 #include "MeshBuilder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "reamsim/mesh/MeshError.h"
+#include "reamsim/mesh/MeshIO.h"
 
 namespace reamsim::io {
 namespace {
@@ -33,7 +35,12 @@ void MeshBuilder::checkFinite(const Vec3& p, long line, const std::string& what)
   if (axis) fail(line, what + " has a non-finite coordinate (" + axis + " = " + coordText(bad) + ")");
 }
 
+void MeshBuilder::report() const {
+  if (!progress_->keepGoing(std::min(1.0, double(offset_()) / double(size_)))) throw ReadCancelled(progress_->stage);
+}
+
 std::uint32_t MeshBuilder::addVertex(const Vec3& p, long line) {
+  tick();
   const std::size_t n = mesh_.vertices.size();
   checkFinite(p, line, "vertex " + std::to_string(n + static_cast<std::size_t>(base_)));
   if (n >= kMaxVertices) fail(line, "too many vertices (more than 2^32 - 1)");
@@ -53,6 +60,7 @@ std::uint32_t MeshBuilder::weld(const Vec3& p, long line) {
 
 void MeshBuilder::addPolygon(const std::vector<std::int64_t>& indices, std::uint64_t indexLimit, long line,
                              std::size_t faceNumber) {
+  tick();
   const std::string face = "face " + std::to_string(faceNumber + static_cast<std::size_t>(base_));
   if (indices.size() < 3)
     fail(line, face + " has only " + std::to_string(indices.size()) + " vertices (at least 3 needed)");

@@ -4,10 +4,12 @@
 // note), polygons with < 3 vertices are an error, and a file without triangles is an error.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
+#include "reamsim/mesh/RepairProgress.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
 namespace reamsim::io {
@@ -20,6 +22,14 @@ class MeshBuilder {
   // Reserve only counts already checked against the file size.
   void reserve(std::size_t vertices, std::size_t triangles);
 
+  // Every 32768 vertices and faces added, tells `progress` (may be null) how far into the file's `size` bytes
+  // the parser is (`offset()`), and throws ReadCancelled when it says stop.
+  void watch(const StageProgress* progress, std::function<std::size_t()> offset, std::size_t size) {
+    progress_ = progress;
+    offset_ = std::move(offset);
+    size_ = size;
+  }
+
   std::size_t vertexCount() const { return mesh_.vertices.size(); }
   std::size_t triangleCount() const { return mesh_.triangles.size(); }
 
@@ -29,6 +39,7 @@ class MeshBuilder {
   // corner for messages (e.g. "triangle 5 corner 1"); it is called only when there is a problem.
   template <class WhereFn>
   std::uint32_t addWeldedVertex(const Vec3& p, long line, WhereFn&& where) {
+    tick();
     if (!isFinite(p)) checkFinite(p, line, where());
     return weld(p, line);
   }
@@ -37,7 +48,10 @@ class MeshBuilder {
   // against `indexLimit` (the number of vertices the file has). `faceNumber` is 0-based.
   void addPolygon(const std::vector<std::int64_t>& indices, std::uint64_t indexLimit, long line,
                   std::size_t faceNumber);
-  void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) { mesh_.triangles.push_back({a, b, c}); }
+  void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    tick();
+    mesh_.triangles.push_back({a, b, c});
+  }
 
   // Checks the result has triangles, adds the triangulation note; leaves the builder empty.
   TriangleMesh finish(std::vector<std::string>& notes);
@@ -46,12 +60,20 @@ class MeshBuilder {
   [[noreturn]] void fail(long line, const std::string& problem) const;
   void checkFinite(const Vec3& p, long line, const std::string& what) const;
   std::uint32_t weld(const Vec3& p, long line);
+  void tick() {
+    if (progress_ && (++added_ & 32767) == 0) report();
+  }
+  void report() const;
 
   std::string file_;
   int base_;
   TriangleMesh mesh_;
   std::size_t polygonsTriangulated_ = 0;
   std::unordered_map<Vec3, std::uint32_t, Vec3PositionHash> weld_;
+  const StageProgress* progress_ = nullptr;
+  std::function<std::size_t()> offset_;
+  std::size_t size_ = 1;
+  std::size_t added_ = 0;
 };
 
 }  // namespace reamsim::io

@@ -46,7 +46,7 @@ Units parseUnits(const std::string& text) {
 
 LoadedMesh readMesh(const std::string& path, const ReadOptions& options) {
   const std::string ext = extensionOf(path);
-  io::RawMesh (*reader)(const std::string&, std::string_view) = nullptr;
+  io::RawMesh (*reader)(const std::string&, std::string_view, const StageProgress*) = nullptr;
   if (ext == ".stl") reader = io::readStl;
   else if (ext == ".obj") reader = io::readObj;
   else if (ext == ".ply") reader = io::readPly;
@@ -55,8 +55,12 @@ LoadedMesh readMesh(const std::string& path, const ReadOptions& options) {
   else
     throw InputError(path, "unknown mesh file extension '" + ext + "' (supported: " + supportedList() + ")");
 
-  const std::string bytes = io::readFileBytes(path);
-  io::RawMesh raw = reader(path, bytes);
+  // The bytes first (a fifth of the bar: the parse of a text format takes longer), then the parse.
+  const StageProgress reading{&options.progress, 0.0, 0.2, "reading"};
+  const StageProgress parsing{&options.progress, 0.2, 1.0, "parsing"};
+  const bool watched = bool(options.progress);
+  const std::string bytes = io::readFileBytes(path, watched ? &reading : nullptr);
+  io::RawMesh raw = reader(path, bytes, watched ? &parsing : nullptr);
 
   LoadedMesh out;
   out.mesh = std::move(raw.mesh);

@@ -23,9 +23,10 @@ bool isIgnoredStatement(std::string_view k) {
 
 }  // namespace
 
-RawMesh readObj(const std::string& path, std::string_view data) {
+RawMesh readObj(const std::string& path, std::string_view data, const StageProgress* progress) {
   TextScanner s(data, path, '#');
   MeshBuilder b(path, 1);
+  b.watch(progress, [&s] { return s.offsetAfterLine(); }, data.size());
   RawMesh out;
   out.format = "obj";
   s.collectCommentLines(&out.comments);

@@ -32,7 +32,7 @@ bool parseKeyword(std::string_view tok, Variant& v, TextScanner& s) {
 
 }  // namespace
 
-RawMesh readOff(const std::string& path, std::string_view data) {
+RawMesh readOff(const std::string& path, std::string_view data, const StageProgress* progress) {
   TextScanner s(data, path, '#');
   RawMesh out;
   out.format = "off";
@@ -65,6 +65,7 @@ RawMesh readOff(const std::string& path, std::string_view data) {
 
   MeshBuilder b(path);
   b.reserve(static_cast<std::size_t>(nv), static_cast<std::size_t>(nf));
+  b.watch(progress, [&s] { return s.offsetAfterLine(); }, data.size());
   for (std::int64_t i = 0; i < nv; ++i) {
     if (!s.nextNonEmptyLine())
       s.fail("unexpected end of file after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices (file truncated?)");

@@ -209,6 +209,7 @@ class ValueSource {
   virtual ~ValueSource() = default;
   virtual double value(Type t, const Where& where) = 0;
   virtual long line() const = 0;
+  virtual std::size_t offset() const = 0;  // bytes of the body read so far
 };
 
 class BinarySource : public ValueSource {
@@ -232,6 +233,7 @@ class BinarySource : public ValueSource {
     return 0;
   }
   long line() const override { return 0; }
+  std::size_t offset() const override { return in_.offset(); }
   std::size_t remaining() const { return in_.remaining(); }
 
  private:
@@ -259,6 +261,7 @@ class AsciiSource : public ValueSource {
     return v;
   }
   long line() const override { return firstLine_ + s_.lineNumber(); }
+  std::size_t offset() const override { return s_.offsetAfterLine(); }
   void expectEnd() {
     std::string_view tok;
     if (s_.tokenAcrossLines(tok))
@@ -335,7 +338,7 @@ void appendHeader(std::string& out, const TriangleMesh& mesh, const char* format
 
 }  // namespace
 
-RawMesh readPly(const std::string& path, std::string_view data) {
+RawMesh readPly(const std::string& path, std::string_view data, const StageProgress* progress) {
   const Header h = parseHeader(path, data);
   const Layout l = findLayout(path, h);
   const std::string_view body = data.substr(h.dataOffset);
@@ -347,11 +350,13 @@ RawMesh readPly(const std::string& path, std::string_view data) {
   if (h.encoding == Encoding::Ascii) {
     out.format = "ply-ascii";
     AsciiSource src(body, path, h.lastLine);
+    b.watch(progress, [&src] { return src.offset(); }, body.size());
     readElements(path, h, l, src, nullptr, b);
     src.expectEnd();
   } else {
     out.format = "ply-binary";
     BinarySource src(body, path, h.encoding == Encoding::BinaryBE);
+    b.watch(progress, [&src] { return src.offset(); }, body.size());
     readElements(path, h, l, src, &src, b);
     if (src.remaining() != 0)
       out.notes.push_back("PLY: " + std::to_string(src.remaining()) + " bytes after the last element were ignored");

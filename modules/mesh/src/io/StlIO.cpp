@@ -79,7 +79,7 @@ std::vector<std::string> commentsOfSolidName(std::string_view name) {
   return out;
 }
 
-RawMesh readBinary(const std::string& path, std::string_view data) {
+RawMesh readBinary(const std::string& path, std::string_view data, const StageProgress* progress) {
   if (data.size() < kHeader)
     throw InputError(path, "not a valid STL file: too small for a binary STL header (" + std::to_string(data.size()) +
                                " bytes, need 84) and not ASCII STL");
@@ -101,6 +101,7 @@ RawMesh readBinary(const std::string& path, std::string_view data) {
   out.comments = commentsOfHeader(data.substr(0, 80));
   MeshBuilder b(path);
   b.reserve(count, count);  // justified: the file holds all records
+  b.watch(progress, [&in] { return in.offset(); }, data.size());
   const std::string what = "triangle data";  // sizes were checked above; reads cannot fail
   for (std::uint32_t t = 0; t < count; ++t) {
     in.skip(12, what);  // normal: recomputed by consumers, never trusted
@@ -117,9 +118,10 @@ RawMesh readBinary(const std::string& path, std::string_view data) {
   return out;
 }
 
-RawMesh readAscii(const std::string& path, std::string_view data) {
+RawMesh readAscii(const std::string& path, std::string_view data, const StageProgress* progress) {
   TextScanner s(data, path);
   MeshBuilder b(path);
+  b.watch(progress, [&s] { return s.offsetAfterLine(); }, data.size());
   RawMesh out;
   out.format = "stl-ascii";
   std::string_view tok;
@@ -185,16 +187,16 @@ Vec3 unitNormal(const TriangleMesh& m, const Triangle& t) {
 
 }  // namespace
 
-RawMesh readStl(const std::string& path, std::string_view data) {
+RawMesh readStl(const std::string& path, std::string_view data, const StageProgress* progress) {
   if (data.size() >= kHeader) {
     std::uint32_t count = 0;
     ByteReader in(data, path, false);
     in.skip(80, "header");
     count = in.read<std::uint32_t>("triangle count");
-    if (kHeader + kRecord * static_cast<std::uint64_t>(count) == data.size()) return readBinary(path, data);
+    if (kHeader + kRecord * static_cast<std::uint64_t>(count) == data.size()) return readBinary(path, data, progress);
   }
-  if (looksLikeAsciiStl(data)) return readAscii(path, data);
-  return readBinary(path, data);
+  if (looksLikeAsciiStl(data)) return readAscii(path, data, progress);
+  return readBinary(path, data, progress);
 }
 
 std::string writeStl(const TriangleMesh& mesh, const std::string& path, bool binary,

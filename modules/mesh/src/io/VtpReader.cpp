@@ -430,7 +430,7 @@ void checkLooksLikeVtkXml(const std::string& path, std::string_view data) {
 
 }  // namespace
 
-RawMesh readVtp(const std::string& path, std::string_view data) {
+RawMesh readVtp(const std::string& path, std::string_view data, const StageProgress* progress) {
   checkLooksLikeVtkXml(path, data);
   const VtpDocument doc = scanVtpDocument(path, data);
   if (doc.file.empty()) throw InputError(path, "not a VTK XML file (no <VTKFile> element)");
@@ -486,6 +486,8 @@ RawMesh readVtp(const std::string& path, std::string_view data) {
   RawMesh out;
   out.format = "vtp";
   MeshBuilder b(path);
+  // The arrays are decoded whole before the mesh is built: progress by the points and polygons added.
+  b.watch(progress, [&b] { return b.vertexCount() + b.triangleCount(); }, std::size_t(np + npolys + nstrips) + 1);
   if (np > 0) {
     const ArrayElement* points = findArray(doc, "Points", nullptr);
     if (!points) throw InputError(path, "the file declares " + std::to_string(np) + " points but has no Points array");

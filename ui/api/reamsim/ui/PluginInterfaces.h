@@ -51,7 +51,8 @@ class MeshImportInterface {
   virtual QStringList extensions() const = 0;   // lower case, without dot
   // Runs on a worker thread. Throws reamsim::InputError naming the file and the problem. The facts a
   // ReamSim writer stored (BoneFileFacts) are read back; in other files the frame is Unspecified. `progress` follows the
-  // repair (minutes for a large dirty mesh) and stops it by returning false (RepairCancelled is thrown).
+  // reading (seconds for a large text file), then the validation or the repair (minutes for a large dirty mesh),
+  // and stops them by returning false (a reamsim::StageCancelled is thrown: ReadCancelled or RepairCancelled).
   virtual ImportedBone importBone(const std::string& path, bool repair, const RepairProgress& progress = {}) const = 0;
   // Format from the extension; throws reamsim::InputError. `facts` go into the file's comments.
   // May run on a worker thread. The file is replaced whole or not at all; `progress` hears the fraction

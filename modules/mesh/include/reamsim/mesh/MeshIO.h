@@ -15,6 +15,16 @@ enum class Units { Auto, Millimetres, Metres };
 
 struct ReadOptions {
   Units units = Units::Auto;  // Auto: metre-scale input (bounding box diagonal < 2 units) is scaled to mm
+  // Hears the fraction done at "reading" (the file's bytes, in pieces of 8 MiB) and "parsing" (how far into
+  // them the parser is, every 32768 vertices and faces); returning false stops the read with ReadCancelled.
+  // Seconds at millions of faces in a text format: an import's Cancel does not wait for them.
+  ProgressCallback progress;
+};
+
+// Thrown when a read's progress callback asked to stop.
+class ReadCancelled : public StageCancelled {
+ public:
+  explicit ReadCancelled(const std::string& stage) : StageCancelled("reading cancelled during " + stage, stage) {}
 };
 
 struct LoadedMesh {
