@@ -10,12 +10,14 @@
 #include <atomic>
 #include <memory>
 #include <set>
+#include <unordered_map>
 #include <optional>
 
 #include "BoneView.h"
 #include "ReamerMotion.h"
 #include "ReamSession.h"
 #include "RecoveryRead.h"
+#include "SavedHistory.h"
 #include "reamsim/ream/ScapularFrame.h"
 
 class QAction;
@@ -44,6 +46,18 @@ struct ImportOutcome {
   ImportedBone bone;
   QString error;
   QString stoppedAt;  // the repair's stage where a cancelled import's worker stopped
+  // The undo history a save wrote beside the file (BoneFileFacts::historyStates), read on the worker too; or why
+  // it could not be.
+  std::optional<SavedHistoryRead> history;
+  QString historyError;
+};
+
+// A saved undo history adopted by an opened bone: the saved log's revisions become its states' (continueLog),
+// and the log's removed volume is counted from its first state.
+struct AdoptedHistory {
+  std::unordered_map<std::uint64_t, std::uint64_t> revisions;  // written → adopted, state by state
+  double removedSinceFirstMm3 = 0;  // from the history's first state to the bone as opened
+  int steps = 0;                    // undo steps it brings
 };
 
 // How a plan's steps are run: as fast as they compute, or each timed pose at its recorded time (t_ms: a path
@@ -202,15 +216,23 @@ class MainWindow : public QMainWindow {
   void openLandmarksBeside(const QString& bonePath);
   QString keepInRestored(const QString& file) const;  // a copy in recovery/restored/ named <time>_<name>
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
-  // The bone's mesh only (with `facts` in its comments), on a worker with a progress dialog (Cancel); errors in
-  // a dialog; does not mark it saved. True when written.
-  bool writeBoneFile(const QString& path, const BoneFileFacts& facts);
+  // The bone's mesh (with `facts` in its comments) and, when given, its undo history beside it (SavedHistory.h),
+  // on a worker with a progress dialog (Cancel: the bone file there unchanged); errors in a dialog; does not mark
+  // it saved. True when written.
+  bool writeBoneFile(const QString& path, const BoneFileFacts& facts, const BoneHistory* history = nullptr);
   static QString cutLogPathBeside(const QString& bonePath);  // NAME.ply.cut_log.csv beside NAME.ply
   static QString earlierCutLogPathBeside(const QString& bonePath);  // NAME.cut_log.csv (saves before session 57)
   // A bone opened from a file brings the cut log saved beside it (MainWindowFiles.cpp).
   // `saved`: the facts the bone's file holds (none in a file no save by ReamSim wrote). Returns what the status
   // bar adds to "Opened …".
-  QString openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved);
+  QString openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved, const AdoptedHistory& history = {});
+  // The undo history read beside an opened bone (ImportOutcome::history) becomes its history, with its steps on
+  // the undo stack and the stack at the state the save left; a history that could not be read is named in a
+  // dialog and the bone opens without it.
+  AdoptedHistory adoptSavedHistory(ImportOutcome& out);
+  // One undo step for each state after the first of the bone's history just adopted (a crash's or a save's),
+  // named "<label> (<when>): <volume> mm³, <faces> faces". The stack then stands at the history's last state.
+  void stackAdoptedSteps(const QString& when);
   // A file of the user's beside the bone that a save would replace but that could not be read when the bone was
   // opened: moved aside to NAME.unreadable (.2, .3, … when taken) instead. Throws std::runtime_error.
   static void moveAsideUnreadable(const QString& file);

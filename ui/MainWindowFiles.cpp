@@ -27,6 +27,7 @@
 
 #include "BonePlacement.h"
 #include "BoneCommands.h"
+#include "CutCommand.h"
 #include "MainWindow.h"
 #include "PluginHost.h"
 #include "WriteProgressDialog.h"
@@ -105,6 +106,14 @@ void MainWindow::openFile(const QString& path, bool repair) {
     ImportOutcome out;
     try {
       out.bone = importer->importBone(file, repair, progress);
+      if (out.bone.saved.historyStates) {
+        try {
+          out.history = readSavedHistory(historyPathBeside(QString::fromStdString(file)), out.bone.saved,
+                                         BoneState::fromMesh(out.bone.mesh));
+        } catch (const std::exception& e) {
+          out.historyError = QString::fromStdString(e.what());
+        }
+      }
     } catch (const StageCancelled& e) {  // reading, validating or repairing
       out.stoppedAt = QString::fromStdString(e.stage());
     } catch (const std::exception& e) {
@@ -155,13 +164,18 @@ void MainWindow::importFinished() {
   try {
     if (!session_->reamer()->cuttingVolume()) session_->setReamer(loadPreset(kDefaultReamerPreset, reamerPresetsPath()));
     const Bounds b = BoneState::fromMesh(out.bone.mesh).bounds();
-    const BoneFileFacts saved{out.bone.frame, out.bone.removedMm3, out.bone.cutLogRows, out.bone.cutLogLastMs};
+    const BoneFileFacts saved = out.bone.saved;
     session_->plan()->setPoses({});
     installBone(std::move(out.bone), QFileInfo(importPath_).fileName(), importPath_);
+    const AdoptedHistory history = adoptSavedHistory(out);
     openLandmarksBeside(importPath_);
-    const QString withLog = openCutLogBeside(importPath_, saved);
+    const QString withLog = openCutLogBeside(importPath_, saved, history);
     session_->moveReamer(startPoseFor(b));
-    statusBar()->showMessage(tr("Opened %1").arg(importPath_) + withLog, withLog.isEmpty() ? 5000 : 15000);
+    const QString withHistory = history.steps == 0 ? QString()
+                                : history.steps == 1 ? tr(", and its undo history (1 step)")
+                                                     : tr(", and its undo history (%1 steps)").arg(history.steps);
+    statusBar()->showMessage(tr("Opened %1").arg(importPath_) + withLog + withHistory,
+                             withLog.isEmpty() && withHistory.isEmpty() ? 5000 : 15000);
   } catch (const std::exception& e) {  // e.g. the reamer presets file is missing or broken
     showError(tr("Cannot open %1").arg(QFileInfo(importPath_).fileName()), QString::fromStdString(e.what()));
   }
@@ -196,12 +210,18 @@ bool MainWindow::saveBoneAs(const QString& path) {
   const SavedNotes notes = notesOf(*session_->log());
   const BonePlanning planning = planningOf(*session_->bone());
   // What reopening the bone needs to continue this log: the volume removed before this state (undone cuts not
-  // counted) and the log's length, to tell it from another log put beside the bone later.
+  // counted) and the log's length, to tell it from another log put beside the bone later; and to undo and redo
+  // its cuts again, its undo history (its states share storage: a copy is cheap), and where in it the bone is.
   const std::vector<CutLogEntry>& rows = session_->log()->entries();
-  const BoneFileFacts facts{session_->bone()->patientFrame(),
-                            session_->initialVolumeMm3() - session_->bone()->current().volume(), rows.size(),
-                            rows.empty() ? 0 : rows.back().timeUnixMs};
-  const bool written = writeBoneFile(path, facts);
+  const BoneHistory history = session_->bone()->history();
+  BoneFileFacts facts{session_->bone()->patientFrame(),
+                      session_->initialVolumeMm3() - session_->bone()->current().volume(), rows.size(),
+                      rows.empty() ? 0 : rows.back().timeUnixMs};
+  if (history.size() >= 2) {
+    facts.historyStates = history.size();
+    facts.historyCursor = history.cursor();
+  }
+  const bool written = writeBoneFile(path, facts, facts.historyStates ? &history : nullptr);
   disconnect(watch);
   if (!written) return false;
   if (generation != boneGeneration_) {  // an import finished meanwhile: the file holds the bone that was there
@@ -238,6 +258,13 @@ bool MainWindow::saveBoneAs(const QString& path) {
     showError(tr("Cannot save the landmarks %1").arg(QFileInfo(landmarksPath).fileName()), QString::fromStdString(e.what()));
     return false;
   }
+  // No undo history to save (written with the bone otherwise): none left beside from an earlier save either.
+  const QString historyPath = historyPathBeside(path);
+  if (!facts.historyStates && QFileInfo::exists(historyPath) && !QFile::remove(historyPath)) {
+    showError(tr("Cannot save %1").arg(QFileInfo(path).fileName()),
+              tr("%1: cannot remove the undo history of an earlier save").arg(historyPath));
+    return false;
+  }
   savedPlanning_ = planning;
   savedNotes_ = notes;
   const QString roomNote = factsLeftOut(path, facts);
@@ -268,13 +295,15 @@ QString MainWindow::factsLeftOut(const QString& path, const BoneFileFacts& facts
   const auto keeps = [&kept](std::string_view prefix) {
     return std::any_of(kept.begin(), kept.end(), [prefix](const std::string& c) { return c.rfind(prefix, 0) == 0; });
   };
+  QString out;
   if (facts.cutLogRows && !keeps(bone_file_facts::kCutLog))
-    return tr(". The file has no room to record the cut log saved beside it: reopened, it comes without its log "
-              "(PLY, OBJ, OFF, VTP or ASCII STL keep it)");
-  if (facts.removedMm3 && facts.cutLogRows && *facts.cutLogRows > 0 && !keeps(bone_file_facts::kRemoved))
-    return tr(". The file has no room for the volume removed so far: reopened, its log's cumulative volume goes on "
-              "from the log's last row (PLY, OBJ, OFF, VTP or ASCII STL keep it)");
-  return {};
+    out = tr(". The file has no room to record the cut log saved beside it: reopened, it comes without its log");
+  else if (facts.removedMm3 && facts.cutLogRows && *facts.cutLogRows > 0 && !keeps(bone_file_facts::kRemoved))
+    out = tr(". The file has no room for the volume removed so far: reopened, its log's cumulative volume goes on "
+             "from the log's last row");
+  if (facts.historyStates && !keeps(bone_file_facts::kHistory))
+    out += tr(". The file has no room to record the undo history saved beside it: reopened, Undo starts there");
+  return out.isEmpty() ? out : out + tr(" (PLY, OBJ, OFF, VTP or ASCII STL keep it all)");
 }
 
 bool MainWindow::saveBone() { return savedPath_.isEmpty() ? saveBoneAndCutLogInteractive() : saveBoneAs(savedPath_); }
@@ -282,7 +311,7 @@ bool MainWindow::saveBone() { return savedPath_.isEmpty() ? saveBoneAndCutLogInt
 // Encoding and writing a bone take 0.2 s at 405k faces and seconds at millions (a CT bone repaired at 0.5 mm
 // has 17 million): done on a worker, with a window-modal dialog that shows how far it is and can cancel,
 // while this waits in a local event loop (the window keeps painting). Cancel keeps the file that was there.
-bool MainWindow::writeBoneFile(const QString& path, const BoneFileFacts& facts) {
+bool MainWindow::writeBoneFile(const QString& path, const BoneFileFacts& facts, const BoneHistory* history) {
   if (!plugins_.meshImport()) {
     showError(tr("Save"), tr("Cannot save %1: no mesh import plugin is loaded (Help → Plugins).").arg(path));
     return false;
@@ -297,14 +326,18 @@ bool MainWindow::writeBoneFile(const QString& path, const BoneFileFacts& facts) 
   };
   const MeshImportInterface* writer = plugins_.meshImport();
   BoneState state = session_->bone()->current();  // an immutable value, cheap to copy
+  std::optional<BoneHistory> states;                // its states share storage: cheap to copy too
+  if (history) states = *history;
   const QString name = QFileInfo(path).fileName();
   WriteProgressDialog dialog(tr("Saving %1").arg(name), this);
   saving_ = true;
   const Outcome out = dialog.runWhileShown(
-      [writer, state = std::move(state), file = path.toStdString(), facts](const ProgressCallback& progress) {
+      [writer, state = std::move(state), states = std::move(states), file = path, facts](const ProgressCallback& progress) {
         Outcome result;
         try {
-          writer->exportMesh(state.toMesh(), file, facts, progress);
+          writer->exportMesh(state.toMesh(), file.toStdString(), facts, progress);
+          // The undo history after the bone (12 MB at 405k faces, tens of ms): the bone is what matters first.
+          if (states) writeSavedHistory(historyPathBeside(file), *states);
         } catch (const WriteCancelled&) {
           result.cancelled = true;
         } catch (const std::exception& e) {
@@ -394,6 +427,45 @@ void MainWindow::moveAsideUnreadable(const QString& file) {
   if (!QFile::rename(file, aside)) throw std::runtime_error(file.toStdString() + ": cannot move the unreadable file aside");
 }
 
+void MainWindow::stackAdoptedSteps(const QString& when) {
+  const BoneHistory& adopted = session_->bone()->history();
+  for (std::size_t k = 1; k < adopted.size(); ++k) {
+    const BoneState& before = adopted.entries()[k - 1].state;
+    const BoneState& after = adopted.entries()[k].state;
+    session_->undoStack()->push(new CutCommand(*session_->bone(), tr("%1 (%2): %L3 mm³, %L4 faces")
+                                                                      .arg(QString::fromStdString(adopted.entries()[k].label), when)
+                                                                      .arg(before.volume() - after.volume(), 0, 'f', 2)
+                                                                      .arg(after.liveTriangleCount())));
+  }
+}
+
+// Since session 57 a save writes the bone's undo history beside it: the reopened bone undoes the cuts made before
+// the save (down to the bone first opened) and redoes those undone before it. The history's state at the save is
+// the bone as read (readSavedHistory checks it); the bone takes the history's exact coordinates. Opened so, the
+// bone is as saved: the stack's clean point is the save's state.
+AdoptedHistory MainWindow::adoptSavedHistory(ImportOutcome& out) {
+  AdoptedHistory adopted;
+  if (!out.historyError.isEmpty())
+    showError(tr("Undo history not read"), tr("%1\n\nThe bone opens without it: Undo cannot go back before it.").arg(out.historyError));
+  if (!out.history) return adopted;
+  const std::size_t cursor = out.bone.saved.historyCursor;
+  const std::vector<std::uint64_t> written = std::move(out.history->writtenRevisions);
+  session_->adoptHistory(std::move(out.history->history));
+  out.history.reset();
+  const BoneHistory& history = session_->bone()->history();
+  for (std::size_t k = 0; k < history.size() && k < written.size(); ++k)
+    adopted.revisions[written[k]] = history.entries()[k].revision;
+  stackAdoptedSteps(tr("before the save"));
+  session_->undoStack()->setIndex(int(cursor));  // undoes what had been undone before the save
+  session_->undoStack()->setClean();
+  session_->restartPath(ReamSession::PathStart::AsOpened);
+  savedBoneRevision_ = session_->bone()->currentRevision();
+  savedRevisions_.insert(*savedBoneRevision_);
+  adopted.removedSinceFirstMm3 = history.entries().front().state.volume() - session_->bone()->current().volume();
+  adopted.steps = session_->undoStack()->count();
+  return adopted;
+}
+
 // A bone opened from a file its Save wrote brings the cut log saved beside it (NAME.ply.cut_log.csv, or
 // NAME.cut_log.csv as saves before session 57 named it): the log panel lists its rows with their notes, new steps
 // continue its numbering, and the cumulative volume goes on from what had been removed when the bone was saved
@@ -403,7 +475,7 @@ void MainWindow::moveAsideUnreadable(const QString& file) {
 // the bone opens without it, and a save to NAME.ply moves a file at NAME.ply.cut_log.csv aside instead of
 // replacing it (an earlier save's NAME.cut_log.csv is never written). Returns what the status bar adds to
 // "Opened …" (empty without a log).
-QString MainWindow::openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved) {
+QString MainWindow::openCutLogBeside(const QString& bonePath, const BoneFileFacts& saved, const AdoptedHistory& history) {
   const auto rowsText = [](std::size_t n) { return std::to_string(n) + (n == 1 ? " row" : " rows"); };
   QString file = cutLogPathBeside(bonePath);
   if (!QFileInfo::exists(file) && QFileInfo::exists(earlierCutLogPathBeside(bonePath)))
@@ -437,7 +509,13 @@ QString MainWindow::openCutLogBeside(const QString& bonePath, const BoneFileFact
   }
   if (rows.empty()) return {};
   const std::size_t count = rows.size();
-  session_->continueLog(std::move(rows), saved.removedMm3);  // without it: from the last row's cumulative volume
+  // Removed before the history's first state: what the save recorded (a binary STL may have had no room for it:
+  // then the last row's cumulative volume), less the cuts between that state and the bone as saved when a saved
+  // undo history came back.
+  std::optional<double> removedBefore = saved.removedMm3;
+  if (!history.revisions.empty())
+    removedBefore = removedBefore.value_or(rows.back().cumulativeMm3) - history.removedSinceFirstMm3;
+  session_->continueLog(std::move(rows), removedBefore, history.revisions);
   savedNotes_ = notesOf(*session_->log());  // as saved
   updateTitle();
   const QString steps = count == 1 ? tr("1 step") : tr("%1 steps").arg(count);

@@ -253,14 +253,7 @@ void MainWindow::offerRecovery() {
     const BoneHistory& adopted = session_->bone()->history();
     for (std::size_t k = 0; k < adopted.size() && k < found->historyRevisions.size(); ++k)
       revisionMap[found->historyRevisions[k]] = adopted.entries()[k].revision;
-    for (std::size_t k = 1; k < adopted.size(); ++k) {
-      const BoneState& before = adopted.entries()[k - 1].state;
-      const BoneState& after = adopted.entries()[k].state;
-      session_->undoStack()->push(new CutCommand(*session_->bone(), tr("%1 (before the crash): %L2 mm³, %L3 faces")
-                                                                        .arg(QString::fromStdString(adopted.entries()[k].label))
-                                                                        .arg(before.volume() - after.volume(), 0, 'f', 2)
-                                                                        .arg(after.liveTriangleCount())));
-    }
+    stackAdoptedSteps(tr("before the crash"));
     session_->undoStack()->setIndex(int(found->historyCursor));  // undoes what had been undone before the crash
   }
   session_->restartPath(ReamSession::PathStart::AsRecovered);  // the recovered bone is where a path starts

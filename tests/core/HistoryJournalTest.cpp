@@ -123,6 +123,20 @@ TEST(HistoryJournal, EveryStateReadsBackAsWrittenWithTheCursor) {
   EXPECT_LT(stats.uniqueBytes * 4, stats.logicalBytes);
 }
 
+// A journal written at once for one history (a save's) names its states in order: journalRevisions hands them to
+// readHistoryJournal without the caller keeping them (SavedHistory.h). A file that is not a journal is named.
+TEST(HistoryJournal, AJournalWrittenWholeListsItsStatesInOrder) {
+  std::mt19937 rng(3);
+  const BoneHistory h = sampleHistory(rng, 7);
+  TempFile f("whole");
+  HistoryJournalWriter(f.path).append(h.entries());
+  EXPECT_EQ(journalRevisions(f.path), revisionsOf(h));
+  expectSameStates(readHistoryJournal(f.path, journalRevisions(f.path), 6), h);
+  TempFile other("not_a_journal");
+  std::ofstream(other.path) << "solid x\n";
+  EXPECT_THROW(journalRevisions(other.path), InputError);
+}
+
 // The edit changedTriangleSlots once missed: a triangle back in its own slot, one corner's slot given to a new
 // vertex by the same edit. Read back, the moved corner is where it was written.
 TEST(HistoryJournal, ATriangleBackInItsSlotWithAMovedCornerReadsBackMoved) {

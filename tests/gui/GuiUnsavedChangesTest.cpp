@@ -141,7 +141,7 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   }
   EXPECT_EQ(contents(path), bone);
   EXPECT_EQ(contents(log), cuts);
-  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.ply", "bone.ply.cut_log.csv", "bone.ply.landmarks.json"}));
+  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.ply", "bone.ply.cut_log.csv", "bone.ply.history.rsj", "bone.ply.landmarks.json"}));
   EXPECT_TRUE(w.hasUnsavedChanges());
   EXPECT_TRUE(w.lastError().isEmpty()) << "a cancel is not an error: " << w.lastError().toStdString();
   {
@@ -152,7 +152,7 @@ TEST(GuiUnsavedChanges, ACancelledSaveKeepsTheFileThereAndTheWindowOpen) {
   }
   EXPECT_TRUE(w.isVisible());
   EXPECT_EQ(contents(path), bone);
-  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.ply", "bone.ply.cut_log.csv", "bone.ply.landmarks.json"}));
+  EXPECT_EQ(QDir(out.path()).entryList(QDir::Files | QDir::Hidden), (QStringList{"bone.ply", "bone.ply.cut_log.csv", "bone.ply.history.rsj", "bone.ply.landmarks.json"}));
   // Let run, the same save writes the cut bone and both cuts.
   ASSERT_TRUE(w.saveBoneAs(path)) << w.lastError().toStdString();
   EXPECT_FALSE(w.hasUnsavedChanges());
@@ -473,7 +473,8 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   w.waitImport();
   EXPECT_TRUE(w.lastError().contains(logPath + ":2: 2 fields")) << w.lastError().toStdString();
   EXPECT_EQ(s.log()->size(), 0u);
-  EXPECT_EQ(s.bone()->current().volume(), s.bone()->history().entries().front().state.volume());  // the bone opened
+  EXPECT_NEAR(s.bone()->current().volume(), BoneState::fromMesh(readMesh(bonePath.toStdString()).mesh).volume(),
+              1e-9 * original);  // the bone opened
 
   // A log the bone was saved with that is gone is named too.
   s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.3));
@@ -552,6 +553,108 @@ TEST(GuiUnsavedChanges, BonesOfOneNameInTwoFormatsKeepTheirOwnCutLogs) {
   w.waitImport();
   EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
   EXPECT_EQ(s.log()->size(), 2u);
+}
+
+// The facts a save writes into the bone file's comments read back as written; a fact that does not parse whole, or
+// an undo history of fewer than two states or with its bone past its end, is no fact.
+TEST(BoneFileFacts, ReadBackAsWrittenAndNothingHalfParsed) {
+  BoneFileFacts facts{PatientFrame::RAS, 1234.5678901234567, 12, 1764781234567};
+  facts.historyStates = 5;
+  facts.historyCursor = 3;
+  const BoneFileFacts back = factsFromComments(factComments(facts));
+  EXPECT_EQ(back.frame, PatientFrame::RAS);
+  EXPECT_EQ(back.removedMm3, facts.removedMm3);
+  EXPECT_EQ(back.cutLogRows, facts.cutLogRows);
+  EXPECT_EQ(back.cutLogLastMs, facts.cutLogLastMs);
+  EXPECT_EQ(back.historyStates, std::optional<std::size_t>(5));
+  EXPECT_EQ(back.historyCursor, 3u);
+  for (const char* bad : {"reamsim undo_history 5", "reamsim undo_history 5 5", "reamsim undo_history 1 0",
+                          "reamsim undo_history 5 2x", "reamsim undo_history -3 1"})
+    EXPECT_FALSE(factsFromComments({bad}).historyStates) << bad;
+  EXPECT_TRUE(factComments(BoneFileFacts{}).empty());
+}
+
+// A save writes the bone's undo history beside it (NAME.ply.history.rsj): reopened, the bone undoes the cuts made
+// before the save and redoes those undone before it, the log's undone marks follow, and undone back to the saved
+// state it is as saved. A history that is missing or damaged is named; the bone opens without it.
+TEST(GuiUnsavedChanges, AReopenedBoneUndoesAndRedoesItsCuts) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  const Pose start = s.plan()->poses().front();  // opening a file clears the plan
+  const double original = s.bone()->current().volume();
+  std::vector<double> volumes{original};
+  for (double depth : {0.5, 0.9, 1.3}) {
+    cutOnce(s, depth);
+    volumes.push_back(s.bone()->current().volume());
+  }
+  s.undoStack()->undo();  // the third cut: Redo can bring it back
+  ASSERT_TRUE(s.waitIdle(60000));
+  QTemporaryDir dir;
+  const QString bonePath = dir.filePath("reamed.ply");
+  ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  const QString historyPath = bonePath + ".history.rsj";
+  ASSERT_TRUE(QFileInfo::exists(historyPath));
+
+  w.openFile(bonePath);
+  w.waitImport();
+  ASSERT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_TRUE(w.statusBar()->currentMessage().contains("and its undo history (3 steps)"))
+      << w.statusBar()->currentMessage().toStdString();
+  QUndoStack& undo = *s.undoStack();
+  ASSERT_EQ(undo.count(), 3);
+  EXPECT_EQ(undo.index(), 2);
+  EXPECT_TRUE(undo.canRedo());
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  EXPECT_NEAR(s.bone()->current().volume(), volumes[2], 1e-9 * original);
+  ASSERT_EQ(s.log()->size(), 3u);
+  const auto undoneRows = [&s] {
+    std::vector<bool> out;
+    for (const CutLogEntry& e : withUndoneMarked(s.log()->entries(), s.bone()->history())) out.push_back(e.undone);
+    return out;
+  };
+  EXPECT_EQ(undoneRows(), (std::vector<bool>{false, false, true}));
+
+  w.action("undo")->trigger();
+  w.action("undo")->trigger();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_NEAR(s.bone()->current().volume(), volumes[0], 1e-9 * original);  // the bone as first opened
+  EXPECT_FALSE(undo.canUndo());
+  EXPECT_TRUE(w.hasUnsavedChanges());
+  EXPECT_EQ(undoneRows(), (std::vector<bool>{true, true, true}));
+  for (int k = 0; k < 3; ++k) w.action("redo")->trigger();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_NEAR(s.bone()->current().volume(), volumes[3], 1e-9 * original);  // the cut undone before the save
+  EXPECT_EQ(undoneRows(), (std::vector<bool>{false, false, false}));
+  w.action("undo")->trigger();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_FALSE(w.hasUnsavedChanges());  // back at the saved state
+  // A new cut from there: its cumulative volume counts from the bone first opened.
+  s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.4));
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.log()->size(), 4u);
+  const CutLogEntry& next = s.log()->entries().back();
+  EXPECT_NEAR(next.cumulativeMm3, original - s.bone()->current().volume(), 1e-9 * original);
+
+  // Missing, then damaged (a record cut short): named, and the bone opens without it.
+  ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  ASSERT_TRUE(QFile::rename(historyPath, historyPath + ".kept"));
+  w.openFile(bonePath);
+  w.waitImport();
+  EXPECT_TRUE(w.lastError().contains(historyPath + ": not found")) << w.lastError().toStdString();
+  EXPECT_EQ(undo.count(), 0);
+  EXPECT_EQ(s.log()->size(), 4u);  // the log still comes back
+  EXPECT_FALSE(w.hasUnsavedChanges());
+  ASSERT_TRUE(QFile::rename(historyPath + ".kept", historyPath));
+  ASSERT_TRUE(QFile::resize(historyPath, QFileInfo(historyPath).size() - 100));
+  w.openFile(bonePath);
+  w.waitImport();
+  EXPECT_TRUE(w.lastError().contains("not the undo history saved with the bone (3 states; saved: 4)"))
+      << w.lastError().toStdString();
+  EXPECT_EQ(undo.count(), 0);
+  EXPECT_NEAR(s.bone()->current().volume(), BoneState::fromMesh(readMesh(bonePath.toStdString()).mesh).volume(),
+              1e-9 * original);
 }
 
 // As a user writes one: a double-click on the cut's row opens the note dialog with the note so far; OK writes

@@ -378,4 +378,12 @@ BoneHistory readHistoryJournal(const std::string& path, const std::vector<std::u
   return std::move(*history);
 }
 
+std::vector<std::uint64_t> journalRevisions(const std::string& path) {
+  const std::string data = readWhole(path);
+  std::uint64_t validBytes = 0;
+  std::vector<std::uint64_t> out;
+  for (const Indexed& r : indexRecords(path, data, validBytes)) out.push_back(r.revision);
+  return out;
+}
+
 }  // namespace reamsim

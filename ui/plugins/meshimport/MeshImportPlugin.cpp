@@ -24,11 +24,8 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, 
   LoadedMesh loaded = readMesh(path, reading);
   ImportedBone out;
   out.source = path;
-  const BoneFileFacts facts = factsFromComments(loaded.comments);
-  out.frame = facts.frame;
-  out.removedMm3 = facts.removedMm3;
-  out.cutLogRows = facts.cutLogRows;
-  out.cutLogLastMs = facts.cutLogLastMs;
+  out.saved = factsFromComments(loaded.comments);
+  out.frame = out.saved.frame;
   for (const std::string& n : loaded.notes) out.report += "note: " + n + "\n";
   if (out.frame != PatientFrame::Unspecified)
     out.report += std::string("patient frame from the file: ") + toString(out.frame) + "\n";

@@ -2,7 +2,8 @@
 // What ReamSim keeps in a bone file beside the surface, in its comments (docs/FORMATS.md "What a bone file says
 // of itself"): the patient frame of the coordinates and, written by a save, the cut log saved beside it (its
 // rows and its last row's time, so that reopening the bone continues that log and tells another log from it)
-// and the bone removed before this state (the log's cumulative volume at it). A binary STL's 80-byte header
+// and the bone removed before this state (the log's cumulative volume at it), and the undo history saved beside
+// it (its states and where in them this one is, since session 57). A binary STL's 80-byte header
 // holds what fits, in that order (reamsim::commentsKept). Header-only: the mesh-import plugin writes and reads
 // them, the window checks what a save kept.
 #include <charconv>
@@ -23,12 +24,15 @@ struct BoneFileFacts {
   std::optional<double> removedMm3;
   std::optional<std::size_t> cutLogRows;
   std::int64_t cutLogLastMs = 0;  // the last row's time_utc (ms since 1970), 0 without rows
+  std::optional<std::size_t> historyStates;  // the undo history saved beside: its states (2 or more)...
+  std::size_t historyCursor = 0;             // ...and which of them this bone is (0-based)
 };
 
 namespace bone_file_facts {
 inline constexpr std::string_view kFrame = "reamsim patient_frame ";
 inline constexpr std::string_view kCutLog = "reamsim cut_log ";  // rows, then the last row's time in ms
 inline constexpr std::string_view kRemoved = "reamsim removed_mm3 ";
+inline constexpr std::string_view kHistory = "reamsim undo_history ";  // states, then this one's index
 
 // The text after `prefix` in the first comment that starts with it.
 inline std::optional<std::string_view> text(const std::vector<std::string>& comments, std::string_view prefix) {
@@ -63,6 +67,8 @@ inline std::vector<std::string> factComments(const BoneFileFacts& facts) {
     const auto r = std::to_chars(buf, buf + sizeof buf, *facts.removedMm3, std::chars_format::general, 17);
     out.push_back(std::string(kRemoved) + std::string(buf, r.ptr));
   }
+  if (facts.historyStates)
+    out.push_back(std::string(kHistory) + std::to_string(*facts.historyStates) + " " + std::to_string(facts.historyCursor));
   return out;
 }
 
@@ -82,6 +88,15 @@ inline BoneFileFacts factsFromComments(const std::vector<std::string>& comments)
   }
   if (const auto removed = number<double>(text(comments, kRemoved)); removed && std::isfinite(*removed))
     out.removedMm3 = *removed;
+  if (const auto history = text(comments, kHistory)) {
+    const std::size_t space = history->find(' ');
+    const auto states = number<std::size_t>(history->substr(0, space));
+    const auto cursor = space == std::string_view::npos ? std::nullopt : number<std::size_t>(history->substr(space + 1));
+    if (states && cursor && *states >= 2 && *cursor < *states) {
+      out.historyStates = states;
+      out.historyCursor = *cursor;
+    }
+  }
   return out;
 }
 

@@ -38,10 +38,9 @@ struct ImportedBone {
   bool cuttable = false;                          // closed, outward, free of self-intersections
   PatientFrame frame = PatientFrame::Unspecified;  // convention of the coordinates (kept in the BoneNode)
   std::string source;                             // where it came from, in words (kept in the BoneNode)
-  // What a save by ReamSim recorded in the file (BoneFileFacts), unset in any other file.
-  std::optional<double> removedMm3;
-  std::optional<std::size_t> cutLogRows;
-  std::int64_t cutLogLastMs = 0;
+  // What a save by ReamSim recorded in the file beside the frame (removed volume, cut log, undo history), unset
+  // in any other file.
+  BoneFileFacts saved;
 };
 
 class MeshImportInterface {
@@ -107,7 +106,7 @@ class PanelInterface {
 
 // 1.1: ImportedBone carries the patient frame and source; exportMesh takes the frame.
 // 1.2: exportMesh takes a progress callback that can stop the write.
-#define ReamSimMeshImport_iid "org.reamsim.MeshImportInterface/1.3"
+#define ReamSimMeshImport_iid "org.reamsim.MeshImportInterface/1.4"
 #define ReamSimCollision_iid "org.reamsim.CollisionInterface/1.0"
 #define ReamSimCsg_iid "org.reamsim.CsgInterface/1.0"
 #define ReamSimPanel_iid "org.reamsim.PanelInterface/1.0"

@@ -49,4 +49,9 @@ class HistoryJournalWriter {
 // does not give the state's recorded triangle and vertex counts.
 BoneHistory readHistoryJournal(const std::string& path, const std::vector<std::uint64_t>& revisions, std::size_t cursor);
 
+// The revisions of the journal's complete records, in the order they were written: the whole history of a
+// journal written at once for one history (a save's), to hand to readHistoryJournal. Throws InputError naming
+// the file when it cannot be read or is not a journal.
+std::vector<std::uint64_t> journalRevisions(const std::string& path);
+
 }  // namespace reamsim
