@@ -216,10 +216,10 @@ class MainWindow : public QMainWindow {
   void openLandmarksBeside(const QString& bonePath);
   QString keepInRestored(const QString& file) const;  // a copy in recovery/restored/ named <time>_<name>
   bool saveBoneAndCutLogInteractive();  // File → Save bone as… and "Save" in that question: asks where, saveBoneAs
-  // The bone's mesh (with `facts` in its comments) and, when given, its undo history beside it (SavedHistory.h),
-  // on a worker with a progress dialog (Cancel: the bone file there unchanged); errors in a dialog; does not mark
-  // it saved. True when written.
-  bool writeBoneFile(const QString& path, const BoneFileFacts& facts, const BoneHistory* history = nullptr);
+  // The bone's mesh (with `facts` in its comments) and, when given, the states of its undo history beside it
+  // (SavedHistory.h), on a worker with a progress dialog (Cancel: the files there unchanged); errors in a dialog;
+  // does not mark it saved. True when written.
+  bool writeBoneFile(const QString& path, const BoneFileFacts& facts, const std::vector<BoneHistory::Entry>& history = {});
   static QString cutLogPathBeside(const QString& bonePath);  // NAME.ply.cut_log.csv beside NAME.ply
   static QString earlierCutLogPathBeside(const QString& bonePath);  // NAME.cut_log.csv (saves before session 57)
   // A bone opened from a file brings the cut log saved beside it (MainWindowFiles.cpp).
@@ -229,7 +229,7 @@ class MainWindow : public QMainWindow {
   // The undo history read beside an opened bone (ImportOutcome::history) becomes its history, with its steps on
   // the undo stack and the stack at the state the save left; a history that could not be read is named in a
   // dialog and the bone opens without it.
-  AdoptedHistory adoptSavedHistory(ImportOutcome& out);
+  AdoptedHistory adoptSavedHistory(ImportOutcome& out, const BoneFileFacts& saved, const QString& bonePath);
   // One undo step for each state after the first of the bone's history just adopted (a crash's or a save's),
   // named "<label> (<when>): <volume> mm³, <faces> faces". The stack then stands at the history's last state.
   void stackAdoptedSteps(const QString& when);
@@ -314,6 +314,7 @@ class MainWindow : public QMainWindow {
   BonePlanning savedPlanning_;   // the cut bone's landmarks and planned axis as opened or last saved (NAME.landmarks.json)
   QString unreadablePlanningFile_;  // the landmarks beside the bone that could not be read when it was opened
   QString unreadableCutLogFile_;    // the same for its cut log (or one that is not the log saved with the bone)
+  QString unreadableHistoryFile_;   // the same for its undo history
   std::optional<BonePlanning> copiedPlanning_;
   std::optional<std::uint64_t> savedBoneRevision_;  // the cut bone's revision as opened or last saved; none: restored
   // The log's notes (annotations) are saved with it (NAME.ply.cut_log.csv): their count of changes at the last save

@@ -94,7 +94,7 @@ void MainWindow::openFile(const QString& path, bool repair) {
   importPath_ = path;
   importCancelled_ = false;
   statusBar()->showMessage(tr("Importing %1…").arg(path));
-  importBusy_->setRange(0, 0);  // busy until the repair reports a fraction
+  importBusy_->setRange(0, 0);  // busy until the reading reports a fraction
   importBusy_->setVisible(true);
   importCancel_->setVisible(true);
   const MeshImportInterface* importer = plugins_.meshImport();
@@ -107,6 +107,8 @@ void MainWindow::openFile(const QString& path, bool repair) {
     try {
       out.bone = importer->importBone(file, repair, progress);
       if (out.bone.saved.historyStates) {
+        // Read and replayed whole (~0.1 s at 405k faces): asked first whether to go on.
+        if (progress && !progress(1.0, "undo history")) throw ReadCancelled("undo history");
         try {
           out.history = readSavedHistory(historyPathBeside(QString::fromStdString(file)), out.bone.saved,
                                          BoneState::fromMesh(out.bone.mesh));
@@ -167,7 +169,7 @@ void MainWindow::importFinished() {
     const BoneFileFacts saved = out.bone.saved;
     session_->plan()->setPoses({});
     installBone(std::move(out.bone), QFileInfo(importPath_).fileName(), importPath_);
-    const AdoptedHistory history = adoptSavedHistory(out);
+    const AdoptedHistory history = adoptSavedHistory(out, saved, importPath_);
     openLandmarksBeside(importPath_);
     const QString withLog = openCutLogBeside(importPath_, saved, history);
     session_->moveReamer(startPoseFor(b));
@@ -213,15 +215,31 @@ bool MainWindow::saveBoneAs(const QString& path) {
   // counted) and the log's length, to tell it from another log put beside the bone later; and to undo and redo
   // its cuts again, its undo history (its states share storage: a copy is cheap), and where in it the bone is.
   const std::vector<CutLogEntry>& rows = session_->log()->entries();
-  const BoneHistory history = session_->bone()->history();
+  const BoneHistory& history = session_->bone()->history();
   BoneFileFacts facts{session_->bone()->patientFrame(),
                       session_->initialVolumeMm3() - session_->bone()->current().volume(), rows.size(),
                       rows.empty() ? 0 : rows.back().timeUnixMs};
-  if (history.size() >= 2) {
-    facts.historyStates = history.size();
+  std::vector<BoneHistory::Entry> states = statesToSave(history, *session_->undoStack());
+  const bool historyLeftOut = states.size() >= 2 && !keepsExactCoordinates(path);
+  if (states.size() >= 2 && !historyLeftOut) {
+    facts.historyStates = states.size();
     facts.historyCursor = history.cursor();
+  } else {
+    states.clear();
   }
-  const bool written = writeBoneFile(path, facts, facts.historyStates ? &history : nullptr);
+  // A history there that could not be read when the bone was opened is the user's to look at: kept aside.
+  const QString historyPath = historyPathBeside(path);
+  try {
+    if (historyPath == unreadableHistoryFile_ && QFileInfo::exists(historyPath)) {
+      moveAsideUnreadable(historyPath);
+      unreadableHistoryFile_.clear();
+    }
+  } catch (const std::exception& e) {
+    disconnect(watch);
+    showError(tr("Cannot save %1").arg(QFileInfo(path).fileName()), QString::fromStdString(e.what()));
+    return false;
+  }
+  const bool written = writeBoneFile(path, facts, states);
   disconnect(watch);
   if (!written) return false;
   if (generation != boneGeneration_) {  // an import finished meanwhile: the file holds the bone that was there
@@ -259,7 +277,6 @@ bool MainWindow::saveBoneAs(const QString& path) {
     return false;
   }
   // No undo history to save (written with the bone otherwise): none left beside from an earlier save either.
-  const QString historyPath = historyPathBeside(path);
   if (!facts.historyStates && QFileInfo::exists(historyPath) && !QFile::remove(historyPath)) {
     showError(tr("Cannot save %1").arg(QFileInfo(path).fileName()),
               tr("%1: cannot remove the undo history of an earlier save").arg(historyPath));
@@ -267,7 +284,10 @@ bool MainWindow::saveBoneAs(const QString& path) {
   }
   savedPlanning_ = planning;
   savedNotes_ = notes;
-  const QString roomNote = factsLeftOut(path, facts);
+  QString roomNote = factsLeftOut(path, facts);
+  if (historyLeftOut)
+    roomNote += tr(". A binary STL keeps coordinates in single precision: the undo history is not saved with it "
+                   "(reopened, Undo starts there; PLY, OBJ, OFF, VTP or ASCII STL keep it)");
   updateTitle();  // landmarks or notes alone changed: the undo stack's clean state did not move
   // Nor did the copy kept for a crash: written again (or removed, when nothing is left unsaved).
   if (recovery_ && !recoveryOfferPending_ && !recoveryTimer_.isActive()) recoveryTimer_.start();
@@ -301,9 +321,7 @@ QString MainWindow::factsLeftOut(const QString& path, const BoneFileFacts& facts
   else if (facts.removedMm3 && facts.cutLogRows && *facts.cutLogRows > 0 && !keeps(bone_file_facts::kRemoved))
     out = tr(". The file has no room for the volume removed so far: reopened, its log's cumulative volume goes on "
              "from the log's last row");
-  if (facts.historyStates && !keeps(bone_file_facts::kHistory))
-    out += tr(". The file has no room to record the undo history saved beside it: reopened, Undo starts there");
-  return out.isEmpty() ? out : out + tr(" (PLY, OBJ, OFF, VTP or ASCII STL keep it all)");
+  return out.isEmpty() ? out : out + tr(" (PLY, OBJ, OFF, VTP or ASCII STL keep it)");
 }
 
 bool MainWindow::saveBone() { return savedPath_.isEmpty() ? saveBoneAndCutLogInteractive() : saveBoneAs(savedPath_); }
@@ -311,7 +329,8 @@ bool MainWindow::saveBone() { return savedPath_.isEmpty() ? saveBoneAndCutLogInt
 // Encoding and writing a bone take 0.2 s at 405k faces and seconds at millions (a CT bone repaired at 0.5 mm
 // has 17 million): done on a worker, with a window-modal dialog that shows how far it is and can cancel,
 // while this waits in a local event loop (the window keeps painting). Cancel keeps the file that was there.
-bool MainWindow::writeBoneFile(const QString& path, const BoneFileFacts& facts, const BoneHistory* history) {
+bool MainWindow::writeBoneFile(const QString& path, const BoneFileFacts& facts,
+                               const std::vector<BoneHistory::Entry>& history) {
   if (!plugins_.meshImport()) {
     showError(tr("Save"), tr("Cannot save %1: no mesh import plugin is loaded (Help → Plugins).").arg(path));
     return false;
@@ -326,23 +345,29 @@ bool MainWindow::writeBoneFile(const QString& path, const BoneFileFacts& facts, 
   };
   const MeshImportInterface* writer = plugins_.meshImport();
   BoneState state = session_->bone()->current();  // an immutable value, cheap to copy
-  std::optional<BoneHistory> states;                // its states share storage: cheap to copy too
-  if (history) states = *history;
+  std::vector<BoneHistory::Entry> states = history;  // they share storage: cheap to copy too
   const QString name = QFileInfo(path).fileName();
   WriteProgressDialog dialog(tr("Saving %1").arg(name), this);
   saving_ = true;
   const Outcome out = dialog.runWhileShown(
       [writer, state = std::move(state), states = std::move(states), file = path, facts](const ProgressCallback& progress) {
         Outcome result;
+        QString historyPart;
         try {
+          // The undo history first, beside (12 MB at 405k faces, tens of ms), put in place only once the bone
+          // file is: a save that stops or fails on the way leaves both files that were there.
+          if (!states.empty()) {
+            if (progress && !progress(0.0, "undo history")) throw WriteCancelled("undo history");
+            historyPart = writeSavedHistoryPart(historyPathBeside(file), states);
+          }
           writer->exportMesh(state.toMesh(), file.toStdString(), facts, progress);
-          // The undo history after the bone (12 MB at 405k faces, tens of ms): the bone is what matters first.
-          if (states) writeSavedHistory(historyPathBeside(file), *states);
+          if (!historyPart.isEmpty()) commitSavedHistory(std::exchange(historyPart, QString()), historyPathBeside(file));
         } catch (const WriteCancelled&) {
           result.cancelled = true;
         } catch (const std::exception& e) {
           result.error = QString::fromStdString(e.what());
         }
+        discardSavedHistory(historyPart);  // stopped or failed before it was put in place
         return result;
       });
   saving_ = false;
@@ -443,12 +468,20 @@ void MainWindow::stackAdoptedSteps(const QString& when) {
 // the save (down to the bone first opened) and redoes those undone before it. The history's state at the save is
 // the bone as read (readSavedHistory checks it); the bone takes the history's exact coordinates. Opened so, the
 // bone is as saved: the stack's clean point is the save's state.
-AdoptedHistory MainWindow::adoptSavedHistory(ImportOutcome& out) {
+AdoptedHistory MainWindow::adoptSavedHistory(ImportOutcome& out, const BoneFileFacts& saved, const QString& bonePath) {
   AdoptedHistory adopted;
-  if (!out.historyError.isEmpty())
-    showError(tr("Undo history not read"), tr("%1\n\nThe bone opens without it: Undo cannot go back before it.").arg(out.historyError));
+  unreadableHistoryFile_.clear();
+  if (!out.historyError.isEmpty()) {
+    const QString file = historyPathBeside(bonePath);
+    const bool there = QFileInfo::exists(file);
+    if (there) unreadableHistoryFile_ = file;  // a save keeps it aside instead of replacing or removing it
+    showError(tr("Undo history not read"),
+              there ? tr("%1\n\nThe bone opens without it: Undo cannot go back before it. The file stays as it is (a save "
+                         "moves it aside to %2).").arg(out.historyError, QFileInfo(file).fileName() + ".unreadable")
+                    : tr("%1\n\nThe bone opens without it: Undo cannot go back before it.").arg(out.historyError));
+  }
   if (!out.history) return adopted;
-  const std::size_t cursor = out.bone.saved.historyCursor;
+  const std::size_t cursor = saved.historyCursor;
   const std::vector<std::uint64_t> written = std::move(out.history->writtenRevisions);
   session_->adoptHistory(std::move(out.history->history));
   out.history.reset();
@@ -463,6 +496,7 @@ AdoptedHistory MainWindow::adoptSavedHistory(ImportOutcome& out) {
   savedRevisions_.insert(*savedBoneRevision_);
   adopted.removedSinceFirstMm3 = history.entries().front().state.volume() - session_->bone()->current().volume();
   adopted.steps = session_->undoStack()->count();
+  updateTitle();  // the stack's index moved before the saved revision did
   return adopted;
 }
 
@@ -500,11 +534,16 @@ QString MainWindow::openCutLogBeside(const QString& bonePath, const BoneFileFact
                                std::to_string(saved.cutLogLastMs) + " ms)");
   } catch (const std::exception& e) {
     const bool there = QFileInfo::exists(file);
-    if (there) unreadableCutLogFile_ = file;
+    const bool earlierName = file != cutLogPathBeside(bonePath);  // never written by a save: nothing to move aside
+    if (there && !earlierName) unreadableCutLogFile_ = file;
+    const QString what = QString::fromStdString(e.what());
     showError(tr("Cut log not read"),
-              there ? tr("%1\n\nThe bone opens without its cut log; the file stays as it is (a save moves it aside to "
-                         "%2).").arg(QString::fromStdString(e.what()), QFileInfo(file).fileName() + ".unreadable")
-                    : tr("%1\n\nThe bone opens without its cut log.").arg(QString::fromStdString(e.what())));
+              !there ? tr("%1\n\nThe bone opens without its cut log.").arg(what)
+              : earlierName
+                  ? tr("%1\n\nThe bone opens without its cut log; the file stays as it is (a save writes the log as %2).")
+                        .arg(what, QFileInfo(cutLogPathBeside(bonePath)).fileName())
+                  : tr("%1\n\nThe bone opens without its cut log; the file stays as it is (a save moves it aside to "
+                       "%2).").arg(what, QFileInfo(file).fileName() + ".unreadable"));
     return {};
   }
   if (rows.empty()) return {};

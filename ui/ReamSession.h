@@ -103,7 +103,7 @@ class ReamSession : public QObject {
   // undoable replace of the CT import (BoneCommands.h); calling it twice restores the bone exactly.
   // Unlike loadBone, the undo stack and the log are kept. Defined in BoneExchange.cpp.
   void exchangeBone(BoneContent& other);
-  // The bone's history becomes `history` (a crash copy's, read back), the rest of the bone staying; as
+  // The bone's history becomes `history` (a crash copy's or a save's, read back), the rest of the bone staying; as
   // exchangeBone for the engine and the log's reference volume (the history's first state). Defined in
   // BoneExchange.cpp.
   void adoptHistory(BoneHistory history);

@@ -1,11 +1,16 @@
 #include "SavedHistory.h"
 
+#include <QFile>
 #include <QFileInfo>
+#include <QUndoStack>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 
+#include "BoneCommands.h"
+#include "CutCommand.h"
 #include "reamsim/core/HistoryJournal.h"
 #include "reamsim/mesh/MeshError.h"
 
@@ -13,20 +18,45 @@ namespace reamsim::ui {
 
 QString historyPathBeside(const QString& bonePath) { return bonePath + ".history.rsj"; }
 
-void writeSavedHistory(const QString& path, const BoneHistory& history) {
-  const std::string target = path.toStdString();
-  const std::string partial = target + ".partial";  // a journal appends: a fresh one, renamed over when whole
-  std::remove(partial.c_str());
+bool keepsExactCoordinates(const QString& bonePath) { return QFileInfo(bonePath).suffix().toLower() != "stl"; }
+
+std::vector<BoneHistory::Entry> statesToSave(const BoneHistory& history, const QUndoStack& stack) {
+  std::size_t redoable = 0;
+  for (int i = stack.index(); i < stack.count(); ++i) {
+    const QUndoCommand* c = stack.command(i);
+    if (dynamic_cast<const CutCommand*>(c)) {
+      ++redoable;
+      continue;
+    }
+    if (dynamic_cast<const ReplaceBoneCommand*>(c) || dynamic_cast<const SwapBoneBesideCommand*>(c)) break;
+  }
+  const std::size_t keep = std::min(history.size(), history.cursor() + 1 + redoable);
+  return {history.entries().begin(), history.entries().begin() + std::ptrdiff_t(keep)};
+}
+
+QString writeSavedHistoryPart(const QString& path, const std::vector<BoneHistory::Entry>& states) {
+  const QString part = path + ".partial";  // a journal appends: a fresh one, renamed over when the save is whole
+  const std::string file = part.toStdString();
+  if (QFileInfo::exists(part) && !QFile::remove(part))
+    throw InputError(file, "cannot remove what an earlier save left there");
   try {
-    HistoryJournalWriter(partial).append(history.entries());
+    HistoryJournalWriter(file).append(states);
   } catch (...) {
-    std::remove(partial.c_str());
+    QFile::remove(part);
     throw;
   }
-  if (std::rename(partial.c_str(), target.c_str()) != 0) {
-    std::remove(partial.c_str());
-    throw InputError(target, "cannot replace the file with the new undo history");
+  return part;
+}
+
+void commitSavedHistory(const QString& part, const QString& path) {
+  if (std::rename(part.toStdString().c_str(), path.toStdString().c_str()) != 0) {
+    QFile::remove(part);
+    throw InputError(path.toStdString(), "cannot replace the file with the new undo history");
   }
+}
+
+void discardSavedHistory(const QString& part) {
+  if (!part.isEmpty()) QFile::remove(part);
 }
 
 SavedHistoryRead readSavedHistory(const QString& path, const BoneFileFacts& saved, const BoneState& opened) {

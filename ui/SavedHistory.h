@@ -10,13 +10,27 @@
 #include "reamsim/core/BoneHistory.h"
 #include "reamsim/ui/BoneFileFacts.h"
 
+class QUndoStack;
+
 namespace reamsim::ui {
 
 QString historyPathBeside(const QString& bonePath);  // NAME.ply.history.rsj beside NAME.ply
 
-// Writes every state of `history` (the redo ones too) to `path`: into a new file beside it, renamed over it when
-// complete, so a failed write leaves what was there. Throws InputError naming the file.
-void writeSavedHistory(const QString& path, const BoneHistory& history);
+// Whether a save to `bonePath` can take its undo history: the state at the save must read back exactly, and a
+// binary STL (what the mesh import plugin writes for .stl) stores single-precision coordinates.
+bool keepsExactCoordinates(const QString& bonePath);
+
+// The states of `history` a reopened bone should get back: all up to its cursor, and of those after it the ones
+// the undo stack can still redo (a CutCommand each, directly above the stack's index, before any command that
+// changes which bone is cut). The history keeps redo states the stack dropped when another edit was pushed.
+std::vector<BoneHistory::Entry> statesToSave(const BoneHistory& history, const QUndoStack& stack);
+
+// Writes `states` (a history's, the first its first state) as a journal in a new file beside `path`
+// (PATH.partial), returned; commitSavedHistory renames it over `path` once the bone file is written, and
+// discardSavedHistory removes it when the save stops. Throws InputError naming the file.
+QString writeSavedHistoryPart(const QString& path, const std::vector<BoneHistory::Entry>& states);
+void commitSavedHistory(const QString& part, const QString& path);
+void discardSavedHistory(const QString& part);
 
 // The history a save wrote at `path` for a bone file whose facts are `saved` (historyStates set), at its last
 // state (an undo stack built over it is then moved back to saved.historyCursor), with the revisions it was

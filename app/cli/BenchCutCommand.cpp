@@ -318,8 +318,9 @@ nlohmann::json reamToDepthSearch(const TriangleMesh& bone, const ReamerSpec& spe
 
 // Aim's placement clear of the bone (findClearPlacement on the reaming engine's own tree, what the GUI's
 // ReamSession::placeClearOfBone runs): from 0.25 to 5 mm past the first contact along the path's first pose's
-// axis, 20 poses; each answer checked clear (no overlap at all), and overlapping 0.01 mm inward of it less its
-// margin.
+// axis, 20 poses, each of which overlaps the bone; each answer must be a retreat, clear (no overlap at all), and
+// overlapping 0.01 mm inward of it less its margin (`not_nearest_clear` counts the answers that are not: a
+// failed check, the command's exit code 1).
 nlohmann::json clearPlacement(const TriangleMesh& bone, const ReamerSpec& spec, const TriangleMesh& localTool,
                               const Pose& first) {
   const BoneState state = BoneState::fromMesh(bone);
@@ -336,7 +337,10 @@ nlohmann::json clearPlacement(const TriangleMesh& bone, const ReamerSpec& spec, 
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     queries.push_back(c.queries);
     overlapSearches += c.overlapSearch;
-    if (c.outcome != ClearPlacement::Outcome::Retreated) continue;
+    if (c.outcome != ClearPlacement::Outcome::Retreated) {  // every pose asked overlaps the bone
+      ++wrong;
+      continue;
+    }
     ++retreated;
     retreat.push_back(c.retreatMm);
     const bool clearThere = engine.overlapsAt(state, 1, c.pose) == false;
@@ -838,7 +842,9 @@ int runBenchCut(const std::vector<std::string>& args) {
   out["swept_hull"] = sweptHulls(localTool, poses);
 
   std::cout << out.dump(a.has("json") ? -1 : 2) << "\n";
-  return failures == 0 && notClosed == 0 && exactSI == 0 ? kOk : kFailed;
+  const bool clearPlacementWrong = out.contains("loop") && out["loop"].contains("clear_placement") &&
+                                   out["loop"]["clear_placement"].value("not_nearest_clear", 0) > 0;
+  return failures == 0 && notClosed == 0 && exactSI == 0 && !clearPlacementWrong ? kOk : kFailed;
 }
 
 }  // namespace reamsim::cli

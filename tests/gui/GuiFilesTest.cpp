@@ -51,11 +51,20 @@ TEST(GuiFiles, CancelledImportGivesTheWindowBackAndDiscardsTheResult) {
   auto* cancel = w.findChild<QPushButton*>("CancelImport");
   ASSERT_NE(cancel, nullptr);
   EXPECT_TRUE(cancel->isVisible());
+  // Into the repair (the file is read in a moment) before Cancel.
+  bool repairing = false;
+  const QMetaObject::Connection heard = QObject::connect(
+      w.statusBar(), &QStatusBar::messageChanged, [&](const QString& m) { repairing |= m.contains("remesh"); });
+  ASSERT_TRUE(QTest::qWaitFor([&] { return repairing || !w.importRunning(); }, 300000));
+  QObject::disconnect(heard);
+  ASSERT_TRUE(repairing);
   QTest::mouseClick(cancel, Qt::LeftButton);
   EXPECT_FALSE(cancel->isVisible());
   w.waitImport();
   // The worker stopped at one of the repair's checks rather than finishing the remesh.
   EXPECT_FALSE(w.lastImportStoppedAt().isEmpty());
+  EXPECT_NE(w.lastImportStoppedAt(), "reading");
+  EXPECT_NE(w.lastImportStoppedAt(), "parsing");
   EXPECT_EQ(f.session().bone()->currentRevision(), revision);  // the result was discarded
   EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
   EXPECT_TRUE(w.recentFiles().isEmpty());

@@ -17,6 +17,7 @@
 #include <QUndoStack>
 #include <QtTest/QTest>
 
+#include "BoneCommands.h"
 #include "GuiEnvironment.h"
 #include "GuiHelpers.h"
 #include "reamsim/mesh/MeshIO.h"
@@ -497,13 +498,19 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   ASSERT_TRUE(w.saveBoneAs(stlPath)) << w.lastError().toStdString();
   EXPECT_TRUE(w.statusBar()->currentMessage().contains("no room for the volume removed so far"))
       << w.statusBar()->currentMessage().toStdString();
+  // Single-precision coordinates: no undo history with it, and the status bar says so.
+  EXPECT_TRUE(w.statusBar()->currentMessage().contains("the undo history is not saved with it"))
+      << w.statusBar()->currentMessage().toStdString();
+  EXPECT_FALSE(QFileInfo::exists(stlPath + ".history.rsj"));
   // A CT bone (a patient frame) with a log of 10,000 rows: the header has no room for the log's record either.
   const std::int64_t t = 1764781234567;
   EXPECT_TRUE(MainWindow::factsLeftOut("x.stl", {PatientFrame::LPS, 12.5, 9999, t}).contains("no room for the volume"));
   EXPECT_TRUE(MainWindow::factsLeftOut("x.stl", {PatientFrame::LPS, 12.5, 10000, t}).contains("no room to record the cut log"));
   EXPECT_TRUE(MainWindow::factsLeftOut("x.ply", {PatientFrame::LPS, 12.5, 100000, t}).isEmpty());
+  const QString errorBeforeStl = w.lastError();
   w.openFile(stlPath);
   w.waitImport();
+  EXPECT_EQ(w.lastError(), errorBeforeStl);  // nothing refused
   EXPECT_EQ(s.log()->size(), 1u);
   EXPECT_TRUE(w.statusBar()->currentMessage().contains("with its cut log (1 step; the file has no room for the volume "
                                                         "removed at the save"))
@@ -655,6 +662,45 @@ TEST(GuiUnsavedChanges, AReopenedBoneUndoesAndRedoesItsCuts) {
   EXPECT_EQ(undo.count(), 0);
   EXPECT_NEAR(s.bone()->current().volume(), BoneState::fromMesh(readMesh(bonePath.toStdString()).mesh).volume(),
               1e-9 * original);
+  // The next save keeps the damaged file aside: it is the user's to look at, never removed or written over.
+  const QByteArray damaged = contents(historyPath);
+  ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  EXPECT_EQ(contents(historyPath + ".unreadable"), damaged);
+  EXPECT_FALSE(QFileInfo::exists(historyPath));
+}
+
+// Redo states the undo stack has dropped (another edit pushed while cuts were undone) are not saved: reopened,
+// Redo cannot bring back a cut the session could not.
+TEST(GuiUnsavedChanges, ASaveLeavesOutCutsTheStackCanNoLongerRedo) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  cutOnce(s);
+  cutOnce(s, 0.9);
+  s.undoStack()->undo();
+  ASSERT_TRUE(s.waitIdle(60000));
+  ASSERT_EQ(s.bone()->history().size(), 3u);  // the history keeps the undone cut...
+  auto node = std::make_unique<BoneNode>("beside");
+  BoneContent content;
+  content.name = "beside";
+  content.history = BoneHistory(s.bone()->current(), "test");
+  node->swapContent(content);
+  std::vector<std::unique_ptr<BoneNode>> nodes;
+  nodes.push_back(std::move(node));
+  s.undoStack()->push(new OtherBonesCommand(s.document(), std::move(nodes), "Add beside"));
+  ASSERT_FALSE(s.undoStack()->canRedo());  // ...the stack cannot redo it any more
+  EXPECT_EQ(s.bone()->history().size(), 3u);
+  QTemporaryDir dir;
+  const QString bonePath = dir.filePath("bone.ply");
+  ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  const std::vector<std::string> comments = readMesh(bonePath.toStdString()).comments;
+  EXPECT_NE(std::find(comments.begin(), comments.end(), "reamsim undo_history 2 1"), comments.end());
+  w.openFile(bonePath);
+  w.waitImport();
+  ASSERT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
+  EXPECT_EQ(s.undoStack()->count(), 1);
+  EXPECT_FALSE(s.undoStack()->canRedo());
 }
 
 // As a user writes one: a double-click on the cut's row opens the note dialog with the note so far; OK writes

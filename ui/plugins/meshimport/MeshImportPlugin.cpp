@@ -19,8 +19,15 @@ QStringList MeshImportPlugin::nameFilters() const {
 }
 
 ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, const RepairProgress& progress) const {
+  // One bar for the whole import: the read ("reading", "parsing": Cancel does not wait for a large text file) its
+  // first tenth, the validation or the repair the rest.
+  constexpr double kReadShare = 0.1;
+  const auto share = [&progress](double from, double to) -> ProgressCallback {
+    if (!progress) return {};
+    return [&progress, from, to](double f, const std::string& stage) { return progress(from + f * (to - from), stage); };
+  };
   ReadOptions reading;
-  reading.progress = progress;  // "reading", "parsing": Cancel does not wait for a large text file
+  reading.progress = share(0.0, kReadShare);
   LoadedMesh loaded = readMesh(path, reading);
   ImportedBone out;
   out.source = path;
@@ -36,7 +43,7 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, 
     // validation reports its progress and stops on a cancel (its self-intersection count takes ~20 s at
     // millions of triangles).
     ValidationOptions validation;
-    validation.progress = StageProgress{&progress, 0.0, 1.0, "validation"};
+    validation.progress = StageProgress{&progress, kReadShare, 1.0, "validation"};
     const ValidationReport v = validateMesh(loaded.mesh, validation);
     out.mesh = std::move(loaded.mesh);
     out.cuttable = v.closed && v.outwardOriented && v.topology.degenerateFaces == 0;
@@ -52,7 +59,7 @@ ImportedBone MeshImportPlugin::importBone(const std::string& path, bool repair, 
     return out;
   }
   RepairOptions options = importRepairOptions();
-  options.progress = progress;
+  options.progress = share(kReadShare, 1.0);
   RepairResult r = repairMesh(loaded.mesh, options);
   out.report += toText(r.report);
   out.cuttable = r.report.success();

@@ -1,5 +1,6 @@
 #include "FileBytes.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>

@@ -12,7 +12,8 @@ namespace reamsim::io {
 constexpr std::size_t kMaxMeshFileBytes = std::size_t{2} * 1024 * 1024 * 1024;
 
 // Reads the whole file; throws InputError if it is missing, unreadable, a directory, empty or > 2 GiB.
-// `progress` (may be null) hears the fraction read after every 8 MiB; ReadCancelled when it says stop.
+// `progress` (may be null) hears the fraction read before each piece of 8 MiB (the first at 0); ReadCancelled
+// when it says stop.
 std::string readFileBytes(const std::string& path, const StageProgress* progress = nullptr);
 
 // strerror(err) for an error message; "unknown error" for 0.

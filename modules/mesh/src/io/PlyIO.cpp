@@ -352,12 +352,14 @@ RawMesh readPly(const std::string& path, std::string_view data, const StageProgr
     AsciiSource src(body, path, h.lastLine);
     b.watch(progress, [&src] { return src.offset(); }, body.size());
     readElements(path, h, l, src, nullptr, b);
+    b.watch(nullptr, {}, 1);  // the offset reads `src`, which ends here
     src.expectEnd();
   } else {
     out.format = "ply-binary";
     BinarySource src(body, path, h.encoding == Encoding::BinaryBE);
     b.watch(progress, [&src] { return src.offset(); }, body.size());
     readElements(path, h, l, src, &src, b);
+    b.watch(nullptr, {}, 1);  // the offset reads `src`, which ends here
     if (src.remaining() != 0)
       out.notes.push_back("PLY: " + std::to_string(src.remaining()) + " bytes after the last element were ignored");
   }

@@ -486,8 +486,10 @@ RawMesh readVtp(const std::string& path, std::string_view data, const StageProgr
   RawMesh out;
   out.format = "vtp";
   MeshBuilder b(path);
-  // The arrays are decoded whole before the mesh is built: progress by the points and polygons added.
-  b.watch(progress, [&b] { return b.vertexCount() + b.triangleCount(); }, std::size_t(np + npolys + nstrips) + 1);
+  // The arrays are decoded whole before the mesh is built: progress by the points added and the cells (polygons
+  // and strips) handled.
+  std::size_t cellsDone = 0;
+  b.watch(progress, [&b, &cellsDone] { return b.vertexCount() + cellsDone; }, std::size_t(np + npolys + nstrips) + 1);
   if (np > 0) {
     const ArrayElement* points = findArray(doc, "Points", nullptr);
     if (!points) throw InputError(path, "the file declares " + std::to_string(np) + " points but has no Points array");
@@ -502,6 +504,7 @@ RawMesh readVtp(const std::string& path, std::string_view data, const StageProgr
   std::size_t face = 0;
   readCells(path, doc, dec, "Polys", npolys, limit, [&](const std::int64_t* p, std::size_t n) {
     ids.assign(p, p + n);
+    ++cellsDone;
     b.addPolygon(ids, np, 0, face++);
   });
   std::size_t stripCount = 0, stripTriangles = 0;
@@ -509,6 +512,7 @@ RawMesh readVtp(const std::string& path, std::string_view data, const StageProgr
     if (n < 3)
       throw InputError(path, "triangle strip " + std::to_string(stripCount) + " has only " + std::to_string(n) +
                                  " points (at least 3 needed)");
+    ++cellsDone;
     for (std::size_t k = 0; k + 2 < n; ++k) {
       const std::int64_t a = p[k], bb = p[k + 1], c = p[k + 2];
       if (a == bb || bb == c || a == c) continue;  // degenerate joint triangle of a strip

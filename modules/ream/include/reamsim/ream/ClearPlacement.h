@@ -15,7 +15,8 @@ struct ClearPlacement {
     AsAsked,      // the asked pose is clear
     Retreated,    // moved out along the axis by retreatMm
     NoRoom,       // nothing clear within maxRetreatMm: place nothing
-    Unsupported,  // the engine has no exact contact query to ask (ReamEngine::touchesAt, overlapsAt)
+    Unsupported,  // the engine has no exact contact query to ask (ReamEngine::touchesAt; one without overlapsAt
+                  // gets the surface touch's answer)
   };
   Outcome outcome = Outcome::AsAsked;
   double retreatMm = 0;  // outward along the axis (Retreated)
