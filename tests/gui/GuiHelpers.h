@@ -126,6 +126,15 @@ inline void cutOnce(ReamSession& s, double depthMm = 0.5) {
   ASSERT_EQ(s.cutsCommitted(), before + 1);
 }
 
+// The reamer placed `depthMm` past where it first touches the bone along `start`'s axis (a pose kept from the
+// default plan before opening a file cleared the plan), and the step awaited: one more cut when deeper than any
+// before.
+inline void cutPastContact(ReamSession& s, const Pose& start, double depthMm) {
+  const double approach = *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100);
+  s.moveReamer(advancedAlongAxis(start, approach + depthMm));
+  ASSERT_TRUE(s.waitIdle(60000));
+}
+
 // Presses Cancel on every WriteProgressDialog (a save's, a crash restore's) as it appears, before its worker's
 // first check: counts the presses.
 class CancelProgressOnShow : public QObject {

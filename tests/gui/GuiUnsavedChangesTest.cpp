@@ -428,8 +428,7 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   EXPECT_NEAR(s.initialVolumeMm3(), original, 1e-6 * original);
   // One more cut continues the log: numbered after the saved rows, cumulative from what the saved bone lacked.
   const double opened = s.bone()->current().volume();
-  s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.4));
-  ASSERT_TRUE(s.waitIdle(60000));
+  cutPastContact(s, start, 0.4);
   ASSERT_EQ(s.log()->size(), 4u);
   const CutLogEntry& next = s.log()->entries().back();
   EXPECT_GT(next.stepIndex, s.log()->entries()[2].stepIndex);
@@ -478,8 +477,7 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
               1e-9 * original);  // the bone opened
 
   // A log the bone was saved with that is gone is named too.
-  s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.3));
-  ASSERT_TRUE(s.waitIdle(60000));
+  cutPastContact(s, start, 0.3);
   ASSERT_EQ(s.log()->size(), 1u);
   ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
   ASSERT_TRUE(QFile::remove(logPath));
@@ -490,8 +488,7 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
 
   // A binary STL's 80-byte header has no room for the removed volume: the log still comes back, and the status bar
   // says where its cumulative volume goes on from.
-  s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.3));
-  ASSERT_TRUE(s.waitIdle(60000));
+  cutPastContact(s, start, 0.3);
   ASSERT_EQ(s.log()->size(), 1u);
   QTemporaryDir stlDir;
   const QString stlPath = stlDir.filePath("reamed.stl");
@@ -550,8 +547,7 @@ TEST(GuiUnsavedChanges, BonesOfOneNameInTwoFormatsKeepTheirOwnCutLogs) {
   w.waitImport();
   EXPECT_TRUE(w.lastError().isEmpty()) << w.lastError().toStdString();
   ASSERT_EQ(s.log()->size(), 1u);
-  s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.4));
-  ASSERT_TRUE(s.waitIdle(60000));
+  cutPastContact(s, start, 0.4);
   ASSERT_EQ(s.log()->size(), 2u);
   ASSERT_TRUE(w.saveBoneAs(ply)) << w.lastError().toStdString();
   EXPECT_EQ(readCutLogCsv((ply + ".cut_log.csv").toStdString()).size(), 2u);
@@ -638,8 +634,7 @@ TEST(GuiUnsavedChanges, AReopenedBoneUndoesAndRedoesItsCuts) {
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_FALSE(w.hasUnsavedChanges());  // back at the saved state
   // A new cut from there: its cumulative volume counts from the bone first opened.
-  s.moveReamer(advancedAlongAxis(start, *advanceToContactMm(s.bone()->current(), *s.reamer()->cuttingVolume(), start, 100) + 0.4));
-  ASSERT_TRUE(s.waitIdle(60000));
+  cutPastContact(s, start, 0.4);
   ASSERT_EQ(s.log()->size(), 4u);
   const CutLogEntry& next = s.log()->entries().back();
   EXPECT_NEAR(next.cumulativeMm3, original - s.bone()->current().volume(), 1e-9 * original);
