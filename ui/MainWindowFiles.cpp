@@ -114,6 +114,11 @@ void MainWindow::openFile(const QString& path, bool repair) {
                                          BoneState::fromMesh(out.bone.mesh));
         } catch (const std::exception& e) {
           out.historyError = QString::fromStdString(e.what());
+          // The repair on opening rebuilt what the save wrote: its history ends at another bone.
+          const TriangleMesh& read = *out.bone.original;
+          if (read.vertices != out.bone.mesh.vertices || read.triangles != out.bone.mesh.triangles)
+            out.historyError += QObject::tr(" (the bone was repaired on opening: open it without repair, File → Open "
+                                            "without repair, to keep its undo history)");
         }
       }
     } catch (const StageCancelled& e) {  // reading, validating or repairing
