@@ -36,7 +36,7 @@ void MeshBuilder::checkFinite(const Vec3& p, long line, const std::string& what)
 }
 
 void MeshBuilder::report() const {
-  if (!progress_->keepGoing(std::min(1.0, double(offset_()) / double(size_)))) throw ReadCancelled(progress_->stage);
+  if (!progress_->keepGoing(fraction())) throw ReadCancelled(progress_->stage);
 }
 
 std::uint32_t MeshBuilder::addVertex(const Vec3& p, long line) {

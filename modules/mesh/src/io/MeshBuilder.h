@@ -2,6 +2,7 @@
 // Collects vertices and polygons from any reader and applies the shared policy: coordinates must be
 // finite, indices must be in range, polygons with > 3 vertices are fan-triangulated (and counted for a
 // note), polygons with < 3 vertices are an error, and a file without triangles is an error.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -32,6 +33,9 @@ class MeshBuilder {
 
   std::size_t vertexCount() const { return mesh_.vertices.size(); }
   std::size_t triangleCount() const { return mesh_.triangles.size(); }
+
+  // How far into the file the parse is, as watch() measures it (0 without a watch).
+  double fraction() const { return offset_ ? std::min(1.0, double(offset_()) / double(size_)) : 0.0; }
 
   // Appends a vertex (throws if a coordinate is NaN/Inf). line: 0 for binary data.
   std::uint32_t addVertex(const Vec3& p, long line);

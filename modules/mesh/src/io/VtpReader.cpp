@@ -31,6 +31,7 @@
 #include "TextScanner.h"
 #include "VtpDocument.h"
 #include "reamsim/mesh/MeshError.h"
+#include "reamsim/mesh/MeshIO.h"
 
 namespace reamsim::io {
 namespace {
@@ -73,10 +74,22 @@ class ArrayDecoder {
   ArrayDecoder(const std::string& path, const Layout& layout, std::string_view appended, bool appendedBase64)
       : path_(path), layout_(layout), appended_(appended), appendedBase64_(appendedBase64) {}
 
+  // `progress` (may be null) is asked whether to go on before each array and as its decoding goes (every 64
+  // compressed blocks, 4 MiB of base64, 65,536 text values), at the fraction `at()` says (the mesh builder's:
+  // the arrays are decoded between its steps). ReadCancelled when it says stop.
+  void watch(const StageProgress* progress, std::function<double()> at) {
+    progress_ = progress;
+    at_ = std::move(at);
+  }
+  void check() const {
+    if (progress_ && !progress_->keepGoing(at_())) throw ReadCancelled(progress_->stage);
+  }
+
   // The array's values as doubles (points) or int64 (indices). `expected`: the number of values, or -1
   // when the array's own size tells it (connectivity), then bounded by `limit`.
   template <class Out>
   std::vector<Out> values(const ArrayElement& a, const std::string& what, std::int64_t expected, std::uint64_t limit) {
+    check();
     const std::string typeName = attr(a, "type");
     const std::optional<ScalarType> type = scalarType(typeName);
     if (!type) fail(what + " has an unknown type \"" + typeName + "\"");
@@ -141,6 +154,7 @@ class ArrayDecoder {
         fail(what + " holds more values than " +
              (expected >= 0 ? "the file declares (" + std::to_string(expected) + ")" : std::to_string(limit)));
       out.push_back(parseToken<Out>(token, type, what, out.size()));
+      if ((out.size() & 65535) == 0) check();
       k = e;
     }
     checkCount(out.size(), what, expected, limit);
@@ -250,6 +264,7 @@ class ArrayDecoder {
     std::string out(std::size_t(total), '\0');
     std::uint64_t read = 0, at = 0;
     for (std::uint64_t b = 0; b < nblocks; ++b) {
+      if ((b & 63) == 63) check();
       const std::uint64_t want = b + 1 == nblocks ? last : blockSize;
       uLongf got = uLongf(want);
       const int rc = uncompress(reinterpret_cast<Bytef*>(out.data() + at), &got,
@@ -292,6 +307,7 @@ class ArrayDecoder {
       std::string text;
       text.reserve(chars);
       while (text.size() < chars && pos_ < in_.size()) {
+        if ((pos_ & ((std::size_t{1} << 22) - 1)) == 0) d_.check();
         const char c = in_[pos_++];
         if (!std::isspace(static_cast<unsigned char>(c))) text += c;
       }
@@ -350,6 +366,8 @@ class ArrayDecoder {
   Layout layout_;
   std::string_view appended_;
   bool appendedBase64_;
+  const StageProgress* progress_ = nullptr;
+  std::function<double()> at_;
 };
 
 // A count attribute of <Piece>: a non-negative integer (absent: 0).
@@ -490,6 +508,7 @@ RawMesh readVtp(const std::string& path, std::string_view data, const StageProgr
   // and strips) handled.
   std::size_t cellsDone = 0;
   b.watch(progress, [&b, &cellsDone] { return b.vertexCount() + cellsDone; }, std::size_t(np + npolys + nstrips) + 1);
+  dec.watch(progress, [&b] { return b.fraction(); });
   if (np > 0) {
     const ArrayElement* points = findArray(doc, "Points", nullptr);
     if (!points) throw InputError(path, "the file declares " + std::to_string(np) + " points but has no Points array");
