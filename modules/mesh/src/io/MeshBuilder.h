@@ -34,6 +34,10 @@ class MeshBuilder {
   std::size_t vertexCount() const { return mesh_.vertices.size(); }
   std::size_t triangleCount() const { return mesh_.triangles.size(); }
 
+  // A piece of the file parsed that adds nothing to the mesh (an OBJ texture line, a PLY value of another
+  // element, a long index list): counted with the vertices and faces, so that such stretches are checked too.
+  void step() { tick(); }
+
   // How far into the file the parse is, as watch() measures it (0 without a watch).
   double fraction() const { return offset_ ? std::min(1.0, double(offset_()) / double(size_)) : 0.0; }
 

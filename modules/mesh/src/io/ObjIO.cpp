@@ -34,6 +34,7 @@ RawMesh readObj(const std::string& path, std::string_view data, const StageProgr
   std::size_t faces = 0;
   std::string_view key;
   while (s.nextLine()) {
+    b.step();
     if (!s.token(key)) continue;
     if (key == "v") {
       const double x = s.readDouble("vertex x"), y = s.readDouble("vertex y"), z = s.readDouble("vertex z");

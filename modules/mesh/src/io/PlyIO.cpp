@@ -294,6 +294,7 @@ void readElements(const std::string& path, const Header& h, const Layout& l, Val
       for (std::size_t p = 0; p < e.props.size(); ++p) {
         const Property& prop = e.props[p];
         if (!prop.isList) {
+          b.step();
           const double v = src.value(prop.type, what);
           if (p == 0) line = src.line();
           if (isVertex)
@@ -312,6 +313,7 @@ void readElements(const std::string& path, const Header& h, const Layout& l, Val
           line = src.line();
         }
         for (std::uint64_t k = 0; k < n; ++k) {
+          b.step();
           const double v = src.value(prop.type, item);
           if (!isIndexList) continue;
           if (v != std::floor(v) || !std::isfinite(v))
