@@ -14,11 +14,11 @@ NoteCommand::NoteCommand(ReamSession& session, NodeId log, std::size_t row, std:
   setText((after_.empty() ? tr("Clear the note on step %1") : tr("Note on step %1")).arg(stepIndex));
 }
 
-void NoteCommand::undo() { session_.restoreNote(log_, row_, before_); }
+void NoteCommand::undo() { session_.restoreNote(log_, row_, before_, after_); }
 
 void NoteCommand::redo() {
   if (std::exchange(first_, false)) return;
-  session_.restoreNote(log_, row_, after_);
+  session_.restoreNote(log_, row_, after_, before_);
 }
 
 }  // namespace reamsim::ui

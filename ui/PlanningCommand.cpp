@@ -11,11 +11,11 @@ PlanningCommand::PlanningCommand(ReamSession& session, BonePlanning before, Bone
   setText(describe(before_, after_));
 }
 
-void PlanningCommand::undo() { session_.restorePlanning(before_); }
+void PlanningCommand::undo() { session_.restorePlanning(before_, after_); }
 
 void PlanningCommand::redo() {
   if (std::exchange(first_, false)) return;
-  session_.restorePlanning(after_);
+  session_.restorePlanning(after_, before_);
 }
 
 QString PlanningCommand::describe(const BonePlanning& before, const BonePlanning& after) {

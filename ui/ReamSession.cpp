@@ -177,8 +177,13 @@ bool ReamSession::redoHoldsOnlyAnnotations() const {
   return true;
 }
 
-void ReamSession::restorePlanning(const BonePlanning& planning) {
+void ReamSession::restorePlanning(const BonePlanning& planning, const BonePlanning& expected) {
   annotationCommandRan_ = true;  // the stack reports the index change once undo() or redo() has returned
+  if (planningOf(*bone_) != expected) {
+    Q_EMIT editNotRecorded(tr("The landmarks were changed since by an edit Undo could not record: they are left as "
+                              "they are"));
+    return;
+  }
   const QuietPlanning quiet(*this);
   applyPlanning(*bone_, planning);
 }
@@ -216,9 +221,14 @@ void ReamSession::recordNoteEdits() {
   pushingOwnCommand_ = false;
 }
 
-void ReamSession::restoreNote(NodeId log, std::size_t row, const std::string& note) {
+void ReamSession::restoreNote(NodeId log, std::size_t row, const std::string& note, const std::string& expected) {
   if (log != log_->id() || row >= log_->size()) return;  // another bone's log (loadBone clears the stack)
   annotationCommandRan_ = true;
+  if (log_->entries()[row].note != expected) {
+    Q_EMIT editNotRecorded(tr("The note on step %1 was changed since by an edit Undo could not record: it is left "
+                              "as it is").arg(log_->entries()[row].stepIndex));
+    return;
+  }
   // Known to the stack already: not an edit (rows appended in a batch still open are not in the shadow yet).
   if (recordedNotes_.size() <= row) recordedNotes_.resize(row + 1);
   recordedNotes_[row] = note;

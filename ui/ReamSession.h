@@ -210,12 +210,14 @@ class ReamSession : public QObject {
    private:
     ReamSession& session_;
   };
-  // Puts `planning` on the bone for an undo or redo of a PlanningCommand (not itself an edit).
-  void restorePlanning(const BonePlanning& planning);
+  // Puts `planning` on the bone for an undo or redo of a PlanningCommand (not itself an edit), when the bone's
+  // planning is still `expected` (what the command left): an edit made since that the stack could not record
+  // (editNotRecorded) is left as it is, with a message, rather than silently taken back.
+  void restorePlanning(const BonePlanning& planning, const BonePlanning& expected);
   // Puts `note` on row `row` of the log `log` (when it is still the session's) for an undo or redo of a
-  // NoteCommand (not itself an edit). Notes written on the log's rows go on the undo stack as they reach the
-  // document, as landmark edits do.
-  void restoreNote(NodeId log, std::size_t row, const std::string& note);
+  // NoteCommand (not itself an edit), when the row's note is still `expected`, as for the planning. Notes written
+  // on the log's rows go on the undo stack as they reach the document, as landmark edits do.
+  void restoreNote(NodeId log, std::size_t row, const std::string& note, const std::string& expected);
 
   std::size_t cutsCommitted() const { return cuts_; }
   double lastMinDistanceMm() const { return lastMinDistance_; }

@@ -366,6 +366,11 @@ TEST(GuiUnsavedChanges, UndoTakesBackANote) {
       << w.statusBar()->currentMessage().toStdString();
   undo.redo();
   EXPECT_EQ(s.bone()->currentRevision(), cut);  // the second cut is back
+  // Redone on, the recorded note on that row would overwrite the one Undo could not record: left as it is.
+  undo.setIndex(undo.count());
+  EXPECT_EQ(s.log()->entries()[1].note, "on the undone cut");
+  EXPECT_TRUE(w.statusBar()->currentMessage().contains("was changed since by an edit Undo could not record"))
+      << w.statusBar()->currentMessage().toStdString();
   EXPECT_TRUE(closeAnswering(w, {ModalAnswers::button(QMessageBox::Discard)}, 1));
 }
 
