@@ -49,6 +49,8 @@ QString writeSavedHistoryPart(const QString& path, const std::vector<BoneHistory
 }
 
 void commitSavedHistory(const QString& part, const QString& path) {
+  // The file there keeps its permissions (a clinic's folder may restrict who reads a patient's bone).
+  if (QFileInfo::exists(path)) QFile::setPermissions(part, QFile::permissions(path));
   if (std::rename(part.toStdString().c_str(), path.toStdString().c_str()) != 0) {
     QFile::remove(part);
     throw InputError(path.toStdString(), "cannot replace the file with the new undo history");

@@ -644,8 +644,11 @@ TEST(GuiUnsavedChanges, AReopenedBoneUndoesAndRedoesItsCuts) {
   const CutLogEntry& next = s.log()->entries().back();
   EXPECT_NEAR(next.cumulativeMm3, original - s.bone()->current().volume(), 1e-9 * original);
 
-  // Missing, then damaged (a record cut short): named, and the bone opens without it.
+  // Missing, then damaged (a record cut short): named, and the bone opens without it. Saved again first, to a
+  // history readable by its owner only: the new one keeps that.
+  ASSERT_TRUE(QFile::setPermissions(historyPath, QFile::ReadOwner | QFile::WriteOwner));
   ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  EXPECT_EQ(QFile::permissions(historyPath) & (QFile::ReadGroup | QFile::ReadOther), QFile::Permissions());
   ASSERT_TRUE(QFile::rename(historyPath, historyPath + ".kept"));
   w.openFile(bonePath);
   w.waitImport();
