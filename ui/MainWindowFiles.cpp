@@ -112,13 +112,16 @@ void MainWindow::openFile(const QString& path, bool repair) {
         try {
           out.history = readSavedHistory(historyPathBeside(QString::fromStdString(file)), out.bone.saved,
                                          BoneState::fromMesh(out.bone.mesh));
+        } catch (const SavedHistoryAtAnotherBone& e) {
+          out.historyError = QString::fromStdString(e.what());
+          // The repair on opening may have rebuilt what the save wrote.
+          const TriangleMesh* read = out.bone.original.get();
+          if (read && (read->vertices != out.bone.mesh.vertices || read->triangles != out.bone.mesh.triangles))
+            out.historyError += QCoreApplication::translate(
+                "MainWindow", " (the bone was repaired on opening: open it without repair, File → Open without repair, "
+                              "to keep its undo history)");
         } catch (const std::exception& e) {
           out.historyError = QString::fromStdString(e.what());
-          // The repair on opening rebuilt what the save wrote: its history ends at another bone.
-          const TriangleMesh& read = *out.bone.original;
-          if (read.vertices != out.bone.mesh.vertices || read.triangles != out.bone.mesh.triangles)
-            out.historyError += QObject::tr(" (the bone was repaired on opening: open it without repair, File → Open "
-                                            "without repair, to keep its undo history)");
         }
       }
     } catch (const StageCancelled& e) {  // reading, validating or repairing
@@ -363,10 +366,11 @@ bool MainWindow::writeBoneFile(const QString& path, const BoneFileFacts& facts,
           // file is: a save that stops or fails on the way leaves both files that were there.
           if (!states.empty()) {
             if (progress && !progress(0.0, "undo history")) throw WriteCancelled("undo history");
-            historyPart = writeSavedHistoryPart(historyPathBeside(file), states);
+            historyPart = writeSavedHistoryPart(historyPathBeside(file), states, file);
           }
           writer->exportMesh(state.toMesh(), file.toStdString(), facts, progress);
-          if (!historyPart.isEmpty()) commitSavedHistory(std::exchange(historyPart, QString()), historyPathBeside(file));
+          if (!historyPart.isEmpty())
+            commitSavedHistory(std::exchange(historyPart, QString()), historyPathBeside(file), file);
         } catch (const WriteCancelled&) {
           result.cancelled = true;
         } catch (const std::exception& e) {

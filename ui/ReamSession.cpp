@@ -179,7 +179,8 @@ bool ReamSession::redoHoldsOnlyAnnotations() const {
 
 void ReamSession::restorePlanning(const BonePlanning& planning, const BonePlanning& expected) {
   annotationCommandRan_ = true;  // the stack reports the index change once undo() or redo() has returned
-  if (planningOf(*bone_) != expected) {
+  const BonePlanning now = planningOf(*bone_);
+  if (now != expected && now != planning) {
     Q_EMIT editNotRecorded(tr("The landmarks were changed since by an edit Undo could not record: they are left as "
                               "they are"));
     return;
@@ -224,7 +225,8 @@ void ReamSession::recordNoteEdits() {
 void ReamSession::restoreNote(NodeId log, std::size_t row, const std::string& note, const std::string& expected) {
   if (log != log_->id() || row >= log_->size()) return;  // another bone's log (loadBone clears the stack)
   annotationCommandRan_ = true;
-  if (log_->entries()[row].note != expected) {
+  const std::string& now = log_->entries()[row].note;
+  if (now != expected && now != note) {
     Q_EMIT editNotRecorded(tr("The note on step %1 was changed since by an edit Undo could not record: it is left "
                               "as it is").arg(log_->entries()[row].stepIndex));
     return;

@@ -12,6 +12,7 @@
 #include "BoneCommands.h"
 #include "CutCommand.h"
 #include "reamsim/core/HistoryJournal.h"
+#include "reamsim/mesh/FileReplace.h"
 #include "reamsim/mesh/MeshError.h"
 
 namespace reamsim::ui {
@@ -34,7 +35,7 @@ std::vector<BoneHistory::Entry> statesToSave(const BoneHistory& history, const Q
   return {history.entries().begin(), history.entries().begin() + std::ptrdiff_t(keep)};
 }
 
-QString writeSavedHistoryPart(const QString& path, const std::vector<BoneHistory::Entry>& states) {
+QString writeSavedHistoryPart(const QString& path, const std::vector<BoneHistory::Entry>& states, const QString& bonePath) {
   const QString part = path + ".partial";  // a journal appends: a fresh one, renamed over when the save is whole
   const std::string file = part.toStdString();
   if (QFileInfo::exists(part) && !QFile::remove(part))
@@ -45,12 +46,15 @@ QString writeSavedHistoryPart(const QString& path, const std::vector<BoneHistory
     QFile::remove(part);
     throw;
   }
+  // A patient's bone: the history is as closed to others as what it replaces, or as the bone file.
+  const QString model = QFileInfo::exists(path) ? path : bonePath;
+  if (QFileInfo::exists(model)) keepFileAttributes(model.toStdString(), file);
   return part;
 }
 
-void commitSavedHistory(const QString& part, const QString& path) {
-  // The file there keeps its permissions (a clinic's folder may restrict who reads a patient's bone).
-  if (QFileInfo::exists(path)) QFile::setPermissions(part, QFile::permissions(path));
+void commitSavedHistory(const QString& part, const QString& path, const QString& bonePath) {
+  // A first save: the bone file has just been written (its attributes those of the file it replaced, if any).
+  if (!QFileInfo::exists(path)) keepFileAttributes(bonePath.toStdString(), part.toStdString());
   if (std::rename(part.toStdString().c_str(), path.toStdString().c_str()) != 0) {
     QFile::remove(part);
     throw InputError(path.toStdString(), "cannot replace the file with the new undo history");
@@ -74,7 +78,7 @@ SavedHistoryRead readSavedHistory(const QString& path, const BoneFileFacts& save
   const double volume = opened.volume();
   if (atSave.liveTriangleCount() != opened.liveTriangleCount() ||
       std::abs(atSave.volume() - volume) > 1e-9 * (1.0 + std::abs(volume)))
-    throw std::runtime_error(file + ": its state at the save is not the bone in the file (" +
+    throw SavedHistoryAtAnotherBone(file + ": its state at the save is not the bone in the file (" +
                              std::to_string(atSave.liveTriangleCount()) + " faces, " + std::to_string(atSave.volume()) +
                              " mm³, against " + std::to_string(opened.liveTriangleCount()) + " faces, " +
                              std::to_string(volume) + " mm³)");

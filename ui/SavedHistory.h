@@ -5,6 +5,7 @@
 // to tell it from another save's.
 #include <QString>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "reamsim/core/BoneHistory.h"
@@ -26,10 +27,11 @@ bool keepsExactCoordinates(const QString& bonePath);
 std::vector<BoneHistory::Entry> statesToSave(const BoneHistory& history, const QUndoStack& stack);
 
 // Writes `states` (a history's, the first its first state) as a journal in a new file beside `path`
-// (PATH.partial), returned; commitSavedHistory renames it over `path` once the bone file is written, and
-// discardSavedHistory removes it when the save stops. Throws InputError naming the file.
-QString writeSavedHistoryPart(const QString& path, const std::vector<BoneHistory::Entry>& states);
-void commitSavedHistory(const QString& part, const QString& path);
+// (PATH.partial), returned; commitSavedHistory renames it over `path` once the bone file `bonePath` is written,
+// and discardSavedHistory removes it when the save stops. The new file takes the owner, group, mode and ACLs of
+// the history it replaces, or else of the bone file (keepFileAttributes). Throws InputError naming the file.
+QString writeSavedHistoryPart(const QString& path, const std::vector<BoneHistory::Entry>& states, const QString& bonePath);
+void commitSavedHistory(const QString& part, const QString& path, const QString& bonePath);
 void discardSavedHistory(const QString& part);
 
 // The history a save wrote at `path` for a bone file whose facts are `saved` (historyStates set), at its last
@@ -40,6 +42,11 @@ void discardSavedHistory(const QString& part);
 struct SavedHistoryRead {
   BoneHistory history;
   std::vector<std::uint64_t> writtenRevisions;
+};
+// What readSavedHistory throws when the history reads back whole but its state at the save is another bone.
+class SavedHistoryAtAnotherBone : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 SavedHistoryRead readSavedHistory(const QString& path, const BoneFileFacts& saved, const BoneState& opened);
 

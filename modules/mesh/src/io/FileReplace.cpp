@@ -195,6 +195,17 @@ bool overwriteLinkedFile(const std::string& path, const fs::path& target, const 
 
 }  // namespace
 
+void keepFileAttributes(const std::string& from, const std::string& to) {
+  struct stat old {};
+  if (::stat(from.c_str(), &old) != 0) return;
+  const int fd = ::open(to.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return;
+  keepOwnerAndGroup(fd, old);
+  (void)::fchmod(fd, old.st_mode & 07777);  // after the group: a chown may clear set-id bits
+  copyAclAndUserAttributes(throughLinks(from), fd);
+  ::close(fd);
+}
+
 void replaceFile(const std::string& path, const std::string& bytes, const ProgressCallback& progress) {
   const fs::path target = throughLinks(fs::path(path));
   struct stat old {};

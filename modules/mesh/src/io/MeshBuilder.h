@@ -39,7 +39,11 @@ class MeshBuilder {
   void step() { tick(); }
 
   // How far into the file the parse is, as watch() measures it (0 without a watch).
-  double fraction() const { return offset_ ? std::min(1.0, double(offset_()) / double(size_)) : 0.0; }
+  // Never lower than before: a caller that reads it between steps (a VTP's arrays) may not see it go back.
+  double fraction() const {
+    if (offset_) highest_ = std::max(highest_, std::min(1.0, double(offset_()) / double(size_)));
+    return highest_;
+  }
 
   // Appends a vertex (throws if a coordinate is NaN/Inf). line: 0 for binary data.
   std::uint32_t addVertex(const Vec3& p, long line);
@@ -82,6 +86,7 @@ class MeshBuilder {
   std::function<std::size_t()> offset_;
   std::size_t size_ = 1;
   std::size_t added_ = 0;
+  mutable double highest_ = 0;
 };
 
 }  // namespace reamsim::io

@@ -287,6 +287,7 @@ void readElements(const std::string& path, const Header& h, const Layout& l, Val
     if (e.props.empty()) continue;
     const bool isVertex = &e == l.vertex, isFace = &e == l.face;
     for (std::uint64_t i = 0; i < e.count; ++i) {
+      b.step();  // every instance, of any element (empty lists and all): no stretch unchecked
       const Where what{e.name, i, ""};
       const Where item{e.name, i, " list item"};
       double xyz[3] = {0, 0, 0};
@@ -294,7 +295,6 @@ void readElements(const std::string& path, const Header& h, const Layout& l, Val
       for (std::size_t p = 0; p < e.props.size(); ++p) {
         const Property& prop = e.props[p];
         if (!prop.isList) {
-          b.step();
           const double v = src.value(prop.type, what);
           if (p == 0) line = src.line();
           if (isVertex)

@@ -323,6 +323,7 @@ class ArrayDecoder {
       std::string out;
       out.reserve(text.size() / 4 * 3);
       for (std::size_t k = 0; k < text.size(); k += 4) {
+        if ((k & ((std::size_t{1} << 22) - 1)) == 0) d_.check();
         int v[4];
         int pad = 0;
         for (int j = 0; j < 4; ++j) {

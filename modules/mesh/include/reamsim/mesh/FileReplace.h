@@ -31,4 +31,9 @@ class WriteCancelled : public StageCancelled {
 // written in place is asked once, before it is opened.
 void replaceFile(const std::string& path, const std::string& bytes, const ProgressCallback& progress = {});
 
+// Gives the file at `to` the owner, group, mode, ACLs and user attributes of the file at `from`, as far as this
+// process may (best effort, as replaceFile does for the file it replaces): for a file written beside another
+// by other means (a bone's undo history beside the bone). Nothing happens when either cannot be opened.
+void keepFileAttributes(const std::string& from, const std::string& to);
+
 }  // namespace reamsim
