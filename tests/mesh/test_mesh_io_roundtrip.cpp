@@ -338,6 +338,24 @@ TEST_F(io_MeshIO, ASaveRemovesTheNewFileADeadProcessLeftBesideIt) {
   EXPECT_EQ(readMesh(path("bone.ply"), ReadOptions{Units::Millimetres}).mesh.triangleCount(), 8u);
 }
 
+// A file written beside another by other means (a bone's undo history) takes that one's mode and user
+// attributes; nothing happens when either is missing.
+TEST_F(io_MeshIO, KeepFileAttributesCopiesTheModeAndUserAttributes) {
+  const std::string model = writeText("bone.ply", "a"), other = writeText("bone.ply.history.rsj", "b");
+  ASSERT_EQ(::chmod(model.c_str(), 0600), 0);
+  const bool xattrs = ::setxattr(model.c_str(), "user.reamsim.test", "kept", 4, 0) == 0;  // where the file system has them
+  keepFileAttributes(model, other);
+  EXPECT_EQ(fs::status(other).permissions() & fs::perms::all, fs::perms::owner_read | fs::perms::owner_write);
+  if (xattrs) {
+    char value[8] = {};
+    EXPECT_EQ(::getxattr(other.c_str(), "user.reamsim.test", value, sizeof value), 4);
+    EXPECT_EQ(std::string(value, 4), "kept");
+  }
+  keepFileAttributes(path("missing"), other);
+  keepFileAttributes(model, path("missing too"));
+  EXPECT_FALSE(fs::exists(path("missing too")));
+}
+
 TEST_F(io_MeshIO, ReplacingAFileKeepsItsPermissionsAndLinks) {
   const std::string file = path("bone.ply"), link = path("link.ply");
   writeMesh(octahedron(1, {}), file);
