@@ -35,7 +35,20 @@ std::vector<BoneHistory::Entry> statesToSave(const BoneHistory& history, const Q
   return {history.entries().begin(), history.entries().begin() + std::ptrdiff_t(keep)};
 }
 
-QString writeSavedHistoryPart(const QString& path, const std::vector<BoneHistory::Entry>& states, const QString& bonePath) {
+namespace {
+
+// The file a path names through symbolic links (a link there stays a link: its target is written, as replaceFile
+// writes the bone file).
+QString throughLinks(QString path) {
+  for (int hops = 0; hops < 40 && QFileInfo(path).isSymLink(); ++hops) path = QFileInfo(path).symLinkTarget();
+  return path;
+}
+
+}  // namespace
+
+QString writeSavedHistoryPart(const QString& linkedPath, const std::vector<BoneHistory::Entry>& states,
+                              const QString& bonePath) {
+  const QString path = throughLinks(linkedPath);
   const QString part = path + ".partial";  // a journal appends: a fresh one, renamed over when the save is whole
   const std::string file = part.toStdString();
   if (QFileInfo::exists(part) && !QFile::remove(part))
@@ -52,7 +65,8 @@ QString writeSavedHistoryPart(const QString& path, const std::vector<BoneHistory
   return part;
 }
 
-void commitSavedHistory(const QString& part, const QString& path, const QString& bonePath) {
+void commitSavedHistory(const QString& part, const QString& linkedPath, const QString& bonePath) {
+  const QString path = throughLinks(linkedPath);
   // A first save: the bone file has just been written (its attributes those of the file it replaced, if any).
   if (!QFileInfo::exists(path)) keepFileAttributes(bonePath.toStdString(), part.toStdString());
   if (std::rename(part.toStdString().c_str(), path.toStdString().c_str()) != 0) {

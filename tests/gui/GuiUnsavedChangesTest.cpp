@@ -20,6 +20,7 @@
 #include "BoneCommands.h"
 #include "GuiEnvironment.h"
 #include "GuiHelpers.h"
+#include "reamsim/core/HistoryJournal.h"
 #include "reamsim/mesh/MeshIO.h"
 #include "reamsim/ream/CutLogIO.h"
 
@@ -649,6 +650,14 @@ TEST(GuiUnsavedChanges, AReopenedBoneUndoesAndRedoesItsCuts) {
   ASSERT_TRUE(QFile::setPermissions(historyPath, QFile::ReadOwner | QFile::WriteOwner));
   ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
   EXPECT_EQ(QFile::permissions(historyPath) & (QFile::ReadGroup | QFile::ReadOther), QFile::Permissions());
+  // A history kept elsewhere through a link: the link stays, its target takes the new history.
+  ASSERT_TRUE(QDir(dir.path()).mkdir("kept"));
+  const QString elsewhere = dir.filePath("kept/history.rsj");
+  ASSERT_TRUE(QFile::rename(historyPath, elsewhere));
+  ASSERT_TRUE(QFile::link(elsewhere, historyPath));
+  ASSERT_TRUE(w.saveBoneAs(bonePath)) << w.lastError().toStdString();
+  EXPECT_TRUE(QFileInfo(historyPath).isSymLink());
+  EXPECT_EQ(journalRevisions(elsewhere.toStdString()).size(), s.bone()->history().size());
   ASSERT_TRUE(QFile::rename(historyPath, historyPath + ".kept"));
   w.openFile(bonePath);
   w.waitImport();
