@@ -9,8 +9,8 @@
 #include <memory>
 #include <system_error>
 
+#include "Formats.h"
 #include "reamsim/mesh/MeshError.h"
-#include "reamsim/mesh/MeshIO.h"
 
 namespace reamsim::io {
 namespace {
@@ -42,7 +42,7 @@ std::string readFileBytes(const std::string& path, const StageProgress* progress
   std::string bytes(static_cast<std::size_t>(size), '\0');
   constexpr std::size_t kPiece = std::size_t{8} << 20;
   for (std::size_t done = 0; done < bytes.size();) {
-    if (progress && !progress->keepGoing(double(done) / double(bytes.size()))) throw ReadCancelled(progress->stage);
+    askReadGoesOn(progress, double(done) / double(bytes.size()));
     const std::size_t want = std::min(kPiece, bytes.size() - done);
     const std::size_t got = std::fread(bytes.data() + done, 1, want, f.get());
     if (got != want) throw InputError(path, "read error (file changed or unreadable while reading)");

@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "reamsim/mesh/MeshIO.h"
 #include "reamsim/mesh/RepairProgress.h"
 #include "reamsim/mesh/TriangleMesh.h"
 
@@ -32,6 +33,12 @@ std::vector<std::string> commentLinesToWrite(const std::vector<std::string>& com
 // Of `comments`, those a binary STL's header keeps (in order; each one that does not fit after those before it is
 // left out).
 std::vector<std::string> binaryStlCommentsKept(const std::vector<std::string>& comments);
+
+// Asks `progress` (may be null) whether the read goes on at `fraction` of its stage; ReadCancelled naming the
+// stage when it says stop. Every check of a read (the bytes, the parse, a VTP's arrays) is this one.
+inline void askReadGoesOn(const StageProgress* progress, double fraction) {
+  if (progress && !progress->keepGoing(fraction)) throw ReadCancelled(progress->stage);
+}
 
 // `progress` (may be null): how far into `data` the parse is, through MeshBuilder::watch.
 RawMesh readStl(const std::string& path, std::string_view data, const StageProgress* progress = nullptr);

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "Formats.h"
 #include "reamsim/mesh/MeshError.h"
-#include "reamsim/mesh/MeshIO.h"
 
 namespace reamsim::io {
 namespace {
@@ -35,9 +35,7 @@ void MeshBuilder::checkFinite(const Vec3& p, long line, const std::string& what)
   if (axis) fail(line, what + " has a non-finite coordinate (" + axis + " = " + coordText(bad) + ")");
 }
 
-void MeshBuilder::report() const {
-  if (!progress_->keepGoing(fraction())) throw ReadCancelled(progress_->stage);
-}
+void MeshBuilder::report() const { askReadGoesOn(progress_, fraction()); }
 
 std::uint32_t MeshBuilder::addVertex(const Vec3& p, long line) {
   tick();

@@ -23,8 +23,8 @@ class MeshBuilder {
   // Reserve only counts already checked against the file size.
   void reserve(std::size_t vertices, std::size_t triangles);
 
-  // Every 32768 vertices and faces added, tells `progress` (may be null) how far into the file's `size` bytes
-  // the parser is (`offset()`), and throws ReadCancelled when it says stop.
+  // Every 32768 vertices, faces and steps (step()), tells `progress` (may be null) how far into the file's `size`
+  // bytes the parser is (`offset()`), and throws ReadCancelled when it says stop.
   void watch(const StageProgress* progress, std::function<std::size_t()> offset, std::size_t size) {
     progress_ = progress;
     offset_ = std::move(offset);

@@ -31,7 +31,6 @@
 #include "TextScanner.h"
 #include "VtpDocument.h"
 #include "reamsim/mesh/MeshError.h"
-#include "reamsim/mesh/MeshIO.h"
 
 namespace reamsim::io {
 namespace {
@@ -82,7 +81,7 @@ class ArrayDecoder {
     at_ = std::move(at);
   }
   void check() const {
-    if (progress_ && !progress_->keepGoing(at_())) throw ReadCancelled(progress_->stage);
+    if (progress_) askReadGoesOn(progress_, at_());
   }
 
   // The array's values as doubles (points) or int64 (indices). `expected`: the number of values, or -1

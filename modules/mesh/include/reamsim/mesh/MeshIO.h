@@ -16,7 +16,8 @@ enum class Units { Auto, Millimetres, Metres };
 struct ReadOptions {
   Units units = Units::Auto;  // Auto: metre-scale input (bounding box diagonal < 2 units) is scaled to mm
   // Hears the fraction done at "reading" (the file's bytes, in pieces of 8 MiB) and "parsing" (how far into
-  // them the parser is, every 32768 vertices and faces); returning false stops the read with ReadCancelled.
+  // them the parser is, every 32768 vertices, faces and other things parsed); returning false stops the read with
+  // ReadCancelled.
   // Seconds at millions of faces in a text format: an import's Cancel does not wait for them.
   ProgressCallback progress;
 };

@@ -27,8 +27,9 @@ struct ClearPlacement {
 };
 
 // Steps out from `asked` by stepMm until the reamer's cutting solid is clear of `bone` (overlaps none of it:
-// ReamEngine::overlapsAt), bisects the last step down to ~stepMm / 256, and adds marginMm (checked clear too). `engine`: the reaming loop's, between computes,
-// as advanceToContactMm. Preconditions checked first: maxRetreatMm, stepMm positive and finite, marginMm >= 0.
+// ReamEngine::overlapsAt), bisects the last step down to ~stepMm / 256, and adds marginMm (checked clear too).
+// `engine`: the reaming loop's, between computes, as advanceToContactMm. Preconditions checked first:
+// maxRetreatMm, stepMm positive and finite, marginMm >= 0.
 inline constexpr double kClearPlacementReachMm = 60;  // how far out the search looks by default
 ClearPlacement findClearPlacement(ReamEngine& engine, const BoneState& bone, std::uint64_t revision, const Pose& asked,
                                   double maxRetreatMm = kClearPlacementReachMm, double stepMm = 0.5,
