@@ -233,9 +233,12 @@ class MainWindow : public QMainWindow {
   // One undo step for each state after the first of the bone's history just adopted (a crash's or a save's),
   // named "<label> (<when>): <volume> mm³, <faces> faces". The stack then stands at the history's last state.
   void stackAdoptedSteps(const QString& when);
-  // A file of the user's beside the bone that a save would replace but that could not be read when the bone was
-  // opened: moved aside to NAME.unreadable (.2, .3, … when taken) instead. Throws std::runtime_error.
-  static void moveAsideUnreadable(const QString& file);
+  // A file of the user's beside the bone that a save would replace or remove but that could not be read when the
+  // bone was opened (`file` is `refused`, and still there): moved aside to NAME.unreadable (.2, .3, … when taken)
+  // instead, and `refused` cleared. Throws std::runtime_error.
+  static void moveAsideIfRefused(const QString& file, QString& refused);
+  // "the file stays as it is (a save moves it aside to NAME.unreadable)": what the refusal's message says of it.
+  static QString keptAsideNote(const QString& file);
   void importFinished();
   void showImportProgress(double fraction, const QString& stage);
   void updateStatus();

@@ -238,10 +238,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
   // A history there that could not be read when the bone was opened is the user's to look at: kept aside.
   const QString historyPath = historyPathBeside(path);
   try {
-    if (historyPath == unreadableHistoryFile_ && QFileInfo::exists(historyPath)) {
-      moveAsideUnreadable(historyPath);
-      unreadableHistoryFile_.clear();
-    }
+    moveAsideIfRefused(historyPath, unreadableHistoryFile_);
   } catch (const std::exception& e) {
     disconnect(watch);
     showError(tr("Cannot save %1").arg(QFileInfo(path).fileName()), QString::fromStdString(e.what()));
@@ -257,10 +254,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
   }
   const QString logPath = cutLogPathBeside(path);
   try {
-    if (logPath == unreadableCutLogFile_ && QFileInfo::exists(logPath)) {
-      moveAsideUnreadable(logPath);
-      unreadableCutLogFile_.clear();
-    }
+    moveAsideIfRefused(logPath, unreadableCutLogFile_);
     writeTextFile(logPath.toStdString(), csv);
   } catch (const std::exception& e) {
     // The bone is written but its log is not: the work is not saved yet (closing asks again).
@@ -272,10 +266,7 @@ bool MainWindow::saveBoneAs(const QString& path) {
   try {
     // A file there that could not be read when the bone was opened is the user's to look at: kept aside, never
     // replaced or removed.
-    if (landmarksPath == unreadablePlanningFile_ && QFileInfo::exists(landmarksPath)) {
-      moveAsideUnreadable(landmarksPath);
-      unreadablePlanningFile_.clear();
-    }
+    moveAsideIfRefused(landmarksPath, unreadablePlanningFile_);
     if (planning != BonePlanning{})
       writeTextFile(landmarksPath.toStdString(), planningToJson(planning, "saved with the bone by ReamSim"));
     else if (QFileInfo::exists(landmarksPath) && !QFile::remove(landmarksPath))
@@ -440,8 +431,7 @@ void MainWindow::openLandmarksBeside(const QString& bonePath) {
   } catch (const std::exception& e) {
     unreadablePlanningFile_ = file;  // a save keeps it aside instead of replacing it
     showError(tr("Landmarks not read"),
-              tr("%1\n\nThe bone opens without landmarks; the file stays as it is (a save moves it aside to %2).")
-                  .arg(QString::fromStdString(e.what()), QFileInfo(file).fileName() + ".unreadable"));
+              tr("%1\n\nThe bone opens without landmarks; %2.").arg(QString::fromStdString(e.what()), keptAsideNote(file)));
   }
 }
 
@@ -455,10 +445,16 @@ QString MainWindow::earlierCutLogPathBeside(const QString& bonePath) {
   return info.dir().filePath(info.completeBaseName() + ".cut_log.csv");
 }
 
-void MainWindow::moveAsideUnreadable(const QString& file) {
+QString MainWindow::keptAsideNote(const QString& file) {
+  return tr("the file stays as it is (a save moves it aside to %1)").arg(QFileInfo(file).fileName() + ".unreadable");
+}
+
+void MainWindow::moveAsideIfRefused(const QString& file, QString& refused) {
+  if (file != refused || !QFileInfo::exists(file)) return;
   QString aside = file + ".unreadable";
   for (int n = 2; QFileInfo::exists(aside); ++n) aside = file + ".unreadable." + QString::number(n);
   if (!QFile::rename(file, aside)) throw std::runtime_error(file.toStdString() + ": cannot move the unreadable file aside");
+  refused.clear();
 }
 
 void MainWindow::stackAdoptedSteps(const QString& when) {
@@ -485,8 +481,7 @@ AdoptedHistory MainWindow::adoptSavedHistory(ImportOutcome& out, const BoneFileF
     const bool there = QFileInfo::exists(file);
     if (there) unreadableHistoryFile_ = file;  // a save keeps it aside instead of replacing or removing it
     showError(tr("Undo history not read"),
-              there ? tr("%1\n\nThe bone opens without it: Undo cannot go back before it. The file stays as it is (a save "
-                         "moves it aside to %2).").arg(out.historyError, QFileInfo(file).fileName() + ".unreadable")
+              there ? tr("%1\n\nThe bone opens without it: Undo cannot go back before it; %2.").arg(out.historyError, keptAsideNote(file))
                     : tr("%1\n\nThe bone opens without it: Undo cannot go back before it.").arg(out.historyError));
   }
   if (!out.history) return adopted;
@@ -551,8 +546,7 @@ QString MainWindow::openCutLogBeside(const QString& bonePath, const BoneFileFact
               : earlierName
                   ? tr("%1\n\nThe bone opens without its cut log; the file stays as it is (a save writes the log as %2).")
                         .arg(what, QFileInfo(cutLogPathBeside(bonePath)).fileName())
-                  : tr("%1\n\nThe bone opens without its cut log; the file stays as it is (a save moves it aside to "
-                       "%2).").arg(what, QFileInfo(file).fileName() + ".unreadable"));
+                  : tr("%1\n\nThe bone opens without its cut log; %2.").arg(what, keptAsideNote(file)));
     return {};
   }
   if (rows.empty()) return {};

@@ -1,8 +1,8 @@
 #include "RecoveryRead.h"
 
 #include <QFileInfo>
-#include <cmath>
 
+#include "SavedHistory.h"
 #include "reamsim/core/BoneState.h"
 #include "reamsim/core/HistoryJournal.h"
 #include "reamsim/mesh/RepairProgress.h"
@@ -16,15 +16,8 @@ struct Stopped {};
 // from another copy is not this one's).
 BoneHistory readHistory(const RecoveredBone& copy, const BoneState& copied) {
   BoneHistory history = readHistoryJournal(copy.historyPath.toStdString(), copy.historyRevisions, copy.historyRevisions.size() - 1);
-  const BoneState& atCopy = history.entries()[copy.historyCursor].state;
-  const double volume = copied.volume();
-  if (atCopy.liveTriangleCount() != copied.liveTriangleCount() ||
-      std::abs(atCopy.volume() - volume) > 1e-9 * (1.0 + std::abs(volume)))
-    throw std::runtime_error(QFileInfo(copy.historyPath).fileName().toStdString() +
-                             ": its state at the copy is not the copied bone (" +
-                             std::to_string(atCopy.liveTriangleCount()) + " faces, " + std::to_string(atCopy.volume()) +
-                             " mm³, against " + std::to_string(copied.liveTriangleCount()) + " faces, " +
-                             std::to_string(volume) + " mm³)");
+  requireStateIsBone(history.entries()[copy.historyCursor].state, copied,
+                     QFileInfo(copy.historyPath).fileName().toStdString() + ": its state at the copy is not the copied bone");
   return history;
 }
 

@@ -88,15 +88,19 @@ SavedHistoryRead readSavedHistory(const QString& path, const BoneFileFacts& save
     throw std::runtime_error(file + ": not the undo history saved with the bone (" + std::to_string(revisions.size()) +
                              " states; saved: " + std::to_string(states) + ")");
   BoneHistory history = readHistoryJournal(file, revisions, revisions.size() - 1);
-  const BoneState& atSave = history.entries()[saved.historyCursor].state;
-  const double volume = opened.volume();
-  if (atSave.liveTriangleCount() != opened.liveTriangleCount() ||
-      std::abs(atSave.volume() - volume) > 1e-9 * (1.0 + std::abs(volume)))
-    throw SavedHistoryAtAnotherBone(file + ": its state at the save is not the bone in the file (" +
-                             std::to_string(atSave.liveTriangleCount()) + " faces, " + std::to_string(atSave.volume()) +
-                             " mm³, against " + std::to_string(opened.liveTriangleCount()) + " faces, " +
-                             std::to_string(volume) + " mm³)");
+  requireStateIsBone(history.entries()[saved.historyCursor].state, opened,
+                     file + ": its state at the save is not the bone in the file");
   return {std::move(history), revisions};
+}
+
+void requireStateIsBone(const BoneState& state, const BoneState& bone, const std::string& problem) {
+  const double volume = bone.volume();
+  if (state.liveTriangleCount() != bone.liveTriangleCount() ||
+      std::abs(state.volume() - volume) > 1e-9 * (1.0 + std::abs(volume)))
+    throw SavedHistoryAtAnotherBone(problem + " (" + std::to_string(state.liveTriangleCount()) + " faces, " +
+                                    std::to_string(state.volume()) + " mm³, against " +
+                                    std::to_string(bone.liveTriangleCount()) + " faces, " + std::to_string(volume) +
+                                    " mm³)");
 }
 
 }  // namespace reamsim::ui

@@ -6,6 +6,7 @@
 #include <QString>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "reamsim/core/BoneHistory.h"
@@ -48,6 +49,10 @@ class SavedHistoryAtAnotherBone : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+// Checks that `state` (a history's, read back from a journal) is `bone` (as read from the bone file beside it):
+// the same faces and volume (to 1e-9). Throws SavedHistoryAtAnotherBone, `problem` followed by both counts. A
+// save's history and a crash copy's are both checked so.
+void requireStateIsBone(const BoneState& state, const BoneState& bone, const std::string& problem);
 SavedHistoryRead readSavedHistory(const QString& path, const BoneFileFacts& saved, const BoneState& opened);
 
 }  // namespace reamsim::ui
