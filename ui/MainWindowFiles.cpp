@@ -717,6 +717,7 @@ QString MainWindow::exportReport(const QString& file) {
   if (session_->reamer()->cuttingVolume()) in.reamerPose = session_->reamer()->pose();
   in.landmarks = bone.landmarks();
   in.plannedAxis = bone.plannedAxis();
+  addGlenoidFaces(in, bone.history().entries().front().state, bone.current());
   // The log only grows: a cut undone since (its state in this bone's history, past the cursor) is marked, and so
   // is one a saved log said was undone. Rows of another bone (before an exchange) or of a branch the history left
   // are not this history's: not marked.

@@ -10,7 +10,8 @@
 #include "Commands.h"
 #include "reamsim/mesh/MeshError.h"
 #include "reamsim/ream/CutLogIO.h"
-#include "reamsim/ream/DefaultCase.h"
+#include "DefaultCase.h"
+#include "reamsim/ream/GlenoidFace.h"
 #include "reamsim/ream/Plan.h"
 #include "reamsim/ream/Resources.h"
 #include "reamsim/ream/ScapularFrame.h"
@@ -43,10 +44,35 @@ json measured(const ScapularFrame& frame, const std::string& source, const Vec3&
           {"inclination_deg", a.inclinationDeg}};
 }
 
+// The glenoid face of `boneArg` about the frame's glenoid centre, its angles, and each axis's correction of them.
+json glenoidFace(const ScapularFrame& frame, const std::string& boneArg, const std::string& units, double radiusMm) {
+  const std::string source = boneArg == "default" ? "the bundled scapula" : boneArg;
+  const BoneState bone = BoneState::fromMesh(benchMesh(boneArg, units));
+  GlenoidFaceOptions options;
+  options.radiusMm = radiusMm;
+  try {
+    const GlenoidFace face = measureGlenoidFace(bone, frame.origin, options);
+    const AxisAngles a = axisAngles(frame, face.outward);
+    return {{"bone", source}, {"outward", vec(face.outward)}, {"version_deg", a.versionDeg},
+            {"inclination_deg", a.inclinationDeg}, {"radius_mm", face.radiusMm}, {"triangles", face.triangles},
+            {"area_mm2", face.areaMm2}, {"centre_gap_mm", face.centreGapMm}};
+  } catch (const std::invalid_argument& e) {
+    throw InputError(boneArg == "default" ? std::string("the bundled scapula") : boneArg,
+                     std::string("glenoid face: ") + e.what());
+  }
+}
+
+// What an axis changes of the glenoid's own angles (positive: towards anteversion, superior tilt).
+void addCorrection(json& axis, const json& face) {
+  axis["correction_deg"] = {{"version", axis["version_deg"].get<double>() - face["version_deg"].get<double>()},
+                            {"inclination", axis["inclination_deg"].get<double>() - face["inclination_deg"].get<double>()}};
+}
+
 }  // namespace
 
 int runAxis(const std::vector<std::string>& args) {
-  CliArgs a(args, {"landmarks", "axis", "plan", "version", "inclination", "clearance", "plan-out", "reamer", "step", "count"},
+  CliArgs a(args, {"landmarks", "axis", "plan", "version", "inclination", "clearance", "plan-out", "reamer", "step", "count",
+             "bone", "units", "glenoid-radius"},
             {});
   if (!a.positionals().empty()) throw UsageError("axis takes no positional argument");
   const std::string landmarksArg = a.value("landmarks", "default");
@@ -63,10 +89,16 @@ int runAxis(const std::vector<std::string>& args) {
   if (!aim && (a.has("plan-out") || a.has("clearance") || a.has("reamer") || a.has("step") || a.has("count")))
     throw UsageError("--plan-out, --clearance, --reamer, --step and --count go with --version and --inclination");
 
+  if (!a.has("bone") && (a.has("units") || a.has("glenoid-radius")))
+    throw UsageError("--units and --glenoid-radius go with --bone");
+
   json out = {{"landmarks", landmarksSource},
               {"side", toString(frame.side)},
               {"frame", {{"origin", vec(frame.origin)}, {"lateral", vec(frame.lateral)},
                          {"anterior", vec(frame.anterior)}, {"superior", vec(frame.superior)}}}};
+  if (a.has("bone"))
+    out["glenoid_face"] = glenoidFace(frame, a.value("bone"), a.value("units", "auto"),
+                                      a.number("glenoid-radius", GlenoidFaceOptions{}.radiusMm));
   if (!aim) {
     json axes = json::array();
     try {
@@ -90,6 +122,8 @@ int runAxis(const std::vector<std::string>& args) {
     } catch (const std::invalid_argument& e) {
       throw InputError(a.value("plan", "default plan"), e.what());
     }
+    if (out.contains("glenoid_face"))
+      for (json& axis : axes) addCorrection(axis, out["glenoid_face"]);
     out["axes"] = axes;
     std::cout << out.dump(2) << "\n";
     return kOk;
@@ -106,6 +140,7 @@ int runAxis(const std::vector<std::string>& args) {
   }
   out["aimed"] = {{"version_deg", angles.versionDeg}, {"inclination_deg", angles.inclinationDeg},
                   {"clearance_mm", clearance}, {"tip", vec(start.tip)}, {"axis", vec(start.axis)}};
+  if (out.contains("glenoid_face")) addCorrection(out["aimed"], out["glenoid_face"]);
   if (a.has("plan-out")) {
     ReamPlan plan;
     plan.reamer = a.value("reamer", "glenoid-36-R30");

@@ -202,6 +202,24 @@ int runReam(const std::vector<std::string>& args) {
   if (!planNode.poses().empty()) report.reamerPose = planNode.poses().back();
   report.landmarks = landmarks;
   report.plannedAxis = planning.plannedAxis;
+  addGlenoidFaces(report, boneNode.history().entries().front().state, boneNode.current());
+  if (landmarks.complete()) {
+    // The glenoid face's own angles before and after: what the plan set out to correct, and what it made.
+    nlohmann::json faces;
+    for (const auto& [key, reported] : {std::pair{"as_opened", &report.glenoidAsOpened}, std::pair{"now", &report.glenoidNow}}) {
+      if (!reported->face) {
+        faces[key] = {{"problem", reported->problem}};
+        continue;
+      }
+      try {
+        const AxisAngles g = axisAngles(scapularFrame(landmarks), reported->face->outward);
+        faces[key] = {{"version_deg", g.versionDeg}, {"inclination_deg", g.inclinationDeg}};
+      } catch (const std::invalid_argument& e) {
+        faces[key] = {{"problem", e.what()}};
+      }
+    }
+    summary["glenoid_face"] = faces;
+  }
   for (const CutLogEntry& e : log.entries())
     if (e.removedMm3 > 0) report.cuts.push_back(e);
   report.writtenUnixMs = std::chrono::duration_cast<std::chrono::milliseconds>(

@@ -301,6 +301,40 @@ TEST(Cli, AxisAimsAPlanAtAVersionAndInclinationAndMeasuresItBack) {
   EXPECT_NE(byDefault["axes"][0]["source"].get<std::string>().find("default_plan.json"), std::string::npos);
 }
 
+// --bone measures the glenoid face about the landmarks' glenoid centre; each axis says what it corrects of it.
+TEST(Cli, AxisMeasuresTheGlenoidFaceAndWhatEachAxisCorrects) {
+  const CliRun r = run("axis --bone default");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const nlohmann::json out = parseJson(r);
+  const nlohmann::json& face = out["glenoid_face"];
+  EXPECT_EQ(face["bone"], "the bundled scapula");
+  EXPECT_EQ(face["radius_mm"].get<double>(), 10);
+  EXPECT_GT(face["triangles"].get<int>(), 50);
+  const double version = face["version_deg"].get<double>(), inclination = face["inclination_deg"].get<double>();
+  const nlohmann::json& axis = out["axes"][0];
+  EXPECT_NEAR(axis["correction_deg"]["version"].get<double>(), axis["version_deg"].get<double>() - version, 1e-12);
+  EXPECT_NEAR(axis["correction_deg"]["inclination"].get<double>(), axis["inclination_deg"].get<double>() - inclination, 1e-12);
+  // Aimed along the glenoid's own angles: no correction.
+  std::ostringstream aim;
+  aim.precision(17);
+  aim << "axis --bone default --version " << version << " --inclination " << inclination;
+  const nlohmann::json along = parseJson(run(aim.str()));
+  EXPECT_NEAR(along["aimed"]["correction_deg"]["version"].get<double>(), 0, 1e-9);
+  EXPECT_NEAR(along["aimed"]["correction_deg"]["inclination"].get<double>(), 0, 1e-9);
+  // A radius outside 2..40 mm, or a glenoid centre off the bone, is named.
+  CliRun bad = run("axis --bone default --glenoid-radius 100");
+  EXPECT_EQ(bad.exitCode, 3);
+  EXPECT_NE(bad.out.find("the bundled scapula: glenoid face: the glenoid face is measured within 2 to 40 mm"), std::string::npos)
+      << bad.out;
+  const fs::path away = scratch("away_landmarks.json");
+  std::ofstream(away) << R"({"side": "right", "glenoid_centre": [100, 100, 300], "trigonum_scapulae": [-100, 0, 100],)"
+                      << R"( "inferior_angle": [-80, -120, 110]})";
+  bad = run("axis --bone default --landmarks " + away.string());
+  EXPECT_EQ(bad.exitCode, 3);
+  EXPECT_NE(bad.out.find("no bone surface lies within 10 mm of the glenoid centre"), std::string::npos) << bad.out;
+  EXPECT_EQ(run("axis --glenoid-radius 8").exitCode, 2);  // without --bone
+}
+
 TEST(Cli, AxisRejectsBadLandmarksAndAnglesClearly) {
   const fs::path half = scratch("half_landmarks.json");
   std::ofstream(half) << R"({"side": "right", "glenoid_centre": [1, 2, 3]})";

@@ -29,6 +29,7 @@
 #include "MainWindow.h"
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
+#include "reamsim/ream/GlenoidFace.h"
 #include "reamsim/ream/ScapularFrame.h"
 
 namespace reamsim::ui::test {
@@ -126,6 +127,66 @@ TEST(GuiPlanning, TheDockReadsTheReamerAxisAndAimsTheReamer) {
 // Aim with the reamer's tip asked at the glenoid centre (no clearance): there the reamer overlaps the glenoid, and a
 // placement would cut it. It is placed out along the aimed axis instead, as near as it is clear, and says so;
 // nothing is cut.
+// The glenoid face's angles of a state of the cut bone, as the dock measures them (about the glenoid centre).
+AxisAngles glenoidAnglesOf(ReamSession& s, const BoneState& state) {
+  const ScapulaLandmarks& marks = s.bone()->landmarks();
+  return axisAngles(scapularFrame(marks), measureGlenoidFace(state, *marks[ScapulaLandmark::GlenoidCentre]).outward);
+}
+
+QString anglesShown(const AxisAngles& a) {
+  return "version " + QLocale().toString(a.versionDeg, 'f', 1) + "°" + QString::fromUtf8(" (");
+}
+
+TEST(GuiPlanning, TheDockMeasuresTheGlenoidFaceAsOpenedAndAsReamed) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  MainWindow& w = *f.window;
+  ReamSession& s = f.session();
+  QDockWidget* dock = planningDock(w);
+  ASSERT_NE(dock, nullptr);
+  auto* glenoid = part<QLabel>(dock, "GlenoidFace");
+  ASSERT_NE(glenoid, nullptr);
+  ASSERT_EQ(s.bone()->history().size(), 1u) << "the default case opens uncut";
+  // Measured on a worker: the label says so until the answer comes.
+  ASSERT_TRUE(QTest::qWaitFor([&] { return glenoid->text().contains("as opened"); }, 10000)) << glenoid->text().toStdString();
+  const AxisAngles opened = glenoidAnglesOf(s, s.bone()->history().entries().front().state);
+  EXPECT_TRUE(glenoid->text().contains(anglesShown(opened))) << glenoid->text().toStdString();
+  EXPECT_TRUE(glenoid->text().contains(QLocale().toString(opened.inclinationDeg, 'f', 1) + "°")) << glenoid->text().toStdString();
+  EXPECT_FALSE(glenoid->text().contains("now")) << "nothing cut yet: " << glenoid->text().toStdString();
+
+  // "Take the glenoid's" fills in its angles; Aim along them, and the plan says it corrects nothing.
+  auto* version = part<QDoubleSpinBox>(dock, "AimVersion");
+  auto* inclination = part<QDoubleSpinBox>(dock, "AimInclination");
+  auto* takeGlenoid = part<QPushButton>(dock, "TakeGlenoidAngles");
+  ASSERT_TRUE(version && inclination && takeGlenoid);
+  ASSERT_TRUE(takeGlenoid->isEnabled());
+  QTest::mouseClick(takeGlenoid, Qt::LeftButton);
+  EXPECT_NEAR(version->value(), opened.versionDeg, 0.05 + 1e-9);
+  EXPECT_NEAR(inclination->value(), opened.inclinationDeg, 0.05 + 1e-9);
+  version->setValue(opened.versionDeg + 5);  // five degrees more anteversion than the glenoid's
+  QTest::mouseClick(part<QPushButton>(dock, "AimReamer"), Qt::LeftButton);
+  ASSERT_TRUE(s.waitIdle(60000));
+  auto* plan = part<QLabel>(dock, "PlannedAxis");
+  const AxisAngles planned = axisAngles(scapularFrame(s.bone()->landmarks()), s.bone()->plannedAxis()->axis * -1.0);
+  EXPECT_TRUE(plan->text().contains("from the glenoid face as opened: +" +
+                                    QLocale().toString(planned.versionDeg - opened.versionDeg, 'f', 1) + "° of version"))
+      << plan->text().toStdString();
+
+  // Reamed along the plan: the face as it is now joins the one as opened, and turns towards the reamer's axis.
+  cutPastContact(s, s.reamer()->pose(), 2.0);
+  ASSERT_GT(s.bone()->history().size(), 1u);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return glenoid->text().contains("as it is now: version"); }, 10000))
+      << glenoid->text().toStdString();
+  const AxisAngles now = glenoidAnglesOf(s, s.bone()->current());
+  EXPECT_TRUE(glenoid->text().contains("as it is now: " + anglesShown(now))) << glenoid->text().toStdString();
+  EXPECT_LT(std::abs(now.versionDeg - planned.versionDeg), std::abs(opened.versionDeg - planned.versionDeg));
+  // Undone: as opened only, at once (both states were measured already).
+  s.undoStack()->undo();
+  ASSERT_TRUE(s.waitIdle(60000));
+  EXPECT_FALSE(glenoid->text().contains("now")) << glenoid->text().toStdString();
+  EXPECT_TRUE(glenoid->text().contains(anglesShown(opened))) << glenoid->text().toStdString();
+}
+
 TEST(GuiPlanning, AimPlacesTheReamerClearOfTheBone) {
   REAMSIM_REQUIRE_DISPLAY();
   GuiFixture f;
@@ -499,6 +560,12 @@ TEST(GuiPlanning, AReportHoldsTheRemovedVolumeTheAnglesAndThePicture) {
   EXPECT_TRUE(html.contains(QString::number(a.versionDeg, 'f', 1) + "° (")) << a.versionDeg;
   EXPECT_TRUE(html.contains("trigonum scapulae"));
   EXPECT_TRUE(html.contains("Planned axis: version, inclination"));
+  // The glenoid face as opened and as the bone is now (one cut of the two undone: the state after the first).
+  const AxisAngles faceNow = glenoidAnglesOf(s, s.bone()->current());
+  EXPECT_TRUE(html.contains("Glenoid face now: version, inclination</th><td>" +
+                            QString::number(faceNow.versionDeg, 'f', 1) + "° (")) << faceNow.versionDeg;
+  EXPECT_TRUE(html.contains("Glenoid face as opened: version, inclination"));
+  EXPECT_TRUE(html.contains("Planned axis from the glenoid face as opened"));
   EXPECT_TRUE(html.contains("<th>off the plan</th>"));
   EXPECT_TRUE(html.contains("2 (1 undone: not in the bone now)")) << html.toStdString();
   EXPECT_EQ(html.count(" (undone)</td>"), 1);

@@ -87,5 +87,33 @@ TEST(ReamReport, GivesTheAxisVersionAndInclinationWithLandmarks) {
   EXPECT_THROW(reamReportHtml(in), std::invalid_argument);
 }
 
+// The glenoid face as opened and now, and what the planned axis corrects of it; a centre off the bone is named.
+TEST(ReamReport, GivesTheGlenoidFaceBeforeAndAfterAndThePlansCorrection) {
+  const DefaultBone bone = loadDefaultBone();
+  const BoneState opened = BoneState::fromMesh(bone.mesh);
+  ReamReportInput in = twoCuts();
+  in.landmarks = loadDefaultLandmarks();
+  const ScapularFrame frame = scapularFrame(in.landmarks);
+  const AxisAngles aimed{-10, 5};
+  in.plannedAxis = Pose{frame.origin, outwardAxisFor(frame, aimed) * -1.0, 0};
+  addGlenoidFaces(in, opened, opened);
+  ASSERT_TRUE(in.glenoidAsOpened.face && in.glenoidNow.face);
+  const AxisAngles face = axisAngles(frame, in.glenoidAsOpened.face->outward);
+  const std::string html = reamReportHtml(in);
+  char expected[160];
+  std::snprintf(expected, sizeof expected, "%.1f° (retroversion), %.1f° (superior)", face.versionDeg, face.inclinationDeg);
+  EXPECT_EQ(count(html, expected), 2u) << expected;  // as opened and now: the same state
+  std::snprintf(expected, sizeof expected, "%+.1f° of version, %+.1f° of inclination", -10 - face.versionDeg,
+                5 - face.inclinationDeg);
+  EXPECT_NE(html.find(expected), std::string::npos) << expected;
+  // Without the glenoid centre: no glenoid rows at all; with one off the bone: the reason, in both rows.
+  ReamReportInput none = twoCuts();
+  addGlenoidFaces(none, opened, opened);
+  EXPECT_EQ(reamReportHtml(none).find("Glenoid face"), std::string::npos);
+  in.landmarks[ScapulaLandmark::GlenoidCentre] = Vec3{500, 500, 500};
+  addGlenoidFaces(in, opened, opened);
+  EXPECT_EQ(count(reamReportHtml(in), "no bone surface lies within 10 mm of the glenoid centre"), 2u);
+}
+
 }  // namespace
 }  // namespace reamsim

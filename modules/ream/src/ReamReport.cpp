@@ -64,7 +64,24 @@ std::string reamerText(const ReamerSpec& r) {
          (r.isFlat() ? std::string("flat") : "cap sphere R " + fixed(r.sphereRadiusMm, 1) + " mm") + ")";
 }
 
+ReportedGlenoidFace measuredFace(const BoneState& state, const Vec3& centre) {
+  ReportedGlenoidFace r;
+  try {
+    r.face = measureGlenoidFace(state, centre);
+  } catch (const std::invalid_argument& e) {
+    r.problem = e.what();
+  }
+  return r;
+}
+
 }  // namespace
+
+void addGlenoidFaces(ReamReportInput& in, const BoneState& opened, const BoneState& now) {
+  const std::optional<Vec3>& centre = in.landmarks[ScapulaLandmark::GlenoidCentre];
+  if (!centre) return;
+  in.glenoidAsOpened = measuredFace(opened, *centre);
+  in.glenoidNow = &now == &opened ? in.glenoidAsOpened : measuredFace(now, *centre);
+}
 
 std::string reamReportHtml(const ReamReportInput& in) {
   std::optional<ScapularFrame> frame;
@@ -80,6 +97,23 @@ std::string reamReportHtml(const ReamReportInput& in) {
       return anglesText(feedAxisAngles(*frame, feedAxis));
     } catch (const std::invalid_argument& e) {
       return escaped(e.what());
+    }
+  };
+  auto glenoid = [&](const ReportedGlenoidFace& g) -> std::string {
+    if (!g.face) return escaped(g.problem);
+    return angles(g.face->outward * -1.0);  // its outward direction, read as a feed axis's opposite
+  };
+  // The planned axis's angles less the glenoid face's as opened: the correction the plan makes.
+  auto correction = [&](const Vec3& feedAxis) -> std::string {
+    if (!frame || !in.glenoidAsOpened.face) return {};
+    try {
+      const AxisAngles plan = feedAxisAngles(*frame, feedAxis);
+      const AxisAngles face = axisAngles(*frame, in.glenoidAsOpened.face->outward);
+      auto signedDeg = [](double d) { return (d > 0 ? "+" : "") + fixed(d, 1) + "°"; };
+      return signedDeg(plan.versionDeg - face.versionDeg) + " of version, " +
+             signedDeg(plan.inclinationDeg - face.inclinationDeg) + " of inclination";
+    } catch (const std::invalid_argument&) {
+      return {};
     }
   };
 
@@ -111,8 +145,14 @@ std::string reamReportHtml(const ReamReportInput& in) {
     h += row("Reamer feed axis", point(in.reamerPose->axis));
     h += row("Reamer axis: version, inclination", angles(in.reamerPose->axis));
   }
+  if (in.glenoidAsOpened.face || !in.glenoidAsOpened.problem.empty()) {
+    h += row("Glenoid face as opened: version, inclination", glenoid(in.glenoidAsOpened));
+    h += row("Glenoid face now: version, inclination", glenoid(in.glenoidNow));
+  }
   if (in.plannedAxis) {
     h += row("Planned axis: version, inclination", angles(in.plannedAxis->axis));
+    if (const std::string c = correction(in.plannedAxis->axis); !c.empty())
+      h += row("Planned axis from the glenoid face as opened", c);
     h += row("Planned axis through (mm)", point(in.plannedAxis->tip));
     if (in.reamerPose)
       h += row("Reamer axis off the plan", fixed(axisDeviationDeg(in.plannedAxis->axis, in.reamerPose->axis), 1) + "°");
@@ -127,7 +167,9 @@ std::string reamReportHtml(const ReamReportInput& in) {
       h += row(displayName(which), point(*in.landmarks[which]) + " mm");
     h += "</table>\n<p>Version and inclination are the angles of the reamer axis (out of the glenoid) in the "
          "transverse and scapular planes of the scapular frame: lateral from the trigonum scapulae to the glenoid "
-         "centre, superior in the plane of the three landmarks (docs/PLANNING.md).</p>\n";
+         "centre, superior in the plane of the three landmarks (docs/PLANNING.md). The glenoid face's are those of "
+         "the bone's surface within " + fixed(GlenoidFaceOptions{}.radiusMm, 0) + " mm of the glenoid centre (the "
+         "plane of that piece's rim).</p>\n";
   } else {
     h += "<p>No scapular frame: " + escaped(frameProblem) + ". Version and inclination are not given.</p>\n";
   }

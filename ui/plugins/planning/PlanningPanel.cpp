@@ -25,6 +25,18 @@ constexpr double kDefaultClearanceMm = 10;  // clear of the glenoid rim for tilt
 
 QString degreesText(double deg) { return QLocale().toString(deg, 'f', 1) + QStringLiteral("°"); }
 
+QString versionText(const AxisAngles& a) {
+  return PlanningPanel::tr("version %1 (%2), inclination %3 (%4)")
+      .arg(degreesText(a.versionDeg),
+           a.versionDeg < 0 ? PlanningPanel::tr("retroversion")
+                            : (a.versionDeg > 0 ? PlanningPanel::tr("anteversion") : PlanningPanel::tr("neutral")),
+           degreesText(a.inclinationDeg),
+           a.inclinationDeg < 0 ? PlanningPanel::tr("inferior")
+                                : (a.inclinationDeg > 0 ? PlanningPanel::tr("superior") : PlanningPanel::tr("neutral")));
+}
+
+QString signedDegreesText(double deg) { return (deg > 0 ? QStringLiteral("+") : QString()) + degreesText(deg); }
+
 QString capitalised(const char* text) {
   QString s = QString::fromUtf8(text);
   if (!s.isEmpty()) s[0] = s[0].toUpper();
@@ -53,6 +65,15 @@ PlanningPanel::PlanningPanel(Document& document, QWidget* parent)
   auto* grid = new QGridLayout(marksBox);
   buildLandmarkRows(grid);
   layout->addWidget(marksBox);
+
+  glenoid_ = new QLabel(body);
+  glenoid_->setObjectName("GlenoidFace");
+  glenoid_->setWordWrap(true);
+  glenoid_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  glenoid_->setToolTip(tr("The bone's surface within %1 mm of the glenoid centre, facing its way: the sum of its "
+                          "triangles' areas along their normals, i.e. the plane of its rim")
+                           .arg(GlenoidFaceOptions{}.radiusMm));
+  layout->addWidget(glenoid_);
 
   report_ = new QLabel(body);
   report_->setObjectName("AxisAngles");
@@ -86,12 +107,16 @@ PlanningPanel::PlanningPanel(Document& document, QWidget* parent)
   take_ = new QPushButton(tr("Take the reamer's"), aimBox);
   take_->setObjectName("TakeReamerAngles");
   take_->setToolTip(tr("Fill in the version and inclination the reamer has now"));
+  takeGlenoid_ = new QPushButton(tr("Take the glenoid's"), aimBox);
+  takeGlenoid_->setObjectName("TakeGlenoidAngles");
+  takeGlenoid_->setToolTip(tr("Fill in the glenoid face's own version and inclination, as the bone was opened"));
   aim_ = new QPushButton(tr("Aim"), aimBox);
   aim_->setObjectName("AimReamer");
   aim_->setToolTip(tr("Plan this axis through the glenoid centre and place the reamer on it, clear of the bone"));
   clearPlan_ = new QPushButton(tr("Clear the plan"), aimBox);
   clearPlan_->setObjectName("ClearPlannedAxis");
   aimButtons->addWidget(take_);
+  aimButtons->addWidget(takeGlenoid_);
   aimButtons->addWidget(aim_);
   aimButtons->addWidget(clearPlan_);
   form->addRow(aimButtons);
@@ -100,6 +125,8 @@ PlanningPanel::PlanningPanel(Document& document, QWidget* parent)
   setWidget(body);
 
   connect(take_, &QPushButton::clicked, this, &PlanningPanel::takeReamerAngles);
+  connect(takeGlenoid_, &QPushButton::clicked, this, &PlanningPanel::takeGlenoidAngles);
+  connect(&faceMeasure_, &GlenoidFaceMeasure::measured, this, &PlanningPanel::sync);
   connect(clearPlan_, &QPushButton::clicked, this, [this] {
     if (BoneNode* b = bone()) b->setPlannedAxis(std::nullopt);
   });
@@ -203,22 +230,54 @@ void PlanningPanel::sync() {
     if (!r || !r->cuttingVolume()) {
       text = tr("No reamer to measure.");
     } else {
-      const AxisAngles a = feedAxisAngles(frame, r->pose().axis);
-      text = tr("Reamer axis: version %1 (%2), inclination %3 (%4)")
-                 .arg(degreesText(a.versionDeg),
-                      a.versionDeg < 0 ? tr("retroversion") : (a.versionDeg > 0 ? tr("anteversion") : tr("neutral")),
-                      degreesText(a.inclinationDeg),
-                      a.inclinationDeg < 0 ? tr("inferior") : (a.inclinationDeg > 0 ? tr("superior") : tr("neutral")));
+      text = tr("Reamer axis: %1").arg(versionText(feedAxisAngles(frame, r->pose().axis)));
     }
   } catch (const std::invalid_argument& e) {
     text = framed ? tr("Reamer axis: %1.").arg(QString::fromStdString(e.what()))
                   : tr("Version and inclination need the landmarks: %1.").arg(QString::fromStdString(e.what()));
   }
   report_->setText(text);
+  if (node && marks[ScapulaLandmark::GlenoidCentre]) faceMeasure_.ask(*node, *marks[ScapulaLandmark::GlenoidCentre]);
+  glenoid_->setText(glenoidFaceText());
+  takeGlenoid_->setEnabled(glenoidAngles(false).has_value());
   plan_->setText(planText());
   clearPlan_->setEnabled(node && node->plannedAxis());
   aim_->setEnabled(framed && reamer());
   take_->setEnabled(framed && reamer());
+}
+
+std::optional<AxisAngles> PlanningPanel::glenoidAngles(bool now, QString* why) const {
+  auto say = [why](const QString& text) {
+    if (why) *why = text;
+    return std::nullopt;
+  };
+  const BoneNode* node = bone();
+  if (!node) return say(tr("there is no bone"));
+  const std::optional<Vec3>& centre = node->landmarks()[ScapulaLandmark::GlenoidCentre];
+  if (!centre) return say(tr("place the glenoid centre to measure it"));
+  const std::uint64_t revision = now ? node->currentRevision() : node->history().entries().front().revision;
+  const GlenoidFaceMeasure::Measured* m = faceMeasure_.find(revision, *centre);
+  if (!m) return say(tr("measuring…"));
+  if (!m->face) return say(QString::fromStdString(m->error));
+  try {
+    return axisAngles(scapularFrame(node->landmarks()), m->face->outward);
+  } catch (const std::invalid_argument& e) {
+    return say(tr("its version and inclination need the landmarks (%1)").arg(QString::fromStdString(e.what())));
+  }
+}
+
+// As opened and, once the bone is cut, as reamed now: what a plan corrects, and what the reaming has made of it.
+QString PlanningPanel::glenoidFaceText() const {
+  QString why;
+  const std::optional<AxisAngles> opened = glenoidAngles(false, &why);
+  if (!opened) return tr("Glenoid face: %1.").arg(why);
+  QString text = tr("Glenoid face as opened: %1").arg(versionText(*opened));
+  const BoneNode* node = bone();
+  if (node->currentRevision() != node->history().entries().front().revision) {
+    const std::optional<AxisAngles> now = glenoidAngles(true, &why);
+    text += now ? tr("; as it is now: %1").arg(versionText(*now)) : tr("; as it is now: %1").arg(why);
+  }
+  return text + ".";
 }
 
 // The planned axis in the frame, and how far the reamer's axis is off it (the angle between the two axes).
@@ -230,6 +289,10 @@ QString PlanningPanel::planText() const {
   try {
     const AxisAngles a = feedAxisAngles(scapularFrame(node->landmarks()), planned.axis);
     text += tr(": version %1, inclination %2").arg(degreesText(a.versionDeg), degreesText(a.inclinationDeg));
+    if (const std::optional<AxisAngles> glenoid = glenoidAngles(false))
+      text += tr(" (from the glenoid face as opened: %1 of version, %2 of inclination)")
+                  .arg(signedDegreesText(a.versionDeg - glenoid->versionDeg),
+                       signedDegreesText(a.inclinationDeg - glenoid->inclinationDeg));
   } catch (const std::invalid_argument&) {  // landmarks changed since: the axis stays, its angles do not
   }
   if (const ReamerNode* r = reamer(); r && r->cuttingVolume())
@@ -259,6 +322,13 @@ void PlanningPanel::takeReamerAngles() {
     version_->setValue(a.versionDeg);
     inclination_->setValue(a.inclinationDeg);
   } catch (const std::invalid_argument&) {  // the report above says why
+  }
+}
+
+void PlanningPanel::takeGlenoidAngles() {
+  if (const std::optional<AxisAngles> a = glenoidAngles(false)) {
+    version_->setValue(a->versionDeg);
+    inclination_->setValue(a->inclinationDeg);
   }
 }
 

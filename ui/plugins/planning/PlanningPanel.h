@@ -14,6 +14,8 @@
 #include "reamsim/core/BoneNode.h"
 #include "reamsim/core/InteractionNode.h"
 #include "reamsim/core/ReamerNode.h"
+#include "reamsim/ream/ScapularFrame.h"
+#include "GlenoidFaceMeasure.h"
 
 class QComboBox;
 class QDoubleSpinBox;
@@ -30,6 +32,7 @@ class PlanningPanel : public QDockWidget {
 
   QString axisReport() const;  // what the dock says of the reamer's axis now
   QString planText() const;    // what it says of the planned axis
+  QString glenoidFaceText() const;  // what it says of the glenoid face, as opened and now
 
  public Q_SLOTS:
   // Plans the axis at the dock's version and inclination through the glenoid centre (BoneNode::plannedAxis) and
@@ -37,6 +40,9 @@ class PlanningPanel : public QDockWidget {
   QString aimReamer();
   // The reamer's present angles into the aim fields (so that a small change starts from where it is).
   void takeReamerAngles();
+  // The glenoid face's own angles, measured on the bone as opened, into the aim fields (reaming along the
+  // glenoid's own axis; a correction starts from there).
+  void takeGlenoidAngles();
   // Landmark files (docs/PLANNING.md); each returns an error message naming the file, empty on success.
   QString loadLandmarksFrom(const QString& path);
   QString saveLandmarksTo(const QString& path);
@@ -44,6 +50,9 @@ class PlanningPanel : public QDockWidget {
  private:
   void buildLandmarkRows(QGridLayout* grid);
   void sync();
+  // The glenoid face's angles in the landmarks' frame, of the bone as opened (`now` false) or as it is now;
+  // nullopt while measured, or when there is no face or frame (`why` says which).
+  std::optional<AxisAngles> glenoidAngles(bool now, QString* why = nullptr) const;
   BoneNode* bone() const;  // the cut bone: the document's first
   InteractionNode* interaction() const;
   ReamerNode* reamer() const;
@@ -54,11 +63,14 @@ class PlanningPanel : public QDockWidget {
   std::array<QLabel*, 3> pointLabels_{};
   std::array<QPushButton*, 3> placeButtons_{};
   QLabel* report_ = nullptr;
+  QLabel* glenoid_ = nullptr;
+  GlenoidFaceMeasure faceMeasure_;
   QDoubleSpinBox* version_ = nullptr;
   QDoubleSpinBox* inclination_ = nullptr;
   QDoubleSpinBox* clearance_ = nullptr;
   QPushButton* aim_ = nullptr;
   QPushButton* take_ = nullptr;
+  QPushButton* takeGlenoid_ = nullptr;
   QPushButton* clearPlan_ = nullptr;
   QLabel* plan_ = nullptr;
 };

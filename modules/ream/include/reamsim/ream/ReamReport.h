@@ -13,8 +13,15 @@
 #include "reamsim/core/Pose.h"
 #include "reamsim/core/ReamerSpec.h"
 #include "reamsim/core/ScapulaLandmarks.h"
+#include "reamsim/ream/GlenoidFace.h"
 
 namespace reamsim {
+
+// The glenoid face of one bone state (reamsim/ream/GlenoidFace.h), or why there is none.
+struct ReportedGlenoidFace {
+  std::optional<GlenoidFace> face;
+  std::string problem;  // empty with no face: not measured
+};
 
 struct ReamReportInput {
   std::string title = "ReamSim reaming report";
@@ -27,12 +34,17 @@ struct ReamReportInput {
   std::optional<Pose> reamerPose;   // where it is now
   ScapulaLandmarks landmarks;       // the bone's (any not placed: no frame, no angles)
   std::optional<Pose> plannedAxis;  // the axis planned on the bone (each cut's axis is measured off it)
+  ReportedGlenoidFace glenoidAsOpened, glenoidNow;  // the glenoid face before the cuts and now (addGlenoidFaces)
   std::vector<CutLogEntry> cuts;    // the log's rows, in order
   std::vector<bool> undone;         // beside `cuts` (or empty): the row's cut is not in the bone now (undone)
   std::string pngBase64;            // a picture of the view (PNG, base64); empty: none
   std::int64_t writtenUnixMs = 0;   // when (0: not said)
   std::string writtenBy = "ReamSim";
 };
+
+// Measures the glenoid face of both states about the landmarks' glenoid centre into `input` (nothing without
+// one; `now` is skipped when it is `opened`). O(faces) each: ~3 ms at 400k.
+void addGlenoidFaces(ReamReportInput& input, const BoneState& opened, const BoneState& now);
 
 // The whole HTML document. Every text from the input is escaped; numbers are written in the C locale.
 std::string reamReportHtml(const ReamReportInput& input);
