@@ -91,6 +91,9 @@ int runAxis(const std::vector<std::string>& args) {
 
   if (!a.has("bone") && (a.has("units") || a.has("glenoid-radius")))
     throw UsageError("--units and --glenoid-radius go with --bone");
+  // The bundled landmarks are the bundled bone's: on another bone its glenoid centre is nowhere in particular.
+  if (a.has("bone") && a.value("bone") != "default" && !a.has("landmarks"))
+    throw UsageError("--bone MESH needs that bone's --landmarks (the default ones are the bundled scapula's)");
 
   json out = {{"landmarks", landmarksSource},
               {"side", toString(frame.side)},

@@ -45,27 +45,6 @@
 namespace reamsim::cli {
 namespace {
 
-// 1-to-4 midpoint subdivision: same surface, four times the faces (the ~60k and ~240k scapulae).
-TriangleMesh subdivide(const TriangleMesh& in) {
-  TriangleMesh out;
-  out.vertices = in.vertices;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
-  auto m = [&](std::uint32_t a, std::uint32_t b) {
-    const auto key = std::minmax(a, b);
-    auto [it, added] = mid.try_emplace({key.first, key.second}, std::uint32_t(out.vertices.size()));
-    if (added) out.vertices.push_back((in.vertices[a] + in.vertices[b]) * 0.5);
-    return it->second;
-  };
-  for (const Triangle& t : in.triangles) {
-    const std::uint32_t ab = m(t[0], t[1]), bc = m(t[1], t[2]), ca = m(t[2], t[0]);
-    out.triangles.push_back({t[0], ab, ca});
-    out.triangles.push_back({ab, t[1], bc});
-    out.triangles.push_back({ca, bc, t[2]});
-    out.triangles.push_back({ab, bc, ca});
-  }
-  return out;
-}
-
 struct Spot {
   Vec3 centre;  // on the surface
   Vec3 inward;  // feed direction
@@ -634,7 +613,7 @@ int runBenchCut(const std::vector<std::string>& args) {
   // merged mesh too. Nothing else is repaired: borders and self-intersections stay.
   std::size_t mergedVertices = 0;
   if (a.has("merge-coincident")) bone = mergeCoincidentVertices(bone, &mergedVertices);
-  for (int i = 0; i < subdivisions; ++i) bone = subdivide(bone);
+  for (int i = 0; i < subdivisions; ++i) bone = subdivideMidpoints(bone);  // the ~60k and ~240k scapulae
   const std::string pathKind = a.value("path", "jitter");
   if (pathKind != "jitter" && pathKind != "soak") throw UsageError("--path jitter|soak");
   // --segments / --rings: the preset at another resolution (how the reamed surface converges with it).

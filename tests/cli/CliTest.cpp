@@ -333,6 +333,7 @@ TEST(Cli, AxisMeasuresTheGlenoidFaceAndWhatEachAxisCorrects) {
   EXPECT_EQ(bad.exitCode, 3);
   EXPECT_NE(bad.out.find("no bone surface lies within 10 mm of the glenoid centre"), std::string::npos) << bad.out;
   EXPECT_EQ(run("axis --glenoid-radius 8").exitCode, 2);  // without --bone
+  EXPECT_EQ(run("axis --bone " + away.string()).exitCode, 2);  // another bone without its landmarks
 }
 
 TEST(Cli, AxisRejectsBadLandmarksAndAnglesClearly) {

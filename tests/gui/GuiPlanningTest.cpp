@@ -175,7 +175,8 @@ TEST(GuiPlanning, TheDockMeasuresTheGlenoidFaceAsOpenedAndAsReamed) {
   // Reamed along the plan: the face as it is now joins the one as opened, and turns towards the reamer's axis.
   cutPastContact(s, s.reamer()->pose(), 2.0);
   ASSERT_GT(s.bone()->history().size(), 1u);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return glenoid->text().contains("as it is now: version"); }, 10000))
+  ASSERT_TRUE(QTest::qWaitFor([&] { return glenoid->text().contains("as it is now: version") &&
+                                            !glenoid->text().contains("updating"); }, 10000))
       << glenoid->text().toStdString();
   const AxisAngles now = glenoidAnglesOf(s, s.bone()->current());
   EXPECT_TRUE(glenoid->text().contains("as it is now: " + anglesShown(now))) << glenoid->text().toStdString();
@@ -185,6 +186,29 @@ TEST(GuiPlanning, TheDockMeasuresTheGlenoidFaceAsOpenedAndAsReamed) {
   ASSERT_TRUE(s.waitIdle(60000));
   EXPECT_FALSE(glenoid->text().contains("now")) << glenoid->text().toStdString();
   EXPECT_TRUE(glenoid->text().contains(anglesShown(opened))) << glenoid->text().toStdString();
+}
+
+// Reaming cut after cut: the face as opened stays shown (its answer is kept however many cuts come), and the face
+// now never falls back to "measuring" (the last cut's answer, marked "updating", until the newest cut's comes).
+TEST(GuiPlanning, TheGlenoidFaceAsOpenedStaysThroughManyCuts) {
+  REAMSIM_REQUIRE_DISPLAY();
+  GuiFixture f;
+  ReamSession& s = f.session();
+  QDockWidget* dock = planningDock(*f.window);
+  ASSERT_NE(dock, nullptr);
+  auto* glenoid = part<QLabel>(dock, "GlenoidFace");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return glenoid->text().contains("as opened"); }, 10000)) << glenoid->text().toStdString();
+  const QString opened = anglesShown(glenoidAnglesOf(s, s.bone()->history().entries().front().state));
+  for (int i = 1; i <= 24; ++i) {
+    cutOnce(s, 0.1 * i);
+    EXPECT_TRUE(glenoid->text().contains("as opened: " + opened)) << "cut " << i << ": " << glenoid->text().toStdString();
+    if (i > 1) EXPECT_FALSE(glenoid->text().contains("as it is now: measuring")) << "cut " << i;
+  }
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !glenoid->text().contains("updating"); }, 10000));
+  EXPECT_TRUE(glenoid->text().contains("as it is now: " + anglesShown(glenoidAnglesOf(s, s.bone()->current()))))
+      << glenoid->text().toStdString();
+  // Measured once: its answer was never dropped for the cuts' (24 of them, more than the answers kept).
+  EXPECT_EQ(dock->property("glenoidOpenedMeasures").toInt(), 1);
 }
 
 TEST(GuiPlanning, AimPlacesTheReamerClearOfTheBone) {

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <map>
 #include <stdexcept>
 
 #include "reamsim/ream/DefaultCase.h"
@@ -54,27 +53,6 @@ TriangleMesh dishSurface(const Dish& d, int cells, bool skew, double heightShift
   return m;
 }
 
-// Each triangle split in four at its edges' midpoints: the same surface, four times the triangles.
-TriangleMesh splitInFour(const TriangleMesh& in) {
-  TriangleMesh out;
-  out.vertices = in.vertices;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
-  auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
-    const auto key = std::minmax(a, b);
-    const auto [it, added] = mid.emplace(key, std::uint32_t(out.vertices.size()));
-    if (added) out.vertices.push_back((in.vertices[a] + in.vertices[b]) * 0.5);
-    return it->second;
-  };
-  for (const Triangle& t : in.triangles) {
-    const std::uint32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
-    out.triangles.push_back({t[0], ab, ca});
-    out.triangles.push_back({ab, t[1], bc});
-    out.triangles.push_back({ca, bc, t[2]});
-    out.triangles.push_back({ab, bc, ca});
-  }
-  return out;
-}
-
 TEST(GlenoidFace, ADishFacesAlongItsAxisAtEveryResolution) {
   const Dish d;
   for (int cells : {40, 160})
@@ -95,7 +73,7 @@ TEST(GlenoidFace, MoreTrianglesOnTheSameSurfaceChangeNothingBeyondTheEdge) {
   const Dish d;
   const TriangleMesh coarse = dishSurface(d, 80, true);
   const GlenoidFace a = measureGlenoidFace(BoneState::fromMesh(coarse), d.centre);
-  const GlenoidFace b = measureGlenoidFace(BoneState::fromMesh(splitInFour(coarse)), d.centre);
+  const GlenoidFace b = measureGlenoidFace(BoneState::fromMesh(subdivideMidpoints(coarse)), d.centre);
   EXPECT_GT(b.triangles, 3 * a.triangles);
   EXPECT_LT(angleDeg(a.outward, b.outward), 0.3);
 }
@@ -121,6 +99,63 @@ TEST(GlenoidFace, TheFarSideOfAThinPlateStaysOut) {
   const GlenoidFace withFarSide = measureGlenoidFace(BoneState::fromMesh(plate), d.centre);
   EXPECT_EQ(withFarSide.triangles, alone.triangles);
   EXPECT_LT(angleDeg(withFarSide.outward, alone.outward), 1e-12);
+}
+
+// Each triangle with vertices of its own: the same surface, no vertex slot shared.
+TriangleMesh unshared(const TriangleMesh& in) {
+  TriangleMesh out;
+  for (const Triangle& t : in.triangles) {
+    const std::uint32_t base = std::uint32_t(out.vertices.size());
+    for (std::uint32_t v : t) out.vertices.push_back(in.vertices[v]);
+    out.triangles.push_back({base, base + 1, base + 2});
+  }
+  return out;
+}
+
+TEST(GlenoidFace, TrianglesMeetWhereTheirCornersMeetSharedSlotsOrNot) {
+  const Dish d;
+  const TriangleMesh mesh = dishSurface(d, 80, true);
+  const GlenoidFace shared = measureGlenoidFace(BoneState::fromMesh(mesh, BoneState::Ordering::Preserve), d.centre);
+  const GlenoidFace apart = measureGlenoidFace(BoneState::fromMesh(unshared(mesh), BoneState::Ordering::Preserve), d.centre);
+  EXPECT_EQ(apart.triangles, shared.triangles);
+  EXPECT_LT(angleDeg(apart.outward, shared.outward), 1e-9);
+}
+
+TEST(GlenoidFace, APieceCutOffFromTheCentreStaysOut) {
+  // A ring of triangles 5-6 mm out removed: what lies beyond faces the same way but does not touch the centre's piece.
+  const Dish d;
+  TriangleMesh mesh = dishSurface(d, 160, false);
+  const Vec3 u = normalized(anyPerpendicular(d.axis)), v = cross(d.axis, u);
+  TriangleMesh ringed = mesh;
+  ringed.triangles.clear();
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3 c = (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) * (1.0 / 3.0) - d.centre;
+    const double rho = std::hypot(dot(c, u), dot(c, v));
+    if (rho < 5 || rho > 6) ringed.triangles.push_back(t);
+  }
+  const GlenoidFace face = measureGlenoidFace(BoneState::fromMesh(ringed), d.centre);
+  // The piece within 5 mm: pi c^2 with c its chord from the centre (~5 mm), not the 10 mm's pi 100.
+  EXPECT_LT(face.areaMm2, kPi * 5.2 * 5.2);
+  EXPECT_GT(face.areaMm2, kPi * 4.5 * 4.5);
+  EXPECT_LT(angleDeg(face.outward, d.axis), 1.0);
+}
+
+TEST(GlenoidFace, ANeckBeyondASteepRimStaysOut) {
+  // Beyond 6 mm the surface falls away at 70 degrees to the face (the neck): turned more than 60, left out.
+  const Dish d;
+  const Vec3 u = normalized(anyPerpendicular(d.axis)), v = cross(d.axis, u);
+  TriangleMesh m = dishSurface(d, 160, false);
+  for (Vec3& p : m.vertices) {
+    const Vec3 q = p - d.centre;
+    const double a = dot(q, u), b = dot(q, v), rho = std::hypot(a, b);
+    if (rho > 6) p = p - d.axis * ((rho - 6) * std::tan(70 * kPi / 180));
+  }
+  const GlenoidFace face = measureGlenoidFace(BoneState::fromMesh(m), d.centre);
+  EXPECT_LT(face.areaMm2, kPi * 6.5 * 6.5);
+  EXPECT_LT(angleDeg(face.outward, d.axis), 1.0);
+  GlenoidFaceOptions loose;
+  loose.maxTurnDeg = 80;  // let the neck in: more area, the same axis (it is symmetric about it)
+  EXPECT_GT(measureGlenoidFace(BoneState::fromMesh(m), d.centre, loose).areaMm2, face.areaMm2 + 20);
 }
 
 TEST(GlenoidFace, BadInputIsNamed) {

@@ -1,6 +1,8 @@
 #include "reamsim/mesh/TriangleMesh.h"
 
+#include <algorithm>
 #include <limits>
+#include <map>
 #include <unordered_map>
 
 namespace reamsim {
@@ -87,6 +89,25 @@ std::size_t removeUnusedVertices(TriangleMesh& mesh) {
     for (std::uint32_t& v : t) v = remap[v];
   mesh.vertices = std::move(kept);
   return removed;
+}
+
+TriangleMesh subdivideMidpoints(const TriangleMesh& in) {
+  TriangleMesh out;
+  out.vertices = in.vertices;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
+  auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+    const auto [it, added] = mid.try_emplace(std::minmax(a, b), std::uint32_t(out.vertices.size()));
+    if (added) out.vertices.push_back((in.vertices[a] + in.vertices[b]) * 0.5);
+    return it->second;
+  };
+  for (const Triangle& t : in.triangles) {
+    const std::uint32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+    out.triangles.push_back({t[0], ab, ca});
+    out.triangles.push_back({ab, t[1], bc});
+    out.triangles.push_back({ca, bc, t[2]});
+    out.triangles.push_back({ab, bc, ca});
+  }
+  return out;
 }
 
 }  // namespace reamsim

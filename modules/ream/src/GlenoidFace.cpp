@@ -1,6 +1,8 @@
 #include "reamsim/ream/GlenoidFace.h"
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <limits>
 #include <sstream>
@@ -16,7 +18,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 struct Candidate {
-  Triangle corners;  // vertex slots, for the shared edges
+  std::array<std::uint32_t, 3> corners;  // position numbers (PositionNumbers), for the shared edges
   Vec3 vectorArea;   // half the cross product: area times unit normal
   double gap;        // from the centre to the triangle's closest point
 };
@@ -38,9 +40,28 @@ void checkPreconditions(const BoneState& bone, const Vec3& centre, const Glenoid
   if (bone.empty()) throw std::invalid_argument("the bone has no surface to measure the glenoid face on");
 }
 
+// One number per distinct position: triangles meet along an edge whose corners lie at the same two positions,
+// whether or not they share vertex slots (a mesh read with its coincident vertices apart, a seam of a commit).
+class PositionNumbers {
+ public:
+  std::uint32_t of(const Vec3& p) {
+    Key k;
+    std::memcpy(k.data(), &p, sizeof k);
+    return numbers_.try_emplace(k, std::uint32_t(numbers_.size())).first->second;
+  }
+
+ private:
+  using Key = std::array<std::uint64_t, 3>;  // the coordinates' bits (+0 and -0 apart: no file writes -0 by a seam)
+  struct Hash {
+    std::size_t operator()(const Key& k) const { return std::hash<std::uint64_t>()(k[0] * 31 + k[1] * 131071 + k[2]); }
+  };
+  std::unordered_map<Key, std::uint32_t, Hash> numbers_;
+};
+
 // The triangles whose centroids lie within the radius, and the gap to the nearest surface point.
 std::vector<Candidate> trianglesWithin(const BoneState& bone, const Vec3& centre, double radius, double& nearestCentroid) {
   std::vector<Candidate> near;
+  PositionNumbers positions;
   nearestCentroid = std::numeric_limits<double>::infinity();
   const double r2 = radius * radius;
   bone.forEachLiveTriangle([&](std::uint32_t, const Triangle& t) {
@@ -53,7 +74,8 @@ std::vector<Candidate> trianglesWithin(const BoneState& bone, const Vec3& centre
       return;
     }
     nearestCentroid = std::min(nearestCentroid, std::sqrt(d2));
-    near.push_back({t, cross(b - a, c - a) * 0.5, norm(closestPointOnTriangle(centre, a, b, c) - centre)});
+    near.push_back({{positions.of(a), positions.of(b), positions.of(c)}, cross(b - a, c - a) * 0.5,
+                    norm(closestPointOnTriangle(centre, a, b, c) - centre)});
   });
   return near;
 }
@@ -87,10 +109,8 @@ GlenoidFace measureGlenoidFace(const BoneState& bone, const Vec3& centre, const 
   // The face grows from the triangles near the centre that face the reference's way, over shared edges, to the
   // triangles within the radius that do too.
   const double minCos = std::cos(o.maxTurnDeg * kPi / 180);
-  auto faces = [&](const Candidate& c) {
-    const double area = norm(c.vectorArea);
-    return area > 0 && dot(c.vectorArea, reference) >= minCos * area;
-  };
+  // A triangle of no area faces no way: it joins its neighbours (a sliver on a seam) and adds nothing.
+  auto faces = [&](const Candidate& c) { return dot(c.vectorArea, reference) >= minCos * norm(c.vectorArea); };
   std::unordered_multimap<std::uint64_t, std::size_t> byEdge;
   byEdge.reserve(near.size() * 3);
   for (std::size_t i = 0; i < near.size(); ++i)
@@ -98,7 +118,7 @@ GlenoidFace measureGlenoidFace(const BoneState& bone, const Vec3& centre, const 
   std::vector<char> taken(near.size(), 0);
   std::vector<std::size_t> stack;
   for (std::size_t i = 0; i < near.size(); ++i)
-    if (near[i].gap <= core && faces(near[i])) {
+    if (near[i].gap <= core && norm(near[i].vectorArea) > 0 && faces(near[i])) {
       taken[i] = 1;
       stack.push_back(i);
     }

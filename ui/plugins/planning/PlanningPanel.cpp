@@ -246,23 +246,34 @@ void PlanningPanel::sync() {
   take_->setEnabled(framed && reamer());
 }
 
-std::optional<AxisAngles> PlanningPanel::glenoidAngles(bool now, QString* why) const {
+std::optional<AxisAngles> PlanningPanel::glenoidAngles(bool now, QString* why, bool* updating) const {
   auto say = [why](const QString& text) {
     if (why) *why = text;
     return std::nullopt;
   };
+  if (updating) *updating = false;
   const BoneNode* node = bone();
   if (!node) return say(tr("there is no bone"));
   const std::optional<Vec3>& centre = node->landmarks()[ScapulaLandmark::GlenoidCentre];
   if (!centre) return say(tr("place the glenoid centre to measure it"));
-  const std::uint64_t revision = now ? node->currentRevision() : node->history().entries().front().revision;
-  const GlenoidFaceMeasure::Measured* m = faceMeasure_.find(revision, *centre);
-  if (!m) return say(tr("measuring…"));
+  const std::uint64_t opened = node->history().entries().front().revision;
+  const GlenoidFaceMeasure::Measured* m = faceMeasure_.find(now ? node->currentRevision() : opened, *centre);
+  if (!m && now && updating) {  // while the cut just made is measured, the last cut's answer
+    m = faceMeasure_.latestCut(opened, *centre);
+    *updating = m != nullptr;
+  }
+  if (!m) return say(tr("measuring"));
   if (!m->face) return say(QString::fromStdString(m->error));
+  ScapularFrame frame;
   try {
-    return axisAngles(scapularFrame(node->landmarks()), m->face->outward);
+    frame = scapularFrame(node->landmarks());
   } catch (const std::invalid_argument& e) {
     return say(tr("its version and inclination need the landmarks (%1)").arg(QString::fromStdString(e.what())));
+  }
+  try {
+    return axisAngles(frame, m->face->outward);
+  } catch (const std::invalid_argument& e) {  // an inside-out surface faces medially
+    return say(tr("it faces medially, as a surface turned inside out would (%1)").arg(QString::fromStdString(e.what())));
   }
 }
 
@@ -270,12 +281,14 @@ std::optional<AxisAngles> PlanningPanel::glenoidAngles(bool now, QString* why) c
 QString PlanningPanel::glenoidFaceText() const {
   QString why;
   const std::optional<AxisAngles> opened = glenoidAngles(false, &why);
-  if (!opened) return tr("Glenoid face: %1.").arg(why);
-  QString text = tr("Glenoid face as opened: %1").arg(versionText(*opened));
+  if (!opened) return tr("Glenoid face (central %1 mm): %2.").arg(GlenoidFaceOptions{}.radiusMm).arg(why);
+  QString text = tr("Glenoid face (central %1 mm) as opened: %2").arg(GlenoidFaceOptions{}.radiusMm).arg(versionText(*opened));
   const BoneNode* node = bone();
   if (node->currentRevision() != node->history().entries().front().revision) {
-    const std::optional<AxisAngles> now = glenoidAngles(true, &why);
-    text += now ? tr("; as it is now: %1").arg(versionText(*now)) : tr("; as it is now: %1").arg(why);
+    bool updating = false;
+    const std::optional<AxisAngles> now = glenoidAngles(true, &why, &updating);
+    text += now ? tr("; as it is now: %1").arg(versionText(*now)) + (updating ? tr(" (updating)") : QString())
+                : tr("; as it is now: %1").arg(why);
   }
   return text + ".";
 }

@@ -27,12 +27,15 @@ namespace reamsim::ui {
 
 class PlanningPanel : public QDockWidget {
   Q_OBJECT
+  // For tests: how many times the glenoid face of the bone as opened has been measured (GlenoidFaceMeasure).
+  Q_PROPERTY(int glenoidOpenedMeasures READ glenoidOpenedMeasures)
  public:
   PlanningPanel(Document& document, QWidget* parent);
 
   QString axisReport() const;  // what the dock says of the reamer's axis now
   QString planText() const;    // what it says of the planned axis
   QString glenoidFaceText() const;  // what it says of the glenoid face, as opened and now
+  int glenoidOpenedMeasures() const { return faceMeasure_.openedMeasures(); }
 
  public Q_SLOTS:
   // Plans the axis at the dock's version and inclination through the glenoid centre (BoneNode::plannedAxis) and
@@ -51,8 +54,9 @@ class PlanningPanel : public QDockWidget {
   void buildLandmarkRows(QGridLayout* grid);
   void sync();
   // The glenoid face's angles in the landmarks' frame, of the bone as opened (`now` false) or as it is now;
-  // nullopt while measured, or when there is no face or frame (`why` says which).
-  std::optional<AxisAngles> glenoidAngles(bool now, QString* why = nullptr) const;
+  // nullopt while measured, or when there is no face or frame (`why` says which). With `updating`, the state now
+  // while measured is answered by the last cut's (and `updating` says so).
+  std::optional<AxisAngles> glenoidAngles(bool now, QString* why = nullptr, bool* updating = nullptr) const;
   BoneNode* bone() const;  // the cut bone: the document's first
   InteractionNode* interaction() const;
   ReamerNode* reamer() const;

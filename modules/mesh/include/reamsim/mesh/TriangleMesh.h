@@ -34,5 +34,8 @@ std::size_t countCoincidentVertices(const TriangleMesh& mesh);
 // The same mesh with coincident vertices made one (the first index of each position kept; unused vertices
 // removed). Returns how many vertices were merged away through `merged` when given.
 TriangleMesh mergeCoincidentVertices(const TriangleMesh& mesh, std::size_t* merged = nullptr);
+// Each triangle split in four at its edges' midpoints (shared by the triangles of an edge): the same surface,
+// four times the triangles, orientation kept.
+TriangleMesh subdivideMidpoints(const TriangleMesh& mesh);
 
 }  // namespace reamsim

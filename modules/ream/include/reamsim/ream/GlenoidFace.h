@@ -7,9 +7,11 @@
 //
 // The face is the connected piece of surface whose triangles' centroids lie within `radiusMm` of the centre
 // and whose normals turn at most `maxTurnDeg` from the surface's mean normal near the centre (so the far side of
-// a thin rim and the glenoid neck beyond a steep rim stay out). Its direction is the sum of its triangles'
+// a thin rim and the glenoid neck beyond a steep rim stay out), grown from the triangles nearest the centre over
+// edges whose ends lie at the same two positions (shared vertex slots or not). Its direction is the sum of its triangles'
 // vector areas, made unit: for a patch that is the vector area of its boundary loop, i.e. the normal of the
-// rim's plane at that radius, whatever the fossa's depth or a local defect inside it.
+// rim's plane at that radius, whatever the fossa's depth. It is the central part of the face (10 mm: the glenoid is
+// ~25 x 35 mm), not Friedman's rim-to-rim line; docs/PLANNING.md says how it moves with the radius and the centre.
 #include <cstddef>
 
 #include "reamsim/core/BoneState.h"
@@ -23,7 +25,8 @@ struct GlenoidFaceOptions {
 };
 
 struct GlenoidFace {
-  Vec3 outward;             // unit, out of the bone (towards the humeral head)
+  Vec3 outward;             // unit, the way the triangles face: out of the bone when it is oriented outward, as
+                            // the import's repair orients a closed bone (an inside-out one reads as pointing medially)
   double areaMm2 = 0;       // of the triangles summed
   std::size_t triangles = 0;
   double radiusMm = 0;      // the radius it was measured within
