@@ -358,6 +358,9 @@ void MainWindow::removalPreviewed(const RemovalPreviewAnswer& a) {
             .arg(shown.toString(a.depthMm, 'f', 2), shown.toString(*p.approachMm, 'f', 2),
                  shown.toString(p.removedMm3, 'f', 1), shown.toString(qulonglong(p.steps)),
                  shown.toString(qulonglong(p.cuts)), shown.toString(qulonglong(p.facesAfter)));
+    if (p.seat)  // as Measure seat would say after the ream: a face larger than the glenoid never seats whole
+      lastPreviewText_ += tr(" The cutting face would sit on bone over %1 % of its area.")
+                              .arg(shown.toString(100 * p.seat->seatedFraction, 'f', 1));
   }
   const bool stale = a.outcome == Outcome::Stale || !previewStillHolds(a);
   auto* box = new QMessageBox(QMessageBox::Information, tr("Preview ream to depth"), lastPreviewText_, QMessageBox::Close, this);

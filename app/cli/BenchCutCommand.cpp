@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #include "reamsim/core/HistoryJournal.h"
-#include "BenchGlenoidFace.h"
+#include "BenchPlanning.h"
 #include "CliArgs.h"
 #include "Commands.h"
 #include "DefaultCase.h"
@@ -841,6 +841,7 @@ int runBenchCut(const std::vector<std::string>& args) {
     out["loop"]["ream_to_depth_search"] = reamToDepthSearch(bone, spec, localTool, poses.front());
     out["loop"]["clear_placement"] = clearPlacement(bone, spec, localTool, poses.front());
     out["loop"]["glenoid_face"] = glenoidFaceCost(bone, poses.front());
+    out["loop"]["preview_seat"] = previewSeatCost(bone, spec, poses.back());
     out["loop"]["volume_end_diff_rel"] =
         std::abs(out["loop"]["volume_end_mm3"].get<double>() - engine.volumeMm3()) / engine.volumeMm3();
   }

@@ -759,6 +759,12 @@ TEST(GuiReaming, APreviewSaysWhatReamToDepthWillRemoveAndCutsNothing) {
   ASSERT_TRUE(s.waitIdle(60000));
   const double removed = volume - s.bone()->current().volume();
   EXPECT_NEAR(removed, predicted, 1e-6 * predicted);  // what the preview said, cut for real
+  // And the seat it said is what Measure seat finds at the reamer's pose after the ream.
+  ASSERT_TRUE(answer.preview.seat);
+  const ReamedSurfaceReport seat = measureReamedSurface(s.bone()->current().toMesh(), s.reamer()->spec(), s.reamer()->pose());
+  EXPECT_NEAR(seat.seatedFraction, answer.preview.seat->seatedFraction, 1e-6);
+  EXPECT_TRUE(w.lastPreviewText().contains("sit on bone over " + QLocale().toString(100 * answer.preview.seat->seatedFraction, 'f', 1) + " %"))
+      << w.lastPreviewText().toStdString();
 
   // Stop stops a preview: answered Cancelled, the bone untouched.
   const std::uint64_t cut = s.bone()->currentRevision();

@@ -67,5 +67,41 @@ TEST(RemovalPreview, NothingInReachRemovesNothingAndBadArgumentsAreRefused) {
   EXPECT_THROW(previewReamToDepth(collisionOnly, bone, away, 1, 0.2, 5), std::invalid_argument);
 }
 
+// The seat a preview reports is the reamed surface of its bone at its last pose: what Measure seat says after the
+// same ream to depth in the loop; deeper seats more of a face larger than the glenoid, up to what the glenoid
+// offers; a reamer read from a mesh has no ideal face, and a preview without contact no seat.
+TEST(RemovalPreview, TheSeatIsTheReamedSurfaceAtTheLastPose) {
+  const ReamerSpec spec = loadPreset("glenoid-36-R30", reamerPresetsPath());
+  const Pose start = loadPlan(defaultPlanPath()).feed->start;
+  test::ReamScene loop(loadDefaultBone().mesh, spec, localCutBackendFactory());
+  loop.controller->moveTo(start, true);
+  const BoneState before = loop.bone->current();
+  ReamEngine engine(loop.reamer->cuttingVolume(), makeBvhContactBackend(), localCutBackendFactory(), spec);
+  RemovalPreview p = previewReamToDepth(engine, before, start, 1.0, 0.2, 100);
+  previewSeat(p, spec, start);
+  ASSERT_TRUE(p.seat);
+  const std::vector<Pose> poses = reamToDepthPoses(start, *p.approachMm, 1.0, 0.2);
+  for (const Pose& pose : poses) loop.controller->moveTo(pose);
+  const ReamedSurfaceReport measured = measureReamedSurface(loop.bone->current().toMesh(), spec, poses.back());
+  EXPECT_NEAR(p.seat->seatedFraction, measured.seatedFraction, 1e-9);
+  EXPECT_NEAR(p.seat->standoffRmsMm, measured.standoffRmsMm, 1e-9);
+  EXPECT_GT(p.seat->seatedFraction, 0.05);
+
+  RemovalPreview deeper = previewReamToDepth(engine, before, start, 3.0, 0.2, 100);
+  previewSeat(deeper, spec, start);
+  EXPECT_GT(deeper.seat->seatedFraction, p.seat->seatedFraction + 0.1);
+  EXPECT_LT(deeper.seat->seatedFraction, 0.6);  // the 36 mm face overhangs this glenoid (~28 mm across)
+
+  ReamerSpec fromMesh = spec;
+  fromMesh.meshFile = "reamer.stl";
+  RemovalPreview unseated = p;
+  unseated.seat.reset();
+  previewSeat(unseated, fromMesh, start);
+  EXPECT_FALSE(unseated.seat);
+  RemovalPreview none;
+  previewSeat(none, spec, start);
+  EXPECT_FALSE(none.seat);
+}
+
 }  // namespace
 }  // namespace reamsim

@@ -46,4 +46,10 @@ RemovalPreview previewReamToDepth(ReamEngine& engine, const BoneState& bone, con
   return out;
 }
 
+void previewSeat(RemovalPreview& preview, const ReamerSpec& spec, const Pose& start) {
+  if (!preview.approachMm || !spec.meshFile.empty()) return;
+  preview.seat = measureReamedSurface(preview.after.toMesh(), spec,
+                                      advancedAlongAxis(start, *preview.approachMm + preview.depthMm));
+}
+
 }  // namespace reamsim

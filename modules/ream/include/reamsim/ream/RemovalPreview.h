@@ -7,6 +7,7 @@
 #include "reamsim/core/BoneState.h"
 #include "reamsim/core/Pose.h"
 #include "reamsim/ream/ReamEngine.h"
+#include "reamsim/tools/ReamedSurface.h"
 
 namespace reamsim {
 
@@ -17,6 +18,9 @@ struct RemovalPreview {
   std::size_t steps = 0, cuts = 0;   // the steps (the move to the contact, then the feed steps) and those that cut
   std::size_t facesAfter = 0;
   BoneState after;                   // the bone as the steps would leave it
+  // The reamed surface under the face at the last pose (measureReamedSurface): how much of the face the bone
+  // would seat; set by previewSeat, for a parametric reamer with a contact.
+  std::optional<ReamedSurfaceReport> seat;
 };
 
 // Runs "ream to depth" (reamToDepthPoses: the move to the first contact within reachMm along start's axis, then
@@ -28,5 +32,10 @@ struct RemovalPreview {
 // first: depthMm and stepMm positive and finite, reachMm positive, an engine that can collide and cut.
 RemovalPreview previewReamToDepth(ReamEngine& engine, const BoneState& bone, const Pose& start, double depthMm,
                                   double stepMm, double reachMm, StepControl* control = nullptr);
+
+// Sets preview.seat: the reamed surface of preview.after under the face of `spec` at the preview's last pose (start
+// advanced by the approach and the depth). Nothing without a contact or for a reamer read from a mesh (no ideal
+// face). O(bone faces).
+void previewSeat(RemovalPreview& preview, const ReamerSpec& spec, const Pose& start);
 
 }  // namespace reamsim

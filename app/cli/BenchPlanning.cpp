@@ -1,4 +1,4 @@
-#include "BenchGlenoidFace.h"
+#include "BenchPlanning.h"
 
 #include <chrono>
 #include <vector>
@@ -7,6 +7,7 @@
 #include "reamsim/collision/MeshRayCast.h"
 #include "reamsim/core/BoneState.h"
 #include "reamsim/ream/GlenoidFace.h"
+#include "reamsim/tools/ReamedSurface.h"
 
 namespace reamsim::cli {
 
@@ -31,6 +32,25 @@ nlohmann::json glenoidFaceCost(const TriangleMesh& bone, const Pose& first) {
           {"face_triangles", face.triangles},
           {"face_area_mm2", face.areaMm2},
           {"outward", {face.outward.x, face.outward.y, face.outward.z}}};
+}
+
+nlohmann::json previewSeatCost(const TriangleMesh& bone, const ReamerSpec& spec, const Pose& first) {
+  const BoneState state = BoneState::fromMesh(bone);
+  constexpr int kRuns = 11;
+  std::vector<double> ms;
+  ReamedSurfaceReport seat;
+  for (int i = 0; i < kRuns; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    seat = measureReamedSurface(state.toMesh(), spec, first);
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return {{"what", "what a removal preview adds for its seat (previewSeat: the bone state as a mesh, then "
+                   "measureReamedSurface), at the path's last pose on the bone as opened: a pass over every face whatever it seats"},
+          {"runs", kRuns},
+          {"faces", state.liveTriangleCount()},
+          {"median_ms", percentile(ms, 0.5)},
+          {"max_ms", percentile(ms, 1.0)},
+          {"seated_fraction", seat.seatedFraction}};
 }
 
 }  // namespace reamsim::cli
