@@ -224,9 +224,10 @@ bool MainWindow::saveBoneAs(const QString& path) {
   // its cuts again, its undo history (its states share storage: a copy is cheap), and where in it the bone is.
   const std::vector<CutLogEntry>& rows = session_->log()->entries();
   const BoneHistory& history = session_->bone()->history();
-  BoneFileFacts facts{session_->bone()->patientFrame(),
-                      session_->initialVolumeMm3() - session_->bone()->current().volume(), rows.size(),
-                      rows.empty() ? 0 : rows.back().timeUnixMs};
+  BoneFileFacts facts = BoneFileFacts::ofFrame(session_->bone()->patientFrame());
+  facts.removedMm3 = session_->initialVolumeMm3() - session_->bone()->current().volume();
+  facts.cutLogRows = rows.size();
+  facts.cutLogLastMs = rows.empty() ? 0 : rows.back().timeUnixMs;
   std::vector<BoneHistory::Entry> states = statesToSave(history, *session_->undoStack());
   const bool historyLeftOut = states.size() >= 2 && !keepsExactCoordinates(path);
   if (states.size() >= 2 && !historyLeftOut) {

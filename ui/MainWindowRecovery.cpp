@@ -147,11 +147,11 @@ void MainWindow::writeRecoveryCopy() {
         }
         QString error;
         try {
-          writer->exportMesh(state.toMesh(), files->nextBonePath().toStdString(), BoneFileFacts{frame, {}, {}});
+          writer->exportMesh(state.toMesh(), files->nextBonePath().toStdString(), BoneFileFacts::ofFrame(frame));
           writeTextFile(files->nextLogPath().toStdString(), csv);
           for (std::size_t i = 0; i < besideCopies.size(); ++i)
             writer->exportMesh(besideCopies[i].state.toMesh(), files->nextBesidePath(int(i)).toStdString(),
-                               BoneFileFacts{besideCopies[i].frame, {}, {}});
+                               BoneFileFacts::ofFrame(besideCopies[i].frame));
         } catch (const std::exception& e) {
           return RecoveryWrite{QString::fromStdString(e.what()), false};
         }

@@ -397,7 +397,10 @@ void ReamSession::previewReamToDepth(const Pose& start, double depthMm, double s
           ReamEngine engine(volume, collision->createContactBackend(), cut, spec);
           a.preview = reamsim::previewReamToDepth(engine, bone, start, depthMm, stepMm, kPreviewReachMm, control.get());
           if (control->stop) throw ReamCancelled();  // before an O(bone) measure
-          previewSeat(a.preview, spec, start);  // how much of the face the reamed bone would seat
+          try {
+            previewSeat(a.preview, spec);  // how much of the face the reamed bone would seat
+          } catch (const std::exception&) {  // the preview stands without it (the answer says no seat)
+          }
           a.preview.after = BoneState{};  // the future keeps its result until the next preview: not a whole bone
           a.outcome = RemovalPreviewAnswer::Outcome::Computed;
         } catch (const ReamCancelled&) {

@@ -841,7 +841,8 @@ int runBenchCut(const std::vector<std::string>& args) {
     out["loop"]["ream_to_depth_search"] = reamToDepthSearch(bone, spec, localTool, poses.front());
     out["loop"]["clear_placement"] = clearPlacement(bone, spec, localTool, poses.front());
     out["loop"]["glenoid_face"] = glenoidFaceCost(bone, poses.front());
-    out["loop"]["preview_seat"] = previewSeatCost(bone, spec, poses.back());
+    // On the bone the path reamed, at its last pose: the seat equals reamed_surface's (a check as well as a time).
+    if (spec.meshFile.empty()) out["loop"]["preview_seat"] = previewSeatCost(finalMesh, spec, poses.back());
     out["loop"]["volume_end_diff_rel"] =
         std::abs(out["loop"]["volume_end_mm3"].get<double>() - engine.volumeMm3()) / engine.volumeMm3();
   }

@@ -34,18 +34,18 @@ nlohmann::json glenoidFaceCost(const TriangleMesh& bone, const Pose& first) {
           {"outward", {face.outward.x, face.outward.y, face.outward.z}}};
 }
 
-nlohmann::json previewSeatCost(const TriangleMesh& bone, const ReamerSpec& spec, const Pose& first) {
-  const BoneState state = BoneState::fromMesh(bone);
+nlohmann::json previewSeatCost(const TriangleMesh& reamed, const ReamerSpec& spec, const Pose& last) {
+  const BoneState state = BoneState::fromMesh(reamed);
   constexpr int kRuns = 11;
   std::vector<double> ms;
   ReamedSurfaceReport seat;
   for (int i = 0; i < kRuns; ++i) {
     const auto t0 = std::chrono::steady_clock::now();
-    seat = measureReamedSurface(state.toMesh(), spec, first);
+    seat = measureReamedSurface(state.toMesh(), spec, last);
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
   return {{"what", "what a removal preview adds for its seat (previewSeat: the bone state as a mesh, then "
-                   "measureReamedSurface), at the path's last pose on the bone as opened: a pass over every face whatever it seats"},
+                   "measureReamedSurface) of the bone the path reamed, at its last pose (seated_fraction: reamed_surface's)"},
           {"runs", kRuns},
           {"faces", state.liveTriangleCount()},
           {"median_ms", percentile(ms, 0.5)},

@@ -12,7 +12,8 @@ namespace reamsim::cli {
 // measureGlenoidFace about the point where the first pose's axis meets the bone, timed over repeated calls.
 nlohmann::json glenoidFaceCost(const TriangleMesh& bone, const Pose& first);
 
-// previewSeat's measure (the bone state as a mesh, then measureReamedSurface) at the first pose, timed.
-nlohmann::json previewSeatCost(const TriangleMesh& bone, const ReamerSpec& spec, const Pose& first);
+// previewSeat's measure (the bone state as a mesh, then measureReamedSurface) of a reamed bone at the last pose
+// of its reaming, timed.
+nlohmann::json previewSeatCost(const TriangleMesh& reamed, const ReamerSpec& spec, const Pose& last);
 
 }  // namespace reamsim::cli

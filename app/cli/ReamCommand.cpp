@@ -236,7 +236,12 @@ int runReam(const std::vector<std::string>& args) {
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);
   try {
-    writeTextFile(outDir + "/log.csv", cutLogCsv(log.entries()));
+    std::optional<ScapularFrame> frame;  // with the landmarks, each row's version and inclination
+    if (landmarks.complete()) try {
+        frame = scapularFrame(landmarks);
+      } catch (const std::invalid_argument&) {
+      }
+    writeTextFile(outDir + "/log.csv", frame ? cutLogCsv(log.entries(), *frame) : cutLogCsv(log.entries()));
     writeTextFile(outDir + "/log.json", cutLogJson(log.entries(), summary.dump()));
     writeMesh(finalMesh, outDir + "/bone_final.ply");
     writeTextFile(outDir + "/report.html", reamReportHtml(report));

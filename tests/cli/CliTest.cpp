@@ -171,13 +171,23 @@ TEST(Cli, ReamWritesLogsAndMesh) {
   ASSERT_TRUE(fs::exists(dir / "log.json"));
   ASSERT_TRUE(fs::exists(dir / "bone_final.ply"));
   std::ifstream csv(dir / "log.csv");
-  std::string line;
+  std::string line, header;
   int rows = -1;
-  while (std::getline(csv, line)) ++rows;
+  while (std::getline(csv, line)) header = ++rows == 0 ? line : header;
   EXPECT_EQ(rows, 10);
+  // The bundled landmarks come with the default bone: each step's version and inclination, and the glenoid face.
+  EXPECT_EQ(header.substr(header.size() - 28), ",version_deg,inclination_deg") << header;
   std::ifstream js(dir / "log.json");
   const auto j = nlohmann::json::parse(js);
   EXPECT_EQ(j["steps"].size(), 10u);
+  EXPECT_TRUE(j["summary"]["glenoid_face"]["as_opened"].contains("version_deg")) << j["summary"].dump();
+  EXPECT_TRUE(j["summary"]["glenoid_face"]["now"].contains("version_deg")) << j["summary"].dump();
+  const fs::path bare = scratch("ream-out-bare");
+  ASSERT_EQ(run("ream --bone default --reamer glenoid-36-R30 --plan " + plan.string() + " --landmarks none --out " +
+                bare.string()).exitCode, 0);
+  std::ifstream bareCsv(bare / "log.csv");
+  std::getline(bareCsv, header);
+  EXPECT_EQ(header.substr(header.size() - 12), ",undone,note") << header;
   EXPECT_GT(j["summary"]["removed_total_mm3"].get<double>(), 0.0);
   EXPECT_LT(j["summary"]["max_volume_bookkeeping_error_rel"].get<double>(), 1e-6);
 }

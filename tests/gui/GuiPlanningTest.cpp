@@ -559,6 +559,31 @@ TEST(GuiPlanning, TheCutLogShowsEachCutsVersionAndInclination) {
   EXPECT_EQ(table->item(0, column)->text(), "–");
   s.bone()->setLandmarks(placed);
   EXPECT_EQ(table->item(0, column)->text(), expected);
+
+  // Export CSV… writes them too (version_deg, inclination_deg), and leaves them out without a frame.
+  QTemporaryDir dir;
+  auto* panel = f.window->findChild<QDockWidget*>("LogPanel");
+  ASSERT_NE(panel, nullptr);
+  auto exported = [&](const QString& name) -> QStringList {
+    QString error;
+    EXPECT_TRUE(QMetaObject::invokeMethod(panel, "exportCsv", Q_RETURN_ARG(QString, error),
+                                          Q_ARG(QString, dir.filePath(name)), Q_ARG(bool, false)));
+    EXPECT_TRUE(error.isEmpty()) << error.toStdString();
+    QFile file(dir.filePath(name));
+    EXPECT_TRUE(file.open(QIODevice::ReadOnly));
+    return QString::fromUtf8(file.readAll()).split('\n', Qt::SkipEmptyParts);
+  };
+  const QStringList withAngles = exported("angles.csv");
+  ASSERT_EQ(withAngles.size(), 2);
+  EXPECT_TRUE(withAngles[0].endsWith(",version_deg,inclination_deg"));
+  const QStringList cells = withAngles[1].split(',');
+  EXPECT_NEAR(cells[cells.size() - 2].toDouble(), a.versionDeg, 1e-6);
+  EXPECT_NEAR(cells.back().toDouble(), a.inclinationDeg, 1e-6);
+  s.bone()->setLandmark(ScapulaLandmark::InferiorAngle, std::nullopt);
+  const QStringList plain = exported("plain.csv");
+  ASSERT_FALSE(plain.isEmpty());
+  EXPECT_TRUE(plain[0].endsWith(",undone,note"));
+  EXPECT_EQ(readCutLogCsv(dir.filePath("angles.csv").toStdString()).size(), 1u);  // it reads back
 }
 
 // File → Export a report: one HTML file with what was removed, the landmarks' angles and the view's picture.

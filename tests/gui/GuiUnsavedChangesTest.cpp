@@ -507,9 +507,9 @@ TEST(GuiUnsavedChanges, ASavedBoneOpensWithItsCutLog) {
   EXPECT_FALSE(QFileInfo::exists(stlPath + ".history.rsj"));
   // A CT bone (a patient frame) with a log of 10,000 rows: the header has no room for the log's record either.
   const std::int64_t t = 1764781234567;
-  EXPECT_TRUE(MainWindow::factsLeftOut("x.stl", {PatientFrame::LPS, 12.5, 9999, t}).contains("no room for the volume"));
-  EXPECT_TRUE(MainWindow::factsLeftOut("x.stl", {PatientFrame::LPS, 12.5, 10000, t}).contains("no room to record the cut log"));
-  EXPECT_TRUE(MainWindow::factsLeftOut("x.ply", {PatientFrame::LPS, 12.5, 100000, t}).isEmpty());
+  EXPECT_TRUE(MainWindow::factsLeftOut("x.stl", {PatientFrame::LPS, 12.5, 9999, t, {}, 0}).contains("no room for the volume"));
+  EXPECT_TRUE(MainWindow::factsLeftOut("x.stl", {PatientFrame::LPS, 12.5, 10000, t, {}, 0}).contains("no room to record the cut log"));
+  EXPECT_TRUE(MainWindow::factsLeftOut("x.ply", {PatientFrame::LPS, 12.5, 100000, t, {}, 0}).isEmpty());
   const QString errorBeforeStl = w.lastError();
   w.openFile(stlPath);
   w.waitImport();
@@ -567,9 +567,7 @@ TEST(GuiUnsavedChanges, BonesOfOneNameInTwoFormatsKeepTheirOwnCutLogs) {
 // The facts a save writes into the bone file's comments read back as written; a fact that does not parse whole, or
 // an undo history of fewer than two states or with its bone past its end, is no fact.
 TEST(BoneFileFacts, ReadBackAsWrittenAndNothingHalfParsed) {
-  BoneFileFacts facts{PatientFrame::RAS, 1234.5678901234567, 12, 1764781234567};
-  facts.historyStates = 5;
-  facts.historyCursor = 3;
+  BoneFileFacts facts{PatientFrame::RAS, 1234.5678901234567, 12, 1764781234567, 5, 3};
   const BoneFileFacts back = factsFromComments(factComments(facts));
   EXPECT_EQ(back.frame, PatientFrame::RAS);
   EXPECT_EQ(back.removedMm3, facts.removedMm3);

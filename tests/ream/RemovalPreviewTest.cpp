@@ -78,9 +78,11 @@ TEST(RemovalPreview, TheSeatIsTheReamedSurfaceAtTheLastPose) {
   const BoneState before = loop.bone->current();
   ReamEngine engine(loop.reamer->cuttingVolume(), makeBvhContactBackend(), localCutBackendFactory(), spec);
   RemovalPreview p = previewReamToDepth(engine, before, start, 1.0, 0.2, 100);
-  previewSeat(p, spec, start);
+  previewSeat(p, spec);
   ASSERT_TRUE(p.seat);
   const std::vector<Pose> poses = reamToDepthPoses(start, *p.approachMm, 1.0, 0.2);
+  ASSERT_TRUE(p.lastPose);
+  EXPECT_EQ(p.lastPose->tip, poses.back().tip);
   for (const Pose& pose : poses) loop.controller->moveTo(pose);
   const ReamedSurfaceReport measured = measureReamedSurface(loop.bone->current().toMesh(), spec, poses.back());
   EXPECT_NEAR(p.seat->seatedFraction, measured.seatedFraction, 1e-9);
@@ -88,7 +90,8 @@ TEST(RemovalPreview, TheSeatIsTheReamedSurfaceAtTheLastPose) {
   EXPECT_GT(p.seat->seatedFraction, 0.05);
 
   RemovalPreview deeper = previewReamToDepth(engine, before, start, 3.0, 0.2, 100);
-  previewSeat(deeper, spec, start);
+  previewSeat(deeper, spec);
+  ASSERT_TRUE(deeper.seat);
   EXPECT_GT(deeper.seat->seatedFraction, p.seat->seatedFraction + 0.1);
   EXPECT_LT(deeper.seat->seatedFraction, 0.6);  // the 36 mm face overhangs this glenoid (~28 mm across)
 
@@ -96,10 +99,10 @@ TEST(RemovalPreview, TheSeatIsTheReamedSurfaceAtTheLastPose) {
   fromMesh.meshFile = "reamer.stl";
   RemovalPreview unseated = p;
   unseated.seat.reset();
-  previewSeat(unseated, fromMesh, start);
+  previewSeat(unseated, fromMesh);
   EXPECT_FALSE(unseated.seat);
   RemovalPreview none;
-  previewSeat(none, spec, start);
+  previewSeat(none, spec);
   EXPECT_FALSE(none.seat);
 }
 

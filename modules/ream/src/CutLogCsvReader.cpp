@@ -79,7 +79,7 @@ std::vector<Record> records(const std::string& text, const std::string& file) {
 const std::vector<std::string>& columnNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> v;
-    std::stringstream header(detail::kCutLogCsvHeader);
+    std::stringstream header(detail::kCutLogCsvHeaderWithAngles);  // every column any header has
     for (std::string name; std::getline(header, name, ',');) v.push_back(name);
     return v;
   }();
@@ -176,12 +176,13 @@ std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::strin
   if (rows.empty()) throw InputError(file, "empty: not a cut log (no header line)");
   std::string header = text.substr(0, text.find('\n'));  // as written: no field quoted
   if (!header.empty() && header.back() == '\r') header.pop_back();
-  const bool withUndone = header == detail::kCutLogCsvHeader;
+  const bool withAngles = header == detail::kCutLogCsvHeaderWithAngles;
+  const bool withUndone = withAngles || header == detail::kCutLogCsvHeader;
   const bool withNotes = withUndone || header == detail::kCutLogCsvHeaderWithoutUndone;
   if (!withNotes && header != detail::kCutLogCsvHeaderWithoutNotes)
     throw InputError(file, 1,
                      "not a ReamSim cut log: the header is not \"" + std::string(detail::kCutLogCsvHeader) + "\"");
-  const std::size_t columns = columnNames().size() - (withUndone ? 0 : withNotes ? 1 : 2);
+  const std::size_t columns = columnNames().size() - (withAngles ? 0 : withUndone ? 2 : withNotes ? 3 : 4);
   std::vector<CutLogEntry> out;
   out.reserve(rows.size() - 1);
   for (std::size_t i = 1; i < rows.size(); ++i) {
@@ -211,6 +212,10 @@ std::vector<CutLogEntry> cutLogFromCsv(const std::string& text, const std::strin
     e.reamerSphereRadiusMm = f.optionalNumber(25);
     if (withUndone) e.undone = f.flag(26);
     if (withNotes) e.note = f.text(withUndone ? 27 : 26);
+    if (withAngles) {  // derived from the axis and the landmarks of the export: checked, not kept
+      f.optionalNumber(28);
+      f.optionalNumber(29);
+    }
     out.push_back(std::move(e));
   }
   return out;

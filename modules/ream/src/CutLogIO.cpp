@@ -72,8 +72,12 @@ std::vector<CutLogEntry> withUndoneMarked(std::vector<CutLogEntry> rows, const B
   return rows;
 }
 
-std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
-  std::string out = std::string(detail::kCutLogCsvHeader) + "\n";
+namespace {
+
+// The header, then each row, `extra(row)` appended to its line (before the line break).
+template <class Extra>
+std::string cutLogCsvWith(const std::vector<CutLogEntry>& entries, const char* header, Extra extra) {
+  std::string out = std::string(header) + "\n";
   for (const CutLogEntry& e : entries) {
     out += std::to_string(e.stepIndex) + "," + isoTimeUtc(e.timeUnixMs);
     for (double v : {e.pose.tip.x, e.pose.tip.y, e.pose.tip.z, e.pose.axis.x, e.pose.axis.y, e.pose.axis.z})
@@ -88,9 +92,26 @@ std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
     out += "," + csvField(e.reamer) + "," +
            (e.reamerDiameterMm > 0 ? num(e.reamerDiameterMm, NumberStyle::Significant9) : std::string()) + "," +
            (e.reamerSphereRadiusMm ? num(*e.reamerSphereRadiusMm, NumberStyle::Significant9) : std::string()) + "," +
-           (e.undone ? "1" : "0") + "," + csvField(e.note) + "\n";
+           (e.undone ? "1" : "0") + "," + csvField(e.note) + extra(e) + "\n";
   }
   return out;
+}
+
+}  // namespace
+
+std::string cutLogCsv(const std::vector<CutLogEntry>& entries) {
+  return cutLogCsvWith(entries, detail::kCutLogCsvHeader, [](const CutLogEntry&) { return std::string(); });
+}
+
+std::string cutLogCsv(const std::vector<CutLogEntry>& entries, const ScapularFrame& frame) {
+  return cutLogCsvWith(entries, detail::kCutLogCsvHeaderWithAngles, [&frame](const CutLogEntry& e) {
+    try {
+      const AxisAngles a = feedAxisAngles(frame, e.pose.axis);
+      return "," + num(a.versionDeg, NumberStyle::Significant9) + "," + num(a.inclinationDeg, NumberStyle::Significant9);
+    } catch (const std::invalid_argument&) {  // no angles for this axis
+      return std::string(",,");
+    }
+  });
 }
 
 std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::string& summaryJson) {

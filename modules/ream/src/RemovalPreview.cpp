@@ -39,6 +39,7 @@ RemovalPreview previewReamToDepth(ReamEngine& engine, const BoneState& bone, con
         ++out.cuts;
       }
       from = pose;
+      out.lastPose = pose;
     }
   }
   out.removedMm3 = bone.volume() - out.after.volume();
@@ -46,10 +47,9 @@ RemovalPreview previewReamToDepth(ReamEngine& engine, const BoneState& bone, con
   return out;
 }
 
-void previewSeat(RemovalPreview& preview, const ReamerSpec& spec, const Pose& start) {
-  if (!preview.approachMm || !spec.meshFile.empty()) return;
-  preview.seat = measureReamedSurface(preview.after.toMesh(), spec,
-                                      advancedAlongAxis(start, *preview.approachMm + preview.depthMm));
+void previewSeat(RemovalPreview& preview, const ReamerSpec& spec) {
+  if (!preview.lastPose || !spec.meshFile.empty()) return;
+  preview.seat = measureReamedSurface(preview.after.toMesh(), spec, *preview.lastPose);
 }
 
 }  // namespace reamsim

@@ -256,7 +256,13 @@ QString LogPanel::exportCsv(const QString& path, bool interactive) {
     const BoneNode* bone = document_.firstOf<BoneNode>();  // the cut bone: its undone cuts are marked
     std::vector<CutLogEntry> rows = log ? log->entries() : std::vector<CutLogEntry>{};
     if (bone) rows = withUndoneMarked(std::move(rows), bone->history());
-    writeTextFile(path.toStdString(), cutLogCsv(rows));
+    // With the landmarks' frame, each row's version and inclination, as the panel shows them.
+    std::optional<ScapularFrame> frame;
+    if (bone) try {
+        frame = scapularFrame(bone->landmarks());
+      } catch (const std::invalid_argument&) {  // no frame: the columns are left out
+      }
+    writeTextFile(path.toStdString(), frame ? cutLogCsv(rows, *frame) : cutLogCsv(rows));
   } catch (const std::exception& e) {
     error = QString::fromStdString(e.what());
   }

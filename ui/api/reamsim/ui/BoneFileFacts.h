@@ -26,6 +26,12 @@ struct BoneFileFacts {
   std::int64_t cutLogLastMs = 0;  // the last row's time_utc (ms since 1970), 0 without rows
   std::optional<std::size_t> historyStates;  // the undo history saved beside: its states (2 or more)...
   std::size_t historyCursor = 0;             // ...and which of them this bone is (0-based)
+
+  static BoneFileFacts ofFrame(PatientFrame frame) {  // the frame alone (a crash copy's bones)
+    BoneFileFacts facts;
+    facts.frame = frame;
+    return facts;
+  }
 };
 
 namespace bone_file_facts {

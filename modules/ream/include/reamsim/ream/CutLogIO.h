@@ -6,6 +6,7 @@
 
 #include "reamsim/core/BoneHistory.h"
 #include "reamsim/core/CutLogEntry.h"
+#include "reamsim/ream/ScapularFrame.h"
 
 namespace reamsim {
 
@@ -19,9 +20,14 @@ std::vector<bool> undoneRows(const std::vector<CutLogEntry>& rows, const BoneHis
 // "2026-11-22T05:07:11.325Z" (UTC, milliseconds); "" for 0 (not recorded).
 std::string isoTimeUtc(std::int64_t unixMs);
 std::string cutLogCsv(const std::vector<CutLogEntry>& entries);
+// The same with two more columns, version_deg and inclination_deg: each row's reamer axis in `frame` (as the log
+// panel shows them; empty where the axis has none, e.g. pointing medially). What an export for review writes when
+// the bone's landmarks give a frame; cutLogFromCsv reads it back (the angles checked as numbers, not kept).
+std::string cutLogCsv(const std::vector<CutLogEntry>& entries, const ScapularFrame& frame);
 std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::string& summaryJson = "{}");
 // The rows of a CSV that cutLogCsv wrote, read back (src/CutLogCsvReader.cpp): cutLogCsv of the result gives
-// the same text for every row whose numbers are finite (min_distance_mm may also be "inf" or "nan"; a
+// the same text for every row whose numbers are finite (for a file written with a frame: the same rows, the angle
+// columns left out; written again with the frame they move by ~1e-5 degrees, the axis columns having 6 decimals) (min_distance_mm may also be "inf" or "nan"; a
 // non-finite value anywhere else is refused). Pose::rollDeg is not in the file and reads as 0. Anything else (another header, a row with
 // a missing or extra field, a value that is not a number, a flag that is not 0 or 1, a point with one
 // coordinate missing, a time that is not the writer's UTC form) throws InputError naming `file`, the line

@@ -18,6 +18,7 @@ struct RemovalPreview {
   std::size_t steps = 0, cuts = 0;   // the steps (the move to the contact, then the feed steps) and those that cut
   std::size_t facesAfter = 0;
   BoneState after;                   // the bone as the steps would leave it
+  std::optional<Pose> lastPose;      // the last step's pose (none without contact)
   // The reamed surface under the face at the last pose (measureReamedSurface): how much of the face the bone
   // would seat; set by previewSeat, for a parametric reamer with a contact.
   std::optional<ReamedSurfaceReport> seat;
@@ -33,9 +34,8 @@ struct RemovalPreview {
 RemovalPreview previewReamToDepth(ReamEngine& engine, const BoneState& bone, const Pose& start, double depthMm,
                                   double stepMm, double reachMm, StepControl* control = nullptr);
 
-// Sets preview.seat: the reamed surface of preview.after under the face of `spec` at the preview's last pose (start
-// advanced by the approach and the depth). Nothing without a contact or for a reamer read from a mesh (no ideal
-// face). O(bone faces).
-void previewSeat(RemovalPreview& preview, const ReamerSpec& spec, const Pose& start);
+// Sets preview.seat: the reamed surface of preview.after under the face of `spec` at preview.lastPose. Nothing
+// without a contact or for a reamer read from a mesh (no ideal face). O(bone faces).
+void previewSeat(RemovalPreview& preview, const ReamerSpec& spec);
 
 }  // namespace reamsim
