@@ -719,6 +719,10 @@ QString MainWindow::exportReport(const QString& file) {
   in.landmarks = bone.landmarks();
   in.plannedAxis = bone.plannedAxis();
   addGlenoidFaces(in, bone.history().entries().front().state, bone.current());
+  try {
+    addSeat(in, bone.current());
+  } catch (const std::invalid_argument&) {  // a spec the measure refuses: the report goes without the seat
+  }
   // The log only grows: a cut undone since (its state in this bone's history, past the cursor) is marked, and so
   // is one a saved log said was undone. Rows of another bone (before an exchange) or of a branch the history left
   // are not this history's: not marked.

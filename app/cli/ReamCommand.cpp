@@ -185,9 +185,11 @@ int runReam(const std::vector<std::string>& args) {
   // What a surgeon asks of the result: how much of the face is seated and how close the bone is to the
   // ideal face (parametric reamers: the ideal face is what the spec describes).
   std::string reamedLine;
+  std::optional<ReamedSurfaceReport> seatAtLast;  // for the report too
   if (spec.meshFile.empty() && !planNode.poses().empty()) {
     const ReamedSurfaceReport rs = measureReamedSurface(finalMesh, spec, planNode.poses().back(), kReamedSurfaceBandMm);
     summary["reamed_surface"] = reamedSurfaceJson(rs, kReamedSurfaceBandMm);
+    seatAtLast = rs;
     reamedLine = reamedSurfaceLine(rs);
   }
 
@@ -203,6 +205,7 @@ int runReam(const std::vector<std::string>& args) {
   report.landmarks = landmarks;
   report.plannedAxis = planning.plannedAxis;
   addGlenoidFaces(report, boneNode.history().entries().front().state, boneNode.current());
+  report.seat = seatAtLast;  // at the last pose, which is the report's reamer pose
   if (landmarks.complete()) {
     // The glenoid face's own angles before and after: what the plan set out to correct, and what it made.
     nlohmann::json faces;

@@ -30,6 +30,7 @@
 #include "reamsim/ream/CutLogIO.h"
 #include "reamsim/ream/DefaultCase.h"
 #include "reamsim/ream/GlenoidFace.h"
+#include "reamsim/tools/ReamedSurface.h"
 #include "reamsim/ream/ScapularFrame.h"
 
 namespace reamsim::ui::test {
@@ -202,7 +203,9 @@ TEST(GuiPlanning, TheGlenoidFaceAsOpenedStaysThroughManyCuts) {
   for (int i = 1; i <= 24; ++i) {
     cutOnce(s, 0.1 * i);
     EXPECT_TRUE(glenoid->text().contains("as opened: " + opened)) << "cut " << i << ": " << glenoid->text().toStdString();
-    if (i > 1) EXPECT_FALSE(glenoid->text().contains("as it is now: measuring")) << "cut " << i;
+    if (i > 1) {
+      EXPECT_FALSE(glenoid->text().contains("as it is now: measuring")) << "cut " << i;
+    }
   }
   ASSERT_TRUE(QTest::qWaitFor([&] { return !glenoid->text().contains("updating"); }, 10000));
   EXPECT_TRUE(glenoid->text().contains("as it is now: " + anglesShown(glenoidAnglesOf(s, s.bone()->current()))))
@@ -615,6 +618,10 @@ TEST(GuiPlanning, AReportHoldsTheRemovedVolumeTheAnglesAndThePicture) {
                             QString::number(faceNow.versionDeg, 'f', 1) + "° (")) << faceNow.versionDeg;
   EXPECT_TRUE(html.contains("Glenoid face as opened: version, inclination"));
   EXPECT_TRUE(html.contains("Planned axis from the glenoid face as opened"));
+  // The seat at the reamer's pose, as Measure seat says it.
+  const ReamedSurfaceReport seat = measureReamedSurface(s.bone()->current().toMesh(), s.reamer()->spec(), s.reamer()->pose());
+  EXPECT_TRUE(html.contains("Seat where the reamer is</th><td>" + QString::number(100 * seat.seatedFraction, 'f', 1) +
+                            " % of the cutting face on bone")) << seat.seatedFraction;
   EXPECT_TRUE(html.contains("<th>off the plan</th>"));
   EXPECT_TRUE(html.contains("2 (1 undone: not in the bone now)")) << html.toStdString();
   EXPECT_EQ(html.count(" (undone)</td>"), 1);

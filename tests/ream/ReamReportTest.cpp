@@ -106,6 +106,15 @@ TEST(ReamReport, GivesTheGlenoidFaceBeforeAndAfterAndThePlansCorrection) {
   std::snprintf(expected, sizeof expected, "%+.1f° of version, %+.1f° of inclination", -10 - face.versionDeg,
                 5 - face.inclinationDeg);
   EXPECT_NE(html.find(expected), std::string::npos) << expected;
+  // The seat at the reamer's pose: its row when measured, none for a reamer read from a mesh.
+  EXPECT_EQ(html.find("Seat where the reamer"), std::string::npos);
+  addSeat(in, opened);
+  ASSERT_TRUE(in.seat);
+  EXPECT_NE(reamReportHtml(in).find("Seat where the reamer is</th><td>0.0 % of the cutting face on bone"), std::string::npos);
+  ReamReportInput meshReamer = twoCuts();
+  meshReamer.reamer.meshFile = "reamer.stl";
+  addSeat(meshReamer, opened);
+  EXPECT_FALSE(meshReamer.seat);
   // Without the glenoid centre: no glenoid rows at all; with one off the bone: the reason, in both rows.
   ReamReportInput none = twoCuts();
   addGlenoidFaces(none, opened, opened);

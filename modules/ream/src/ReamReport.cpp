@@ -83,6 +83,11 @@ void addGlenoidFaces(ReamReportInput& in, const BoneState& opened, const BoneSta
   in.glenoidNow = &now == &opened ? in.glenoidAsOpened : measuredFace(now, *centre);
 }
 
+void addSeat(ReamReportInput& in, const BoneState& now) {
+  if (!in.reamerPose || !in.reamer.meshFile.empty()) return;
+  in.seat = measureReamedSurface(now.toMesh(), in.reamer, *in.reamerPose);
+}
+
 std::string reamReportHtml(const ReamReportInput& in) {
   std::optional<ScapularFrame> frame;
   std::string frameProblem;
@@ -145,6 +150,11 @@ std::string reamReportHtml(const ReamReportInput& in) {
     h += row("Reamer feed axis", point(in.reamerPose->axis));
     h += row("Reamer axis: version, inclination", angles(in.reamerPose->axis));
   }
+  if (in.seat)
+    h += row("Seat where the reamer is", fixed(100 * in.seat->seatedFraction, 1) + " % of the cutting face on bone; "
+             "standoff from the ideal face " + fixed(in.seat->standoffMinMm, 4) + " to " +
+             fixed(in.seat->standoffMaxMm, 4) + " mm, rms " + fixed(in.seat->standoffRmsMm, 4) +
+             " mm (the reamer mesh's facets sag " + fixed(in.seat->facetSagMm, 4) + " mm)");
   if (in.glenoidAsOpened.face || !in.glenoidAsOpened.problem.empty()) {
     h += row("Glenoid face as opened: version, inclination", glenoid(in.glenoidAsOpened));
     h += row("Glenoid face now: version, inclination", glenoid(in.glenoidNow));

@@ -14,6 +14,7 @@
 #include "reamsim/core/ReamerSpec.h"
 #include "reamsim/core/ScapulaLandmarks.h"
 #include "reamsim/ream/GlenoidFace.h"
+#include "reamsim/tools/ReamedSurface.h"
 
 namespace reamsim {
 
@@ -35,6 +36,7 @@ struct ReamReportInput {
   ScapulaLandmarks landmarks;       // the bone's (any not placed: no frame, no angles)
   std::optional<Pose> plannedAxis;  // the axis planned on the bone (each cut's axis is measured off it)
   ReportedGlenoidFace glenoidAsOpened, glenoidNow;  // the glenoid face before the cuts and now (addGlenoidFaces)
+  std::optional<ReamedSurfaceReport> seat;  // the reamed surface under the face at reamerPose (addSeat)
   std::vector<CutLogEntry> cuts;    // the log's rows, in order
   std::vector<bool> undone;         // beside `cuts` (or empty): the row's cut is not in the bone now (undone)
   std::string pngBase64;            // a picture of the view (PNG, base64); empty: none
@@ -45,6 +47,10 @@ struct ReamReportInput {
 // Measures the glenoid face of both states about the landmarks' glenoid centre into `input` (nothing without
 // one; `now` is skipped when it is `opened`). O(faces) each: ~3 ms at 400k.
 void addGlenoidFaces(ReamReportInput& input, const BoneState& opened, const BoneState& now);
+
+// Measures the seat of the reamer at input.reamerPose on `now` (measureReamedSurface) into `input`: nothing without
+// a pose or for a reamer read from a mesh (no ideal face). O(faces).
+void addSeat(ReamReportInput& input, const BoneState& now);
 
 // The whole HTML document. Every text from the input is escaped; numbers are written in the C locale.
 std::string reamReportHtml(const ReamReportInput& input);
