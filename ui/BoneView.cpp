@@ -23,6 +23,7 @@
 
 #include "CachedBoneLayer.h"
 #include "LandmarksLayer.h"
+#include "reamsim/ream/GlenoidFace.h"
 #include "ReamSession.h"
 #include "ThesisInteractorStyle.h"
 #include "reamsim/collision/MeshRayCast.h"
@@ -225,7 +226,8 @@ void BoneView::onDocumentEvent() {
       changed = true;
     }
   }
-  if (BonePlanning planning = planningOf(*bone); planning != shownPlanning_) {
+  const bool glenoidChanged = measureGlenoidFace();
+  if (BonePlanning planning = planningOf(*bone); planning != shownPlanning_ || glenoidChanged) {
     shownPlanning_ = std::move(planning);
     showLandmarks();
     changed = true;
@@ -233,11 +235,26 @@ void BoneView::onDocumentEvent() {
   if (changed) requestRender();
 }
 
+bool BoneView::measureGlenoidFace() {
+  const BoneNode& bone = *session_.bone();
+  const BoneHistory::Entry& opened = bone.history().entries().front();
+  const std::optional<Vec3>& centre = bone.landmarks()[ScapulaLandmark::GlenoidCentre];
+  if (opened.revision == glenoid_.openedRevision && centre == glenoid_.centre) return false;
+  const std::optional<Vec3> before = glenoid_.outward;
+  glenoid_ = {opened.revision, centre, std::nullopt};
+  if (centre) try {
+      glenoid_.outward = reamsim::measureGlenoidFace(opened.state, *centre).outward;
+    } catch (const std::invalid_argument&) {  // no face there: nothing drawn (the Planning dock says why)
+    }
+  return glenoid_.outward != before;
+}
+
 // Spheres a little larger than a reamer step on the default bone, and visible on a whole-body CT bone.
 void BoneView::showLandmarks() {
   const Bounds b = session_.bone()->current().bounds();
   const double diagonal = b.empty() ? 100.0 : norm(b.max - b.min);
-  landmarksLayer_->show(shownPlanning_.landmarks, shownPlanning_.plannedAxis, std::clamp(0.008 * diagonal, 0.8, 4.0));
+  landmarksLayer_->show(shownPlanning_.landmarks, shownPlanning_.plannedAxis, glenoid_.outward,
+                        std::clamp(0.008 * diagonal, 0.8, 4.0));
   boneCache_->invalidate();
 }
 

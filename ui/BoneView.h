@@ -83,6 +83,7 @@ class BoneView : public QVTKOpenGLNativeWidget {
   void updateClippingRange();
   bool placeRequestedLandmark(int x, int y);
   void showLandmarks();
+  bool measureGlenoidFace();  // true when what is drawn changes
 
   ReamSession& session_;
   Subscription subscription_;
@@ -92,6 +93,13 @@ class BoneView : public QVTKOpenGLNativeWidget {
   std::unique_ptr<CachedBoneLayer> boneCache_;
   std::unique_ptr<LandmarksLayer> landmarksLayer_;
   BonePlanning shownPlanning_;
+  // The glenoid face's outward direction on the bone as opened, measured once per (its first state, glenoid
+  // centre): O(bone) on this thread, ~3 ms at 400k triangles, when a bone opens or the centre is placed.
+  struct GlenoidShown {
+    std::uint64_t openedRevision = 0;
+    std::optional<Vec3> centre;
+    std::optional<Vec3> outward;
+  } glenoid_;
   vtkSmartPointer<vtkCallbackCommand> beforeFrame_;
   double clipBox_[6] = {0, -1, 0, -1, 0, -1}, clipBone_[6] = {0, 0, 0, 0, 0, 0};
   unsigned long clipCameraTime_ = 0;

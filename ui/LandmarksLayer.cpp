@@ -30,26 +30,44 @@ LandmarksLayer::LandmarksLayer(vtkRenderer* renderer) : renderer_(renderer) {
     actors_[i]->PickableOff();
     renderer_->AddActor(actors_[i]);
   }
-  axisLine_ = vtkSmartPointer<vtkLineSource>::New();
-  axisTube_ = vtkSmartPointer<vtkTubeFilter>::New();
-  axisTube_->SetInputConnection(axisLine_->GetOutputPort());
-  axisTube_->SetNumberOfSides(12);
+  addRod(axisLine_, axisTube_, axisActor_, 0.95, 0.80, 0.10);
+  addRod(glenoidLine_, glenoidTube_, glenoidActor_, 0.10, 0.80, 0.90);
+}
+
+void LandmarksLayer::addRod(vtkSmartPointer<vtkLineSource>& line, vtkSmartPointer<vtkTubeFilter>& tube,
+                            vtkSmartPointer<vtkActor>& actor, double r, double g, double b) {
+  line = vtkSmartPointer<vtkLineSource>::New();
+  tube = vtkSmartPointer<vtkTubeFilter>::New();
+  tube->SetInputConnection(line->GetOutputPort());
+  tube->SetNumberOfSides(12);
   auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-  mapper->SetInputConnection(axisTube_->GetOutputPort());
-  axisActor_ = vtkSmartPointer<vtkActor>::New();
-  axisActor_->SetMapper(mapper);
-  axisActor_->GetProperty()->SetColor(0.95, 0.80, 0.10);
-  axisActor_->SetVisibility(false);
-  axisActor_->PickableOff();
-  renderer_->AddActor(axisActor_);
+  mapper->SetInputConnection(tube->GetOutputPort());
+  actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(r, g, b);
+  actor->SetVisibility(false);
+  actor->PickableOff();
+  renderer_->AddActor(actor);
 }
 
 LandmarksLayer::~LandmarksLayer() {
   for (auto& actor : actors_) renderer_->RemoveActor(actor);
   renderer_->RemoveActor(axisActor_);
+  renderer_->RemoveActor(glenoidActor_);
 }
 
-void LandmarksLayer::show(const ScapulaLandmarks& landmarks, const std::optional<Pose>& plannedAxis, double radiusMm) {
+void LandmarksLayer::show(const ScapulaLandmarks& landmarks, const std::optional<Pose>& plannedAxis,
+                          const std::optional<Vec3>& glenoidOutward, double radiusMm) {
+  const std::optional<Vec3>& centre = landmarks[ScapulaLandmark::GlenoidCentre];
+  glenoidShown_ = centre && glenoidOutward ? glenoidOutward : std::nullopt;
+  glenoidActor_->SetVisibility(glenoidShown_.has_value());
+  if (glenoidShown_) {
+    const Vec3 out = *centre + *glenoidShown_ * 30.0;
+    glenoidLine_->SetPoint1(centre->x, centre->y, centre->z);
+    glenoidLine_->SetPoint2(out.x, out.y, out.z);
+    glenoidTube_->SetRadius(radiusMm / 7);
+    glenoidTube_->Update();
+  }
   axisActor_->SetVisibility(plannedAxis.has_value());
   if (plannedAxis) {
     const Vec3 out = plannedAxis->tip - plannedAxis->axis * 40.0, in = plannedAxis->tip + plannedAxis->axis * 10.0;
@@ -70,6 +88,8 @@ void LandmarksLayer::show(const ScapulaLandmarks& landmarks, const std::optional
 }
 
 bool LandmarksLayer::plannedAxisShown() const { return axisActor_->GetVisibility(); }
+
+std::optional<Vec3> LandmarksLayer::glenoidAxisShown() const { return glenoidShown_; }
 
 bool LandmarksLayer::shown(ScapulaLandmark which) const { return actors_[std::size_t(which)]->GetVisibility(); }
 

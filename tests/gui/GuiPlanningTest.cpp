@@ -154,6 +154,19 @@ TEST(GuiPlanning, TheDockMeasuresTheGlenoidFaceAsOpenedAndAsReamed) {
   EXPECT_TRUE(glenoid->text().contains(anglesShown(opened))) << glenoid->text().toStdString();
   EXPECT_TRUE(glenoid->text().contains(QLocale().toString(opened.inclinationDeg, 'f', 1) + "°")) << glenoid->text().toStdString();
   EXPECT_FALSE(glenoid->text().contains("now")) << "nothing cut yet: " << glenoid->text().toStdString();
+  // The view draws the face's direction out of the glenoid centre (cyan), beside the planned axis.
+  const ScapulaLandmarks marks = s.bone()->landmarks();
+  const std::optional<Vec3> drawn = w.view()->landmarksLayer().glenoidAxisShown();
+  ASSERT_TRUE(drawn);
+  EXPECT_EQ(*drawn, measureGlenoidFace(s.bone()->history().entries().front().state,
+                                       *marks[ScapulaLandmark::GlenoidCentre]).outward);
+  s.bone()->setLandmark(ScapulaLandmark::GlenoidCentre, std::nullopt);
+  QCoreApplication::processEvents();
+  EXPECT_FALSE(w.view()->landmarksLayer().glenoidAxisShown());
+  s.bone()->setLandmarks(marks);
+  QCoreApplication::processEvents();
+  ASSERT_TRUE(w.view()->landmarksLayer().glenoidAxisShown());
+  EXPECT_EQ(*w.view()->landmarksLayer().glenoidAxisShown(), *drawn);
 
   // "Take the glenoid's" fills in its angles; Aim along them, and the plan says it corrects nothing.
   auto* version = part<QDoubleSpinBox>(dock, "AimVersion");
