@@ -238,14 +238,14 @@ int runReam(const std::vector<std::string>& args) {
 
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);
+  std::optional<ScapularFrame> frame;  // with the landmarks, each row's version and inclination
+  if (landmarks.complete()) try {
+      frame = scapularFrame(landmarks);
+    } catch (const std::invalid_argument&) {
+    }
   try {
-    std::optional<ScapularFrame> frame;  // with the landmarks, each row's version and inclination
-    if (landmarks.complete()) try {
-        frame = scapularFrame(landmarks);
-      } catch (const std::invalid_argument&) {
-      }
     writeTextFile(outDir + "/log.csv", frame ? cutLogCsv(log.entries(), *frame) : cutLogCsv(log.entries()));
-    writeTextFile(outDir + "/log.json", cutLogJson(log.entries(), summary.dump()));
+    writeTextFile(outDir + "/log.json", cutLogJson(log.entries(), summary.dump(), frame ? &*frame : nullptr));
     writeMesh(finalMesh, outDir + "/bone_final.ply");
     writeTextFile(outDir + "/report.html", reamReportHtml(report));
   } catch (const InputError& e) {
@@ -253,7 +253,7 @@ int runReam(const std::vector<std::string>& args) {
     return kWriteFailed;
   }
   if (json) {
-    std::cout << cutLogJson(log.entries(), summary.dump()) << "\n";
+    std::cout << cutLogJson(log.entries(), summary.dump(), frame ? &*frame : nullptr) << "\n";
   } else {
     std::printf("removed %.3f mm3 in %zu steps; median cut %.2f ms; faces %zu -> %zu; worst |removed - (V_before - "
                 "V_after)| / removed = %.2e\n",

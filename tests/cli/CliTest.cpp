@@ -182,12 +182,15 @@ TEST(Cli, ReamWritesLogsAndMesh) {
   EXPECT_EQ(j["steps"].size(), 10u);
   EXPECT_TRUE(j["summary"]["glenoid_face"]["as_opened"].contains("version_deg")) << j["summary"].dump();
   EXPECT_TRUE(j["summary"]["glenoid_face"]["now"].contains("version_deg")) << j["summary"].dump();
+  EXPECT_TRUE(j["steps"][0]["version_deg"].is_number()) << j["steps"][0].dump();  // as the CSV's column
   const fs::path bare = scratch("ream-out-bare");
   ASSERT_EQ(run("ream --bone default --reamer glenoid-36-R30 --plan " + plan.string() + " --landmarks none --out " +
                 bare.string()).exitCode, 0);
   std::ifstream bareCsv(bare / "log.csv");
   std::getline(bareCsv, header);
   EXPECT_EQ(header.substr(header.size() - 12), ",undone,note") << header;
+  std::ifstream bareJson(bare / "log.json");
+  EXPECT_FALSE(nlohmann::json::parse(bareJson)["steps"][0].contains("version_deg"));
   EXPECT_GT(j["summary"]["removed_total_mm3"].get<double>(), 0.0);
   EXPECT_LT(j["summary"]["max_volume_bookkeeping_error_rel"].get<double>(), 1e-6);
 }

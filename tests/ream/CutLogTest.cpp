@@ -212,6 +212,14 @@ TEST(CutLog, AnExportWithAnglesReadsBackAndItsAnglesAreTheAxis) {
   const std::vector<CutLogEntry> back = cutLogFromCsv(csv, "angles.csv");
   EXPECT_EQ(cutLogCsv(back), cutLogCsv(rows));  // the same rows; the angles are derived, not kept
   // (Written again from the rows read back the angles move by ~1e-5 degrees: the axis columns keep 6 decimals.)
+  // The JSON log has them too: on every row, null where the axis has none.
+  const std::string json = cutLogJson(rows, "{}", &frame);
+  std::size_t angles = 0;
+  for (std::size_t at = json.find("\"version_deg\""); at != std::string::npos; at = json.find("\"version_deg\"", at + 1)) ++angles;
+  EXPECT_EQ(angles, rows.size());
+  EXPECT_NE(json.find("\"version_deg\": -7.2"), std::string::npos);
+  EXPECT_NE(json.find("\"version_deg\": null"), std::string::npos);
+  EXPECT_EQ(cutLogJson(rows).find("version_deg"), std::string::npos);
   std::string damaged = csv;
   damaged.replace(damaged.find(first), first.size(), "left,4.5");
   try {

@@ -114,7 +114,8 @@ std::string cutLogCsv(const std::vector<CutLogEntry>& entries, const ScapularFra
   });
 }
 
-std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::string& summaryJson) {
+std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::string& summaryJson,
+                       const ScapularFrame* frame) {
   nlohmann::json rows = nlohmann::json::array();
   for (const CutLogEntry& e : entries) {
     nlohmann::json r = {{"step", e.stepIndex},
@@ -138,6 +139,13 @@ std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::strin
                                                     {"sphere_radius_mm", e.reamerSphereRadiusMm ? nlohmann::json(*e.reamerSphereRadiusMm)
                                                                                                 : nlohmann::json(nullptr)}};
     r["note"] = e.note;
+    if (frame) try {  // as the CSV's version_deg and inclination_deg: null where the axis has none
+        const AxisAngles a = feedAxisAngles(*frame, e.pose.axis);
+        r["version_deg"] = a.versionDeg;
+        r["inclination_deg"] = a.inclinationDeg;
+      } catch (const std::invalid_argument&) {
+        r["version_deg"] = r["inclination_deg"] = nullptr;
+      }
     rows.push_back(r);
   }
   nlohmann::json j = {{"summary", nlohmann::json::parse(summaryJson)}, {"steps", rows}};

@@ -24,7 +24,9 @@ std::string cutLogCsv(const std::vector<CutLogEntry>& entries);
 // panel shows them; empty where the axis has none, e.g. pointing medially). What an export for review writes when
 // the bone's landmarks give a frame; cutLogFromCsv reads it back (the angles checked as numbers, not kept).
 std::string cutLogCsv(const std::vector<CutLogEntry>& entries, const ScapularFrame& frame);
-std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::string& summaryJson = "{}");
+// With a frame, each row also has version_deg and inclination_deg (null where the axis has none), as the CSV.
+std::string cutLogJson(const std::vector<CutLogEntry>& entries, const std::string& summaryJson = "{}",
+                       const ScapularFrame* frame = nullptr);
 // The rows of a CSV that cutLogCsv wrote, read back (src/CutLogCsvReader.cpp): cutLogCsv of the result gives
 // the same text for every row whose numbers are finite (for a file written with a frame: the same rows, the angle
 // columns left out; written again with the frame they move by ~1e-5 degrees, the axis columns having 6 decimals) (min_distance_mm may also be "inf" or "nan"; a
