@@ -94,7 +94,7 @@ class BoneView : public QVTKOpenGLNativeWidget {
   std::unique_ptr<LandmarksLayer> landmarksLayer_;
   BonePlanning shownPlanning_;
   // The glenoid face's outward direction on the bone as opened, measured once per (its first state, glenoid
-  // centre): O(bone) on this thread, ~3 ms at 400k triangles, when a bone opens or the centre is placed.
+  // centre): O(bone) on this thread, ~4 ms at 400k triangles, when a bone opens or the centre is placed.
   struct GlenoidShown {
     std::uint64_t openedRevision = 0;
     std::optional<Vec3> centre;

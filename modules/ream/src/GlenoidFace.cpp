@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <cstdint>
 #include <limits>
 #include <sstream>
@@ -44,41 +43,34 @@ void checkPreconditions(const BoneState& bone, const Vec3& centre, const Glenoid
 // whether or not they share vertex slots (a mesh read with its coincident vertices apart, a seam of a commit).
 class PositionNumbers {
  public:
-  std::uint32_t of(const Vec3& p) {
-    Key k;
-    std::memcpy(k.data(), &p, sizeof k);
-    return numbers_.try_emplace(k, std::uint32_t(numbers_.size())).first->second;
-  }
+  std::uint32_t of(const Vec3& p) { return numbers_.try_emplace(p, std::uint32_t(numbers_.size())).first->second; }
 
  private:
-  using Key = std::array<std::uint64_t, 3>;  // the coordinates' bits (+0 and -0 apart: no file writes -0 by a seam)
-  struct Hash {
-    std::size_t operator()(const Key& k) const { return std::hash<std::uint64_t>()(k[0] * 31 + k[1] * 131071 + k[2]); }
-  };
-  std::unordered_map<Key, std::uint32_t, Hash> numbers_;
+  std::unordered_map<Vec3, std::uint32_t, Vec3PositionHash> numbers_;
 };
 
 // The triangles whose centroids lie within the radius, and the gap to the nearest surface point.
 std::vector<Candidate> trianglesWithin(const BoneState& bone, const Vec3& centre, double radius, double& nearestCentroid) {
   std::vector<Candidate> near;
   PositionNumbers positions;
-  nearestCentroid = std::numeric_limits<double>::infinity();
+  double nearest2 = std::numeric_limits<double>::infinity();
   const double r2 = radius * radius;
   bone.forEachLiveTriangle([&](std::uint32_t, const Triangle& t) {
     const Vec3& a = bone.vertex(t[0]);
     const Vec3& b = bone.vertex(t[1]);
     const Vec3& c = bone.vertex(t[2]);
     const double d2 = squaredNorm((a + b + c) * (1.0 / 3.0) - centre);
-    if (d2 > r2) {
-      if (d2 < nearestCentroid * nearestCentroid) nearestCentroid = std::sqrt(d2);
-      return;
-    }
-    nearestCentroid = std::min(nearestCentroid, std::sqrt(d2));
+    if (d2 < nearest2) nearest2 = d2;  // seldom taken: a branch, not a chain of minima through every triangle
+    if (d2 > r2) return;
     near.push_back({{positions.of(a), positions.of(b), positions.of(c)}, cross(b - a, c - a) * 0.5,
                     norm(closestPointOnTriangle(centre, a, b, c) - centre)});
   });
+  nearestCentroid = std::sqrt(nearest2);
   return near;
 }
+
+constexpr const char* kNoSingleWay =
+    "the surface at the glenoid centre faces no single way (its triangles' areas cancel out)";
 
 std::uint64_t edgeKey(std::uint32_t u, std::uint32_t v) {
   return u < v ? (std::uint64_t(u) << 32) | v : (std::uint64_t(v) << 32) | u;
@@ -103,7 +95,7 @@ GlenoidFace measureGlenoidFace(const BoneState& bone, const Vec3& centre, const 
   for (const Candidate& c : near)
     if (c.gap <= core) reference += c.vectorArea;
   if (!(norm(reference) > 0))
-    throw std::invalid_argument("the surface at the glenoid centre faces no single way (its triangles' areas cancel out)");
+    throw std::invalid_argument(kNoSingleWay);
   reference = normalized(reference);
 
   // The face grows from the triangles near the centre that face the reference's way, over shared edges, to the
@@ -140,7 +132,7 @@ GlenoidFace measureGlenoidFace(const BoneState& bone, const Vec3& centre, const 
     }
   }
   if (!(norm(sum) > 0))
-    throw std::invalid_argument("the surface at the glenoid centre faces no single way (its triangles' areas cancel out)");
+    throw std::invalid_argument(kNoSingleWay);
   face.outward = normalized(sum);
   face.radiusMm = o.radiusMm;
   face.centreGapMm = gap;

@@ -1,6 +1,6 @@
 #pragma once
 // The planning dock's measure of the glenoid face (reamsim/ream/GlenoidFace.h) on the bone as opened (its
-// history's first state) and as it is now, taken on a worker thread: it costs O(bone) (~3 ms at 400k
+// history's first state) and as it is now, taken on a worker thread: it costs O(bone) (~4 ms at 400k
 // triangles, ~0.1 s on a CT bone of millions), and the dock asks on every reamer move. Each state is measured
 // once per glenoid centre; the answers asked for last are kept (least recently asked dropped first), so a move,
 // an undo or a redo among recent states asks nothing new, and the bone as opened, asked every time, stays.

@@ -35,7 +35,7 @@ struct GlenoidFace {
 
 // Preconditions first, each a std::invalid_argument saying what is wrong: a finite centre, a radius within
 // 2..40 mm, a turn within 1..89 degrees, a bone with surface; then a face must exist: some surface within the
-// radius, and triangles near the centre whose vector areas do not cancel out. O(live triangles): ~3 ms at 400k
+// radius, and triangles near the centre whose vector areas do not cancel out. O(live triangles): ~4 ms at 400k
 // (`bench cut --loop`, loop.glenoid_face).
 GlenoidFace measureGlenoidFace(const BoneState& bone, const Vec3& centre, const GlenoidFaceOptions& options = {});
 

@@ -45,7 +45,7 @@ struct ReamReportInput {
 };
 
 // Measures the glenoid face of both states about the landmarks' glenoid centre into `input` (nothing without
-// one; `now` is skipped when it is `opened`). O(faces) each: ~3 ms at 400k.
+// one; `now` is skipped when it is `opened`). O(faces) each: ~4 ms at 400k.
 void addGlenoidFaces(ReamReportInput& input, const BoneState& opened, const BoneState& now);
 
 // Measures the seat of the reamer at input.reamerPose on `now` (measureReamedSurface) into `input`: nothing without
