@@ -206,16 +206,24 @@ int runReam(const std::vector<std::string>& args) {
   report.plannedAxis = planning.plannedAxis;
   addGlenoidFaces(report, boneNode.history().entries().front().state, boneNode.current());
   report.seat = seatAtLast;  // at the last pose, which is the report's reamer pose
+  // The landmarks' frame, once: the glenoid face's angles, the last pose's, and each log row's.
+  std::optional<ScapularFrame> frame;
+  std::string frameProblem;
+  if (landmarks.complete()) try {
+      frame = scapularFrame(landmarks);
+    } catch (const std::invalid_argument& e) {
+      frameProblem = e.what();
+    }
   if (landmarks.complete()) {
     // The glenoid face's own angles before and after: what the plan set out to correct, and what it made.
     nlohmann::json faces;
     for (const auto& [key, reported] : {std::pair{"as_opened", &report.glenoidAsOpened}, std::pair{"now", &report.glenoidNow}}) {
-      if (!reported->face) {
-        faces[key] = {{"problem", reported->problem}};
+      if (!reported->face || !frame) {
+        faces[key] = {{"problem", !reported->face ? reported->problem : frameProblem}};
         continue;
       }
       try {
-        const AxisAngles g = axisAngles(scapularFrame(landmarks), reported->face->outward);
+        const AxisAngles g = axisAngles(*frame, reported->face->outward);
         faces[key] = {{"version_deg", g.versionDeg}, {"inclination_deg", g.inclinationDeg}};
       } catch (const std::invalid_argument& e) {
         faces[key] = {{"problem", e.what()}};
@@ -229,7 +237,8 @@ int runReam(const std::vector<std::string>& args) {
                              std::chrono::system_clock::now().time_since_epoch()).count();
   report.writtenBy = "reamsim-cli ream --plan " + planArg;
   if (report.reamerPose && landmarks.complete()) try {
-      const AxisAngles last = feedAxisAngles(scapularFrame(landmarks), report.reamerPose->axis);
+      if (!frame) throw std::invalid_argument(frameProblem);
+      const AxisAngles last = feedAxisAngles(*frame, report.reamerPose->axis);
       summary["last_pose_version_deg"] = last.versionDeg;
       summary["last_pose_inclination_deg"] = last.inclinationDeg;
     } catch (const std::invalid_argument& e) {
@@ -238,11 +247,6 @@ int runReam(const std::vector<std::string>& args) {
 
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);
-  std::optional<ScapularFrame> frame;  // with the landmarks, each row's version and inclination
-  if (landmarks.complete()) try {
-      frame = scapularFrame(landmarks);
-    } catch (const std::invalid_argument&) {
-    }
   try {
     writeTextFile(outDir + "/log.csv", frame ? cutLogCsv(log.entries(), *frame) : cutLogCsv(log.entries()));
     writeTextFile(outDir + "/log.json", cutLogJson(log.entries(), summary.dump(), frame ? &*frame : nullptr));
